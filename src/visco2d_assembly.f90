@@ -1,0 +1,173 @@
+!> Global assembly shared by every analysis: equation numbering, the banded
+!> stiffness S of eq. [25], lumped mass M (eq. [32]), load vectors from
+!> PRESSURE/FORCE cards, the support mask, and stress recovery to nodes.
+module visco2d_assembly
+  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_deck, only: deck_t
+  use visco2d_mesh, only: mesh_t, side_nodes
+  use visco2d_material, only: elastic_matrix
+  use visco2d_element, only: element_stiffness, element_lumped_mass, edge_pressure_load, &
+                             element_internal_force, gauss_to_node_extrapolation
+  use visco2d_banded, only: band_matrix_t, band_create, band_add_element
+  implicit none
+  private
+
+  public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask
+  public :: lumped_mass, internal_force, nodal_average, gather, scatter_add
+
+contains
+
+  !> Equation number of component c (1 = r, 2 = z) of a node, in band order.
+  pure integer function node_dof(mesh, node, component)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: node, component
+    node_dof = 2*(mesh%equation(node) - 1) + component
+  end function node_dof
+
+  !> The 8 equation numbers of element e: (r1, z1, r2, z2, ...).
+  pure function element_dofs(mesh, e) result(dofs)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    integer :: dofs(8)
+    integer :: a
+    do a = 1, 4
+      dofs(2*a - 1) = 2*(mesh%equation(mesh%connectivity(a, e)) - 1) + 1
+      dofs(2*a) = dofs(2*a - 1) + 1
+    end do
+  end function element_dofs
+
+  !> Element displacements (8) gathered from a global vector in band order.
+  pure function gather(mesh, e, vector) result(local)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    real(dp), intent(in) :: vector(:)
+    real(dp) :: local(8)
+    local = vector(element_dofs(mesh, e))
+  end function gather
+
+  pure subroutine scatter_add(mesh, e, local, vector)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: e
+    real(dp), intent(in) :: local(8)
+    real(dp), intent(inout) :: vector(:)
+    integer :: dofs(8)
+    dofs = element_dofs(mesh, e)
+    vector(dofs) = vector(dofs) + local
+  end subroutine scatter_add
+
+  !> Banded stiffness S = sum_e k_e with per-element moduli (G, K).
+  subroutine assemble_stiffness(deck, shear, bulk, matrix)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: shear(:), bulk(:)   !< (nelem)
+    type(band_matrix_t), intent(out) :: matrix
+    integer :: e
+    associate (mesh => deck%mesh)
+    call band_create(matrix, 2*mesh%nnode, mesh%half_bandwidth)
+    do e = 1, mesh%nelem
+      call band_add_element(matrix, element_dofs(mesh, e), &
+        element_stiffness(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), elastic_matrix(shear(e), bulk(e))))
+    end do
+    end associate
+  end subroutine assemble_stiffness
+
+  !> Load vector of the PRESSURE and FORCE cards, scaled by `factor`.
+  function external_load(deck, factor) result(load)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: factor
+    real(dp) :: load(2*deck%mesh%nnode)
+    integer :: k, edge, a, b
+    real(dp) :: f(4)
+    load = 0.0_dp
+    associate (mesh => deck%mesh)
+    do k = 1, size(deck%pressures)
+      do edge = 1, size(mesh%edge_set)
+        if (mesh%edge_set(edge) /= deck%pressures(k)%edge_set) cycle
+        call side_nodes(mesh, mesh%edge_element(edge), mesh%edge_side(edge), a, b)
+        f = edge_pressure_load(deck%geometry, mesh%xy(:, a), mesh%xy(:, b), factor*deck%pressures(k)%value)
+        load(node_dof(mesh, a, 1):node_dof(mesh, a, 2)) = load(node_dof(mesh, a, 1):node_dof(mesh, a, 2)) + f(1:2)
+        load(node_dof(mesh, b, 1):node_dof(mesh, b, 2)) = load(node_dof(mesh, b, 1):node_dof(mesh, b, 2)) + f(3:4)
+      end do
+    end do
+    do k = 1, size(deck%forces)
+      a = deck%forces(k)%node
+      load(node_dof(mesh, a, 1)) = load(node_dof(mesh, a, 1)) + factor*deck%forces(k)%value(1)
+      load(node_dof(mesh, a, 2)) = load(node_dof(mesh, a, 2)) + factor*deck%forces(k)%value(2)
+    end do
+    end associate
+  end function external_load
+
+  !> Supported equations: the FIX cards, plus u_r = 0 on the axis in axisymmetry.
+  function support_mask(deck) result(fixed)
+    type(deck_t), intent(in) :: deck
+    logical :: fixed(2*deck%mesh%nnode)
+    integer :: k, i, node
+    fixed = .false.
+    associate (mesh => deck%mesh)
+    do k = 1, size(deck%fixes)
+      do i = 1, size(deck%fixes(k)%nodes)
+        node = deck%fixes(k)%nodes(i)
+        if (deck%fixes(k)%fix_r) fixed(node_dof(mesh, node, 1)) = .true.
+        if (deck%fixes(k)%fix_z) fixed(node_dof(mesh, node, 2)) = .true.
+      end do
+    end do
+    if (deck%geometry == geometry_axisymmetric) then
+      do node = 1, mesh%nnode
+        if (mesh%xy(1, node) == 0.0_dp) fixed(node_dof(mesh, node, 1)) = .true.
+      end do
+    end if
+    end associate
+  end function support_mask
+
+  !> Lumped (row-sum) mass per equation, eq. [32].
+  function lumped_mass(deck) result(mass)
+    type(deck_t), intent(in) :: deck
+    real(dp) :: mass(2*deck%mesh%nnode)
+    real(dp) :: m(4)
+    integer :: e
+    mass = 0.0_dp
+    associate (mesh => deck%mesh)
+    do e = 1, mesh%nelem
+      m = element_lumped_mass(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                              deck%materials(mesh%element_material(e))%density)
+      call scatter_add(mesh, e, [m(1), m(1), m(2), m(2), m(3), m(3), m(4), m(4)], mass)
+    end do
+    end associate
+  end function lumped_mass
+
+  !> Internal force vector sum_e B^T sigma from Gauss-point stresses (4, 4, nelem).
+  function internal_force(deck, stress) result(force)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: stress(:, :, :)
+    real(dp) :: force(2*deck%mesh%nnode)
+    integer :: e
+    force = 0.0_dp
+    do e = 1, deck%mesh%nelem
+      call scatter_add(deck%mesh, e, element_internal_force(deck%geometry, &
+        deck%mesh%xy(:, deck%mesh%connectivity(:, e)), stress(:, :, e)), force)
+    end do
+  end function internal_force
+
+  !> Nodal values of Gauss-point quantities (ncomp, 4, nelem): bilinear
+  !> extrapolation in each element, averaged over the elements at a node.
+  function nodal_average(mesh, gauss_values) result(nodal)
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: gauss_values(:, :, :)
+    real(dp) :: nodal(size(gauss_values, 1), mesh%nnode)
+    real(dp) :: extrapolation(4, 4), count(mesh%nnode)
+    integer :: e, a
+    extrapolation = gauss_to_node_extrapolation()
+    nodal = 0.0_dp
+    count = 0.0_dp
+    do e = 1, mesh%nelem
+      associate (values => matmul(gauss_values(:, :, e), extrapolation))
+      do a = 1, 4
+        nodal(:, mesh%connectivity(a, e)) = nodal(:, mesh%connectivity(a, e)) + values(:, a)
+        count(mesh%connectivity(a, e)) = count(mesh%connectivity(a, e)) + 1.0_dp
+      end do
+      end associate
+    end do
+    do a = 1, mesh%nnode
+      nodal(:, a) = nodal(:, a)/count(a)
+    end do
+  end function nodal_average
+end module visco2d_assembly

@@ -1,0 +1,146 @@
+!> Symmetric banded matrices (the legacy program's band storage, eq. [25]'s S
+!> and later eq. [35]'s effective stiffness): assembly, symmetric
+!> elimination of prescribed displacements, and LAPACK Cholesky
+!> (dpbtrf once, dpbtrs per right-hand side).
+module visco2d_banded
+  use visco2d_kinds, only: dp
+  implicit none
+  private
+
+  public :: band_matrix_t, band_create, band_add_element, band_multiply, band_constrain
+  public :: band_factor, band_solve, band_diagonal
+
+  interface
+    subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, kd, ldab
+      real(dp), intent(inout) :: ab(ldab, *)
+      integer, intent(out) :: info
+    end subroutine dpbtrf
+    subroutine dpbtrs(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, kd, nrhs, ldab, ldb
+      real(dp), intent(in) :: ab(ldab, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dpbtrs
+  end interface
+
+  !> Lower band storage as LAPACK's 'L': ab(1 + i - j, j) = A(i, j) for j <= i <= j + kd.
+  type :: band_matrix_t
+    integer :: n = 0                    !< order
+    integer :: kd = 0                   !< half-bandwidth (sub-diagonals)
+    real(dp), allocatable :: ab(:, :)   !< (kd + 1, n)
+    logical :: factored = .false.       !< ab holds the Cholesky factor
+  end type band_matrix_t
+
+contains
+
+  !> A zero n x n matrix of half-bandwidth kd.
+  subroutine band_create(matrix, n, kd)
+    type(band_matrix_t), intent(out) :: matrix
+    integer, intent(in) :: n, kd
+    matrix%n = n
+    matrix%kd = min(kd, max(n - 1, 0))
+    allocate(matrix%ab(matrix%kd + 1, n))
+    matrix%ab = 0.0_dp
+  end subroutine band_create
+
+  !> Add a symmetric element matrix with global equation numbers `dofs`.
+  pure subroutine band_add_element(matrix, dofs, element)
+    type(band_matrix_t), intent(inout) :: matrix
+    integer, intent(in) :: dofs(:)
+    real(dp), intent(in) :: element(:, :)
+    integer :: a, b, i, j
+    do b = 1, size(dofs)
+      j = dofs(b)
+      do a = 1, size(dofs)
+        i = dofs(a)
+        if (i >= j) matrix%ab(1 + i - j, j) = matrix%ab(1 + i - j, j) + element(a, b)
+      end do
+    end do
+  end subroutine band_add_element
+
+  !> y = A x for the (unfactored) symmetric band matrix.
+  pure function band_multiply(matrix, x) result(y)
+    type(band_matrix_t), intent(in) :: matrix
+    real(dp), intent(in) :: x(:)
+    real(dp) :: y(size(x))
+    integer :: i, j, last
+    y = 0.0_dp
+    do j = 1, matrix%n
+      last = min(matrix%n, j + matrix%kd)
+      y(j) = y(j) + matrix%ab(1, j)*x(j)
+      do i = j + 1, last
+        y(i) = y(i) + matrix%ab(1 + i - j, j)*x(j)
+        y(j) = y(j) + matrix%ab(1 + i - j, j)*x(i)
+      end do
+    end do
+  end function band_multiply
+
+  !> The diagonal of A.
+  pure function band_diagonal(matrix) result(diagonal)
+    type(band_matrix_t), intent(in) :: matrix
+    real(dp) :: diagonal(matrix%n)
+    diagonal = matrix%ab(1, :)
+  end function band_diagonal
+
+  !> Impose u(p) = value(p) on the equations with constrained(p) without losing
+  !> symmetry: move the columns to the right-hand side, zero row and column p,
+  !> keep the diagonal, and set rhs(p) = A(p,p) value(p).
+  subroutine band_constrain(matrix, constrained, values, rhs)
+    type(band_matrix_t), intent(inout) :: matrix
+    logical, intent(in) :: constrained(:)
+    real(dp), intent(in) :: values(:)
+    real(dp), intent(inout) :: rhs(:)
+    real(dp), allocatable :: prescribed(:)
+    integer :: i, j, p
+    if (any(constrained .and. values /= 0.0_dp)) then
+      prescribed = merge(values, 0.0_dp, constrained)
+      rhs = rhs - band_multiply(matrix, prescribed)
+    end if
+    do p = 1, matrix%n
+      if (.not. constrained(p)) cycle
+      do i = p + 1, min(matrix%n, p + matrix%kd)          ! column p below the diagonal
+        matrix%ab(1 + i - p, p) = 0.0_dp
+      end do
+      do j = max(1, p - matrix%kd), p - 1                  ! row p left of the diagonal
+        matrix%ab(1 + p - j, j) = 0.0_dp
+      end do
+      if (matrix%ab(1, p) == 0.0_dp) matrix%ab(1, p) = 1.0_dp
+      rhs(p) = matrix%ab(1, p)*values(p)
+    end do
+  end subroutine band_constrain
+
+  !> Cholesky factorization in place (LAPACK dpbtrf). info > 0: equation info
+  !> has a non-positive pivot, or a pivot below 1e-13 of its original diagonal
+  !> (numerically singular: a mechanism, a missing support or a bad material).
+  subroutine band_factor(matrix, info)
+    type(band_matrix_t), intent(inout) :: matrix
+    integer, intent(out) :: info
+    real(dp), allocatable :: original(:)
+    integer :: p
+    original = matrix%ab(1, :)
+    call dpbtrf('L', matrix%n, matrix%kd, matrix%ab, matrix%kd + 1, info)
+    if (info == 0) then
+      do p = 1, matrix%n
+        if (matrix%ab(1, p)**2 < 1.0e-13_dp*abs(original(p))) then
+          info = p
+          exit
+        end if
+      end do
+    end if
+    matrix%factored = info == 0
+  end subroutine band_factor
+
+  !> Solve A x = b in place with the factor from band_factor (LAPACK dpbtrs).
+  subroutine band_solve(matrix, b)
+    type(band_matrix_t), intent(in) :: matrix
+    real(dp), intent(inout) :: b(:)
+    integer :: info
+    if (.not. matrix%factored) error stop 'visco2d_banded: band_solve called before band_factor'
+    call dpbtrs('L', matrix%n, matrix%kd, 1, matrix%ab, matrix%kd + 1, b, matrix%n, info)
+  end subroutine band_solve
+end module visco2d_banded

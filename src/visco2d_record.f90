@@ -1,0 +1,121 @@
+!> What a run produces, independent of how it is written: summary
+!> `key = value` lines, the history table (one row per output step) and
+!> field snapshots. Solvers fill a record; `visco2d_output` writes it.
+module visco2d_record
+  use visco2d_kinds, only: dp
+  use visco2d_strings, only: gtoa, itoa
+  implicit none
+  private
+
+  public :: record_t, snapshot_t, summary_item_t
+  public :: record_put, record_put_real, record_put_integer
+  public :: history_define, history_append, record_add_snapshot
+
+  integer, parameter :: key_length = 48
+
+  !> One `key = value` line of summary.txt.
+  type :: summary_item_t
+    character(len=key_length) :: key = ''
+    character(:), allocatable :: value
+  end type summary_item_t
+
+  !> Fields at one instant. Nodal arrays are (components, nnode).
+  type :: snapshot_t
+    character(:), allocatable :: name          !< group name, sorts in time order
+    character(:), allocatable :: label         !< why it was taken (e.g. 'final', 'max_deformation')
+    real(dp) :: time = 0.0_dp                  !< s
+    real(dp), allocatable :: displacement(:, :) !< (2, nnode) u_r, u_z in m
+    real(dp), allocatable :: velocity(:, :)     !< (2, nnode) m/s (dynamic runs only)
+    real(dp), allocatable :: acceleration(:, :) !< (2, nnode) m/s^2 (dynamic runs only)
+    real(dp), allocatable :: stress(:, :)       !< (4, nnode) nodal average of sigma_r, sigma_z, sigma_theta, tau_rz in Pa
+    real(dp), allocatable :: stress_gauss(:, :, :) !< (4, 4, nelem) at the Gauss points, Pa
+    real(dp), allocatable :: max_shear(:)       !< (nnode) Pa
+    real(dp), allocatable :: von_mises(:)       !< (nnode) Pa
+  end type snapshot_t
+
+  !> The results of one run.
+  type :: record_t
+    type(summary_item_t), allocatable :: summary(:)
+    integer :: nsummary = 0
+    character(len=key_length), allocatable :: columns(:)   !< history column names (with unit suffix)
+    real(dp), allocatable :: history(:, :)                 !< (ncolumn, capacity)
+    integer :: nrow = 0
+    type(snapshot_t), allocatable :: snapshots(:)
+  end type record_t
+
+contains
+
+  !> Set (or replace) a summary value given as text.
+  subroutine record_put(record, key, value)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: key, value
+    type(summary_item_t), allocatable :: bigger(:)
+    integer :: i
+    if (.not. allocated(record%summary)) allocate(record%summary(32))
+    do i = 1, record%nsummary
+      if (record%summary(i)%key == key) then
+        record%summary(i)%value = value
+        return
+      end if
+    end do
+    if (record%nsummary == size(record%summary)) then
+      allocate(bigger(2*size(record%summary)))
+      bigger(1:record%nsummary) = record%summary(1:record%nsummary)
+      call move_alloc(bigger, record%summary)
+    end if
+    record%nsummary = record%nsummary + 1
+    record%summary(record%nsummary)%key = key
+    record%summary(record%nsummary)%value = value
+  end subroutine record_put
+
+  !> Set a real summary value (10 significant digits).
+  subroutine record_put_real(record, key, value)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: key
+    real(dp), intent(in) :: value
+    call record_put(record, key, gtoa(value))
+  end subroutine record_put_real
+
+  subroutine record_put_integer(record, key, value)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: key
+    integer, intent(in) :: value
+    call record_put(record, key, itoa(value))
+  end subroutine record_put_integer
+
+  !> Define the history columns (names carry their unit, e.g. 't_ms').
+  subroutine history_define(record, columns, capacity)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: columns(:)
+    integer, intent(in), optional :: capacity
+    integer :: rows
+    rows = 64
+    if (present(capacity)) rows = max(capacity, 1)
+    allocate(record%columns(size(columns)))
+    record%columns = columns
+    allocate(record%history(size(columns), rows))
+    record%nrow = 0
+  end subroutine history_define
+
+  !> Append one row to the history (grows geometrically: no per-step allocation).
+  subroutine history_append(record, row)
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: row(:)
+    real(dp), allocatable :: bigger(:, :)
+    if (record%nrow == size(record%history, 2)) then
+      allocate(bigger(size(record%history, 1), 2*size(record%history, 2)))
+      bigger(:, 1:record%nrow) = record%history(:, 1:record%nrow)
+      call move_alloc(bigger, record%history)
+    end if
+    record%nrow = record%nrow + 1
+    record%history(:, record%nrow) = row
+  end subroutine history_append
+
+  !> Keep a snapshot.
+  subroutine record_add_snapshot(record, snapshot)
+    type(record_t), intent(inout) :: record
+    type(snapshot_t), intent(in) :: snapshot
+    if (.not. allocated(record%snapshots)) allocate(record%snapshots(0))
+    record%snapshots = [record%snapshots, snapshot]
+  end subroutine record_add_snapshot
+end module visco2d_record

@@ -1,0 +1,50 @@
+!> The scene a deck describes, reduced to the physical effects it calls for.
+!> The driver runs only those: no mass without inertia, no Prony history
+!> without viscoelastic materials, no contact search without a plate,
+!> no body force without gravity.
+module visco2d_scene
+  use visco2d_deck, only: deck_t
+  use visco2d_material, only: material_kind_elastic
+  implicit none
+  private
+
+  public :: effects_t, scene_effects, effects_text
+
+  !> The effects a run simulates.
+  type :: effects_t
+    logical :: inertia = .false.       !< mass and Wilson-theta stepping (ANALYSIS DYNAMIC)
+    logical :: viscoelastic = .false.  !< Prony history per Gauss point (a VISCOELASTIC/UNIAXIAL material)
+    logical :: contact = .false.       !< rigid-plate contact search (a PLATE card)
+    logical :: gravity = .false.       !< body force rho g (a GRAVITY card)
+  end type effects_t
+
+contains
+
+  !> The effects a deck calls for. (This version reads static elastic decks only:
+  !> the dynamic, contact and gravity cards arrive with their extensions.)
+  function scene_effects(deck) result(effects)
+    type(deck_t), intent(in) :: deck
+    type(effects_t) :: effects
+    integer :: k
+    effects = effects_t()
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%kind /= material_kind_elastic) effects%viscoelastic = .true.
+    end do
+  end function scene_effects
+
+  !> 'inertia viscoelastic contact gravity' (the ones that are on), or 'none'.
+  function effects_text(effects) result(text)
+    type(effects_t), intent(in) :: effects
+    character(:), allocatable :: text
+    text = ''
+    if (effects%inertia) text = text//' inertia'
+    if (effects%viscoelastic) text = text//' viscoelastic'
+    if (effects%contact) text = text//' contact'
+    if (effects%gravity) text = text//' gravity'
+    if (len(text) == 0) then
+      text = 'none'
+    else
+      text = text(2:)
+    end if
+  end function effects_text
+end module visco2d_scene

@@ -1,0 +1,41 @@
+!> Small text helpers: numbers to strings for messages and listings.
+module visco2d_strings
+  use visco2d_kinds, only: dp
+  implicit none
+  private
+
+  public :: itoa, rtoa, gtoa
+
+contains
+
+  !> Integer as text without blanks.
+  pure function itoa(value) result(text)
+    integer, intent(in) :: value
+    character(:), allocatable :: text
+    character(len=16) :: buffer
+    write(buffer, '(i0)') value
+    text = trim(buffer)
+  end function itoa
+
+  !> Real as text with 4 significant decimals (for messages).
+  pure function rtoa(value) result(text)
+    real(dp), intent(in) :: value
+    character(:), allocatable :: text
+    character(len=32) :: buffer
+    write(buffer, '(es12.4)') value
+    text = trim(adjustl(buffer))
+  end function rtoa
+
+  !> Real as text with 10 significant digits (for summaries and tables).
+  pure function gtoa(value) result(text)
+    real(dp), intent(in) :: value
+    character(:), allocatable :: text
+    character(len=32) :: buffer
+    if (value == 0.0_dp) then
+      text = '0'
+      return
+    end if
+    write(buffer, '(es17.9e3)') value
+    text = trim(adjustl(buffer))
+  end function gtoa
+end module visco2d_strings
