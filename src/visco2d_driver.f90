@@ -188,24 +188,51 @@ contains
     end do
   end subroutine check_expectations
 
-  !> The one-line report printed for a deck by the command line program.
+  !> The one-line report printed for a deck by the command line program:
+  !> case, mesh size, the main result, the EXPECT checks and the CPU time.
   function run_line(record) result(line)
     type(record_t), intent(in) :: record
     character(:), allocatable :: line
-    integer :: i
     character(:), allocatable :: key
+    character(len=16) :: buffer
+    integer :: i, checks, within, ios
+    real(dp) :: worst, relative
     line = ''
+    checks = 0
+    within = 0
+    worst = 0.0_dp
     do i = 1, record%nsummary
       key = trim(record%summary(i)%key)
-      select case (key)
-      case ('case')
-        line = line//record%summary(i)%value//':'
-      case ('nodes', 'elements', 'half_bandwidth', 'max_displacement_m', 'von_mises_max_Pa', 'cpu_s')
-        line = line//' '//key//'='//record%summary(i)%value
-      case default
-        if (index(key, 'expect_') == 1 .and. index(key, '_rel_error') > 0) &
-          line = line//' '//key(8:index(key, '_rel_error') - 1)//':rel_err='//record%summary(i)%value
-      end select
+      if (index(key, 'expect_') == 1 .and. index(key, '_rel_error') > 0) then
+        checks = checks + 1
+        read(record%summary(i)%value, *, iostat=ios) relative
+        if (ios == 0) worst = max(worst, relative)
+      end if
+      if (index(key, 'expect_') == 1 .and. index(key, '_within_rtol') > 0) then
+        if (record%summary(i)%value == 'yes') within = within + 1
+      end if
     end do
+    line = summary_value(record, 'case')//': '//summary_value(record, 'nodes')//' nodes, '// &
+      summary_value(record, 'elements')//' elements, half-bandwidth '//summary_value(record, 'half_bandwidth')
+    if (len(summary_value(record, 'max_displacement_m')) > 0) &
+      line = line//'; max |u| = '//summary_value(record, 'max_displacement_m')//' m'
+    if (checks > 0) then
+      write(buffer, '(es9.2)') worst
+      line = line//'; EXPECT '//itoa(within)//'/'//itoa(checks)//' within RTOL (worst rel. error '// &
+             trim(adjustl(buffer))//')'
+    end if
+    line = line//'; cpu '//summary_value(record, 'cpu_s')//' s'
   end function run_line
+
+  !> The text of a summary key ('' if absent).
+  function summary_value(record, key) result(value)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    character(:), allocatable :: value
+    integer :: i
+    value = ''
+    do i = 1, record%nsummary
+      if (trim(record%summary(i)%key) == key) value = record%summary(i)%value
+    end do
+  end function summary_value
 end module visco2d_driver

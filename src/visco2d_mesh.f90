@@ -8,7 +8,7 @@ module visco2d_mesh
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
                            positional_real, positional_integer, positional_word, check_fields_used
   use visco2d_element, only: element_min_jacobian
-  use visco2d_mesh_generator, only: sphere_grid, rectangle_grid, sphere_default_grade, sphere_default_core, &
+  use visco2d_mesh_generator, only: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core, &
                                     edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, &
                                     edge_set_bottom, edge_set_top, edge_set_name
   use visco2d_renumber, only: reverse_cuthill_mckee, half_bandwidth, sort_integers
@@ -143,6 +143,7 @@ contains
   !> MESH SPHERE R=.. [LEVEL=1] [MAT=id] [GRADE=2.35] [CORE=0.35]
   !> (MAT= may be omitted when the deck has one material)
   !> MESH RECT R0=.. R1=.. Z0=.. Z1=.. NR=.. NZ=.. [MAT=id]
+  !> MESH RING R0=.. R1=.. NR=.. NT=.. [ANGLE=90] [MAT=id]   (plane-strain ring sector)
   subroutine read_mesh_card(input, deck, card, error)
     type(mesh_input_t), intent(inout) :: input
     type(card_deck_t), intent(in) :: deck
@@ -158,7 +159,7 @@ contains
       call card_error(error, deck, card, 'a MESH card cannot be combined with NODE/ELEMENT cards or another MESH')
       return
     end if
-    call positional_word(deck, card, 1, 'mesh kind (SPHERE or RECT)', kind, error); if (allocated(error)) return
+    call positional_word(deck, card, 1, 'mesh kind (SPHERE, RECT or RING)', kind, error); if (allocated(error)) return
     call named_word(deck, card, 'MAT', material, error, default=''); if (allocated(error)) return
     select case (kind)
     case ('SPHERE')
@@ -198,8 +199,26 @@ contains
         call card_error(error, deck, card, 'NR and NZ must be >= 1 (and NR*NZ <= 5e6)'); return
       end if
       call rectangle_grid(r0, r1, z0, z1, nr, nz, xy, connectivity, edge_element, edge_side, edge_set)
+    case ('RING')
+      call named_real(deck, card, 'R0', r0, error); if (allocated(error)) return
+      call named_real(deck, card, 'R1', r1, error); if (allocated(error)) return
+      call named_real(deck, card, 'ANGLE', z0, error, default=90.0_dp); if (allocated(error)) return
+      call named_integer(deck, card, 'NR', nr, error); if (allocated(error)) return
+      call named_integer(deck, card, 'NT', nz, error); if (allocated(error)) return
+      call check_fields_used(deck, card, error, 'MESH RING R0=.. R1=.. NR=.. NT=.. [ANGLE=90] [MAT=id]')
+      if (allocated(error)) return
+      if (r0 <= 0.0_dp .or. r1 <= r0) then
+        call card_error(error, deck, card, 'need 0 < R0 < R1'); return
+      end if
+      if (z0 <= 0.0_dp .or. z0 > 90.0_dp) then
+        call card_error(error, deck, card, 'ANGLE must be in (0, 90] degrees'); return
+      end if
+      if (nr < 1 .or. nz < 1 .or. real(nr, dp)*nz > 5.0e6_dp) then
+        call card_error(error, deck, card, 'NR and NT must be >= 1 (and NR*NT <= 5e6)'); return
+      end if
+      call ring_grid(r0, r1, z0, nr, nz, xy, connectivity, edge_element, edge_side, edge_set)
     case default
-      call card_error(error, deck, card, 'mesh kind must be SPHERE or RECT, got "'//kind//'"'); return
+      call card_error(error, deck, card, 'mesh kind must be SPHERE, RECT or RING, got "'//kind//'"'); return
     end select
     if (len(material) > name_length) then
       call card_error(error, deck, card, 'MAT id longer than 32 characters'); return

@@ -7,7 +7,7 @@ module visco2d_mesh_generator
   implicit none
   private
 
-  public :: sphere_grid, rectangle_grid, sphere_default_grade, sphere_default_core
+  public :: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
@@ -213,4 +213,52 @@ contains
       edge_set(nedge) = set
     end subroutine add
   end subroutine rectangle_grid
+
+  !> Structured nr x nt grid of the ring sector r0 <= rho <= r1, 0 <= phi <= angle
+  !> (degrees, from the r axis toward z), centred at the origin. For plane-strain
+  !> Lame problems: INNER (rho = r0), OUTER (rho = r1), BOTTOM (phi = 0) and,
+  !> for a quarter ring, AXIS (phi = 90 deg, on r = 0).
+  subroutine ring_grid(r0, r1, angle, nr, nt, xy, connectivity, edge_element, edge_side, edge_set)
+    real(dp), intent(in) :: r0, r1, angle
+    integer, intent(in) :: nr, nt
+    real(dp), allocatable, intent(out) :: xy(:, :)
+    integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
+    integer :: i, j, e, nedge, top_set
+    real(dp) :: rho, phi
+    allocate(xy(2, (nr + 1)*(nt + 1)), connectivity(4, nr*nt))
+    allocate(edge_element(2*(nr + nt)), edge_side(2*(nr + nt)), edge_set(2*(nr + nt)))
+    top_set = merge(edge_set_axis, edge_set_top, abs(angle - 90.0_dp) < 1.0e-9_dp)
+    do j = 0, nt
+      phi = angle*pi/180.0_dp*real(j, dp)/nt
+      do i = 0, nr
+        rho = r0 + (r1 - r0)*real(i, dp)/nr
+        xy(:, id(i, j)) = [rho*cos(phi), rho*sin(phi)]
+        if (j == nt .and. top_set == edge_set_axis) xy(1, id(i, j)) = 0.0_dp
+      end do
+    end do
+    e = 0
+    nedge = 0
+    do j = 0, nt - 1
+      do i = 0, nr - 1
+        e = e + 1
+        connectivity(:, e) = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]
+        if (j == 0) call add(e, 1, edge_set_bottom)
+        if (i == nr - 1) call add(e, 2, edge_set_outer)
+        if (j == nt - 1) call add(e, 3, top_set)
+        if (i == 0) call add(e, 4, edge_set_inner)
+      end do
+    end do
+  contains
+    pure integer function id(ii, jj)
+      integer, intent(in) :: ii, jj
+      id = jj*(nr + 1) + ii + 1
+    end function id
+    subroutine add(element, side, set)
+      integer, intent(in) :: element, side, set
+      nedge = nedge + 1
+      edge_element(nedge) = element
+      edge_side(nedge) = side
+      edge_set(nedge) = set
+    end subroutine add
+  end subroutine ring_grid
 end module visco2d_mesh_generator

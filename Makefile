@@ -1,0 +1,45 @@
+# visco2d — the two commands of a new user:
+#   make run    install what is missing, build (release), run every deck in inputs/ into out/
+#   make test   install what is missing, run the tests and the reference-output diffs
+# and, on purpose only:
+#   make bless  regenerate reference_outputs/ from the current code (say why in the commit)
+
+SHELL := /bin/bash
+PREFIX := build/install
+EXE := $(PREFIX)/bin/visco2d
+DECKS := $(sort $(wildcard inputs/*.inp))
+
+.PHONY: all setup build run test bless check clean
+
+all: build
+
+setup:
+	@bash scripts/setup.sh
+
+build: setup
+	@fpm install --profile release --prefix $(PREFIX) > build.log 2>&1 || { cat build.log; exit 1; }
+	@rm -f build.log
+
+run: build
+	@echo "visco2d: running $(words $(DECKS)) decks into out/"
+	@$(EXE) -o out $(DECKS)
+
+check: build
+	@$(EXE) check $(DECKS)
+
+test: build
+	@VISCO2D=$(EXE) bash scripts/run_tests.sh
+
+bless: build
+	@rm -rf build/bless && mkdir -p build/bless
+	@$(EXE) -q -o build/bless $(DECKS)
+	@for deck in $(DECKS); do \
+	  case_name=$$(basename $$deck .inp); \
+	  mkdir -p reference_outputs/$$case_name; \
+	  grep -v '^cpu_s = ' build/bless/$$case_name/summary.txt > reference_outputs/$$case_name/summary.txt; \
+	  cp build/bless/$$case_name/history.csv reference_outputs/$$case_name/history.csv; \
+	done
+	@echo "reference_outputs/ regenerated for $(words $(DECKS)) decks: review 'git diff reference_outputs' and say why in the commit"
+
+clean:
+	rm -rf build out

@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# The test command behind `make test`: unit and verification tests (fpm test),
+# command-line tests, and the reference-output diffs. Ends with the single
+# line "N passed, N failed" and exits non-zero on any failure.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+exe=${VISCO2D:-build/install/bin/visco2d}
+log=build/test-logs
+rm -rf "$log" && mkdir -p "$log"
+passed=0
+failed=0
+
+count() {  # count PASS/FAIL lines of a log; echo the FAIL lines
+  local file=$1
+  local p f
+  p=$(grep -c '^PASS ' "$file" || true)
+  f=$(grep -c '^FAIL ' "$file" || true)
+  passed=$((passed + p))
+  failed=$((failed + f))
+  grep '^FAIL ' "$file" || true
+}
+
+echo "== unit and verification tests (fpm test)"
+fpm test --profile release > "$log/fpm-test.log" 2>&1
+status=$?
+grep -E '^(FAIL |[a-z_]+: [0-9]+ passed)' "$log/fpm-test.log" | grep -v '^FAIL ' || true
+count "$log/fpm-test.log"
+if [ $status -ne 0 ] && ! grep -q '^FAIL ' "$log/fpm-test.log"; then
+  echo "FAIL fpm test exited with status $status without a failed check (a crash?); see $log/fpm-test.log"
+  tail -20 "$log/fpm-test.log"
+  failed=$((failed + 1))
+fi
+
+echo "== command-line tests"
+bash scripts/test_cli.sh "$exe" > "$log/cli.log" 2>&1
+count "$log/cli.log"
+echo "   $(grep -c '^PASS ' "$log/cli.log") checks passed"
+
+echo "== reference outputs (rtol 1e-6)"
+rm -rf build/reference-check && mkdir -p build/reference-check
+for deck in inputs/*.inp; do
+  case_name=$(basename "$deck" .inp)
+  if [ ! -d "reference_outputs/$case_name" ]; then
+    echo "FAIL $case_name: no archived reference (run 'make bless' on purpose)" | tee -a "$log/reference.log"
+    continue
+  fi
+  if ! "$exe" -q -o build/reference-check "$deck" >> "$log/reference.log" 2>&1; then
+    echo "FAIL $case_name: the deck did not run; see $log/reference.log" | tee -a "$log/reference.log"
+    continue
+  fi
+  python3 scripts/compare_outputs.py "reference_outputs/$case_name" "build/reference-check/$case_name" \
+    >> "$log/reference.log" 2>&1
+done
+for folder in reference_outputs/*/; do
+  [ -d "$folder" ] || continue
+  case_name=$(basename "$folder")
+  [ -f "inputs/$case_name.inp" ] || echo "FAIL $case_name: archived reference without a deck in inputs/" \
+    | tee -a "$log/reference.log"
+done
+count "$log/reference.log"
+echo "   $(grep -c '^PASS ' "$log/reference.log") files match"
+
+echo "${passed} passed, ${failed} failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS,
+# HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm and
+# h5py (PyPI). Safe to run again; quiet when everything is present.
+set -euo pipefail
+
+packages=()
+command -v gfortran >/dev/null 2>&1 || packages+=(gfortran)
+command -v pkg-config >/dev/null 2>&1 || packages+=(pkg-config)
+command -v numdiff >/dev/null 2>&1 || packages+=(numdiff)
+command -v h5dump >/dev/null 2>&1 || packages+=(hdf5-tools)
+ls /usr/lib/*/liblapack.so >/dev/null 2>&1 || packages+=(liblapack-dev)
+ls /usr/lib/*/libblas.so >/dev/null 2>&1 || packages+=(libblas-dev)
+pkg-config --exists hdf5 2>/dev/null && ls /usr/include/hdf5/serial/hdf5.mod >/dev/null 2>&1 || packages+=(libhdf5-dev)
+
+if [ ${#packages[@]} -gt 0 ]; then
+  echo "setup: installing ${packages[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${packages[@]}" >/dev/null
+fi
+
+python=$(command -v python3 || true)
+if [ -z "$python" ]; then
+  echo "setup: python3 is needed (for fpm and the output checks)" >&2
+  exit 1
+fi
+pip_missing=()
+command -v fpm >/dev/null 2>&1 || pip_missing+=(fpm)
+"$python" -c "import h5py" 2>/dev/null || pip_missing+=(h5py)
+if [ ${#pip_missing[@]} -gt 0 ]; then
+  echo "setup: pip installing ${pip_missing[*]}"
+  if ! "$python" -m pip --version >/dev/null 2>&1; then
+    sudo=""; [ "$(id -u)" -eq 0 ] || sudo="sudo"
+    $sudo apt-get update -qq && DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq python3-pip >/dev/null
+  fi
+  # Debian's own Python refuses system-wide pip installs (PEP 668) unless told.
+  "$python" -m pip install -q "${pip_missing[@]}" 2>/dev/null \
+    || "$python" -m pip install -q --break-system-packages "${pip_missing[@]}"
+  command -v pyenv >/dev/null 2>&1 && pyenv rehash || true
+  hash -r
+fi
+command -v fpm >/dev/null 2>&1 || { echo "setup: fpm not on PATH after installing it" >&2; exit 1; }
