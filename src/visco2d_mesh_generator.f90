@@ -38,8 +38,9 @@ contains
 
   !> Half-disc section (r >= 0) of a sphere of radius R, bottom pole at z = 0,
   !> centre at z = R. Level L has f = 2^(L-1) and:
-  !>  - a polar part: 8f layers between radius core*R and R, times 10f arc segments
-  !>    graded toward the contact pole (theta = 0);
+  !>  - a polar part: 8f layers between radius core*R and R, times 10f arc segments.
+  !>    On the surface the segments are graded toward the contact pole (theta = 0);
+  !>    the grading fades linearly with depth to uniform angles at the core;
   !>  - a core block of f x 8f elements inside radius core*R (a Coons patch whose
   !>    boundary is the innermost polar circle and the axis).
   !> Level 1: 88 elements and 106 nodes (the paper's grid size); each level has 4x the elements.
@@ -53,6 +54,7 @@ contains
     integer :: i, j, k, s, e
     integer, allocatable :: core_id(:, :), polar_id(:, :)
     real(dp), allocatable :: theta(:), rho(:)
+    real(dp) :: weight
     real(dp) :: u, v
     real(dp), allocatable :: bottom(:, :), top(:, :), left(:, :), right(:, :)
 
@@ -104,8 +106,10 @@ contains
     end do
 
     do k = 0, nlayer
+      weight = real(k, dp)/nlayer               ! 0 at the core, 1 on the surface
       do s = 0, narc
-        xy(:, polar_id(k, s)) = polar_point(rho(k), theta(s), s == 0 .or. s == narc)
+        xy(:, polar_id(k, s)) = polar_point(rho(k), (1.0_dp - weight)*pi*real(s, dp)/narc + weight*theta(s), &
+                                            s == 0 .or. s == narc)
       end do
     end do
 
