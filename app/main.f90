@@ -5,7 +5,14 @@ program visco2d
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, check_deck, run_line
+  use, intrinsic :: iso_c_binding, only: c_int
   implicit none
+  interface
+    subroutine c_exit(status) bind(c, name='exit')
+      import :: c_int
+      integer(c_int), value :: status
+    end subroutine c_exit
+  end interface
   character(:), allocatable :: out_root, argument
   character(len=:), allocatable :: decks(:)
   integer :: i, count, failed, length
@@ -66,7 +73,9 @@ program visco2d
     end if
   end do
   if (count > 1 .and. failed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
-  if (failed > 0) error stop 1, quiet=.true.
+  flush(6)
+  flush(0)
+  if (failed > 0) call c_exit(1_c_int)
 
 contains
 
@@ -83,7 +92,8 @@ contains
     character(*), intent(in) :: message
     write(0, '(a)') 'visco2d: '//message
     write(0, '(a)') 'usage: visco2d [-o DIR] [-q] DECK...   |   visco2d check DECK...   |   visco2d --help'
-    error stop 2, quiet=.true.
+    flush(0)
+    call c_exit(2_c_int)
   end subroutine usage_error
 
   subroutine print_help()

@@ -389,7 +389,7 @@ contains
       if (jacobian <= 1.0e-12_dp*mesh%size**2) then
         call set_error(error, 'element '//itoa(mesh%element_id(e))//' has a non-positive Jacobian ('// &
           rtoa(jacobian)//'): number its nodes counter-clockwise and keep it convex', &
-          file=deck%file, line=mesh%element_line(e), card='ELEMENT')
+          file=deck%file, line=mesh%element_line(e), card=trim(merge('ELEMENT', 'MESH   ', input%generator_line == 0)))
         return
       end if
     end do

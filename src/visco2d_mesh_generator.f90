@@ -40,7 +40,8 @@ contains
   !> centre at z = R. Level L has f = 2^(L-1) and:
   !>  - a polar part: 8f layers between radius core*R and R, times 10f arc segments.
   !>    On the surface the segments are graded toward the contact pole (theta = 0);
-  !>    the grading fades linearly with depth to uniform angles at the core;
+  !>    the grading fades linearly with depth into the core's boundary angles
+  !>    (its bottom, side and top cover 45, 90 and 45 degrees: an O-grid);
   !>  - a core block of f x 8f elements inside radius core*R (a Coons patch whose
   !>    boundary is the innermost polar circle and the axis).
   !> Level 1: 88 elements and 106 nodes (the paper's grid size); each level has 4x the elements.
@@ -108,7 +109,7 @@ contains
     do k = 0, nlayer
       weight = real(k, dp)/nlayer               ! 0 at the core, 1 on the surface
       do s = 0, narc
-        xy(:, polar_id(k, s)) = polar_point(rho(k), (1.0_dp - weight)*pi*real(s, dp)/narc + weight*theta(s), &
+        xy(:, polar_id(k, s)) = polar_point(rho(k), (1.0_dp - weight)*core_angle(s) + weight*theta(s), &
                                             s == 0 .or. s == narc)
       end do
     end do
@@ -121,7 +122,7 @@ contains
     end do
     do j = 0, ncore_z
       right(:, j) = xy(:, core_id(ncore_r, j))
-      left(:, j) = [0.0_dp, right(2, j)]
+      left(:, j) = [0.0_dp, radius - core*radius + 2.0_dp*core*radius*real(j, dp)/ncore_z]
     end do
     left(:, 0) = bottom(:, 0)
     left(:, ncore_z) = top(:, 0)
@@ -158,6 +159,19 @@ contains
     end do
 
   contains
+
+    !> Angle of the core boundary path point s: 45 deg over the bottom side,
+    !> 90 deg over the right side, 45 deg over the top side.
+    pure real(dp) function core_angle(path)
+      integer, intent(in) :: path
+      if (path <= ncore_r) then
+        core_angle = 0.25_dp*pi*real(path, dp)/ncore_r
+      else if (path <= ncore_r + ncore_z) then
+        core_angle = 0.25_dp*pi + 0.5_dp*pi*real(path - ncore_r, dp)/ncore_z
+      else
+        core_angle = 0.75_dp*pi + 0.25_dp*pi*real(path - ncore_r - ncore_z, dp)/ncore_r
+      end if
+    end function core_angle
 
     subroutine add_edge(element, side, set)
       integer, intent(in) :: element, side, set
