@@ -135,7 +135,8 @@ contains
     matrix%factored = info == 0
   end subroutine band_factor
 
-  !> Solve A x = b in place with the factor from band_factor (LAPACK dpbtrs).
+  !> Solve A x = b in place with the factor from band_factor (LAPACK dpbtrs;
+  !> its info is non-zero only for illegal arguments, excluded by construction).
   subroutine band_solve(matrix, b)
     type(band_matrix_t), intent(in) :: matrix
     real(dp), intent(inout) :: b(:)

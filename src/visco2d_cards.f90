@@ -10,10 +10,10 @@ module visco2d_cards
   private
 
   public :: token_t, card_t, card_deck_t
-  public :: read_cards, to_upper
+  public :: read_cards, to_upper, to_lower
   public :: card_error, named_real, named_integer, named_word, has_field
   public :: positional_count, positional_real, positional_integer, positional_word
-  public :: check_fields_used
+  public :: check_fields_used, field_column
 
   !> One field of a card.
   type :: token_t
@@ -171,8 +171,10 @@ contains
           end if
         end if
         if (word(len(word):len(word)) == '=' .and. i < count) then
-          word = word//line(starts(i+1):ends(i+1))
-          i = i + 1
+          if (index(line(starts(i+1):ends(i+1)), '=') == 0) then  ! not the next NAME=value
+            word = word//line(starts(i+1):ends(i+1))
+            i = i + 1
+          end if
         end if
         equals = index(word, '=')
         if (equals == 0) then
@@ -187,6 +189,13 @@ contains
           token%value = word(equals+1:)
           if (len(token%value) == 0) then
             call set_error(error, 'field '//token%name//' has no value after "="', &
+                           line=line_number, column=token%column, card=card%keyword)
+            return
+          end if
+        end if
+        if (len(token%name) > 0) then
+          if (any([(card%tokens(equals)%name == token%name, equals = 1, size(card%tokens))])) then
+            call set_error(error, 'field '//token%name//' given twice', &
                            line=line_number, column=token%column, card=card%keyword)
             return
           end if
@@ -208,6 +217,18 @@ contains
       if (code >= iachar('a') .and. code <= iachar('z')) upper(i:i) = achar(code - 32)
     end do
   end function to_upper
+
+  !> Lower-case copy of a string.
+  pure function to_lower(text) result(lower)
+    character(*), intent(in) :: text
+    character(len(text)) :: lower
+    integer :: i, code
+    lower = text
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
+    end do
+  end function to_lower
 
   !> Error located at a card (and a column, if known).
   subroutine card_error(error, deck, card, message, column)
@@ -441,6 +462,22 @@ contains
     card%tokens(i)%used = .true.
     value = to_upper(card%tokens(i)%value)
   end subroutine positional_word
+
+  !> Column of field NAME= (a name) or of the n-th positional value (a number
+  !> as text, e.g. '1'); the keyword's column if absent.
+  integer function field_column(card, name) result(column)
+    type(card_t), intent(in) :: card
+    character(*), intent(in) :: name
+    integer :: i, position, ios
+    column = card%column
+    read(name, *, iostat=ios) position
+    if (ios == 0 .and. verify(name, '0123456789') == 0) then
+      i = find_positional(card, position)
+    else
+      i = find_named(card, name)
+    end if
+    if (i > 0) column = card%tokens(i)%column
+  end function field_column
 
   !> Error on the first field that no accessor consumed (unknown field name
   !> or surplus positional value).

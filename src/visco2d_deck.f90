@@ -4,9 +4,10 @@
 module visco2d_deck
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: itoa, short_real
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
-                           named_word, positional_word, positional_real, positional_count, check_fields_used, has_field
+                           named_word, positional_word, positional_real, to_lower, positional_count, check_fields_used, has_field, &
+                           field_column
   use visco2d_material, only: material_t, material_kind_elastic, elastic_constants_from_e_nu
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &
                           build_mesh, node_set, node_index, edge_set_code, edge_set_name, &
@@ -72,6 +73,7 @@ module visco2d_deck
   !> A target of FIX or FORCE or PROBE, kept until the mesh exists.
   type :: pending_t
     integer :: card = 0
+    integer :: column = 0               !< column of the target field
     character(:), allocatable :: target
     character(:), allocatable :: components
     real(dp) :: values(2) = 0.0_dp
@@ -184,6 +186,9 @@ contains
       end associate
     end do
 
+    if (cards%count == 0) then
+      call set_error(error, 'the deck has no cards (an empty file?)', file=file); return
+    end if
     if (.not. cards%has_end) then
       call set_error(error, 'missing END card (is the deck truncated?)', file=file); return
     end if
@@ -234,17 +239,20 @@ contains
         call named_real(cards, card, 'E', material%young, error); if (allocated(error)) return
         call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
         if (material%young <= 0.0_dp) then
-          call field_error('E must be > 0'); return
+          call field_error('E must be > 0, got '//short_real(material%young), 'E'); return
         end if
         if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
-          call field_error('NU must be in (-1, 0.5), got '//trim(number(material%poisson)), 'NU'); return
+          call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
         end if
         call elastic_constants_from_e_nu(material%young, material%poisson, material%shear, material%bulk)
       else
         call named_real(cards, card, 'G', material%shear, error); if (allocated(error)) return
         call named_real(cards, card, 'K', material%bulk, error); if (allocated(error)) return
-        if (material%shear <= 0.0_dp .or. material%bulk <= 0.0_dp) then
-          call field_error('G and K must be > 0'); return
+        if (material%shear <= 0.0_dp) then
+          call field_error('G must be > 0, got '//short_real(material%shear), 'G'); return
+        end if
+        if (material%bulk <= 0.0_dp) then
+          call field_error('K must be > 0, got '//short_real(material%bulk), 'K'); return
         end if
         material%young = 9.0_dp*material%bulk*material%shear/(3.0_dp*material%bulk + material%shear)
         material%poisson = (3.0_dp*material%bulk - 2.0_dp*material%shear)/ &
@@ -267,22 +275,12 @@ contains
     subroutine field_error(message, name)
       character(*), intent(in) :: message
       character(*), intent(in), optional :: name
-      integer :: t, column
+      integer :: column
       column = card%column
-      if (present(name)) then
-        do t = 1, size(card%tokens)
-          if (card%tokens(t)%name == name) column = card%tokens(t)%column
-        end do
-      end if
+      if (present(name)) column = field_column(card, name)
       call card_error(error, cards, card, message, column)
     end subroutine field_error
   end subroutine read_material
-
-  function number(value) result(text)
-    real(dp), intent(in) :: value
-    character(len=24) :: text
-    write(text, '(g0.6)') value
-  end function number
 
   !> FIX target R|Z|RZ  (target: node number, AXIS, BOTTOM, TOP, INNER or OUTER)
   subroutine read_fix(cards, card, index, fixes, error)
@@ -295,12 +293,13 @@ contains
     fix%card = index
     call positional_word(cards, card, 1, 'target (node number, AXIS, BOTTOM, TOP, INNER or OUTER)', &
                          fix%target, error); if (allocated(error)) return
+    fix%column = field_column(card, '1')
     call positional_word(cards, card, 2, 'components (R, Z or RZ)', fix%components, error); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'FIX target R|Z|RZ'); if (allocated(error)) return
     if (fix%components /= 'R' .and. fix%components /= 'Z' .and. fix%components /= 'RZ' &
         .and. fix%components /= 'ZR') then
       call card_error(error, cards, card, 'components must be R, Z or RZ, got "'//fix%components//'"', &
-                      card%tokens(2)%column); return
+                      field_column(card, '2')); return
     end if
     fixes = [fixes, fix]
   end subroutine read_fix
@@ -320,7 +319,7 @@ contains
     pressure%edge_set = edge_set_code(set)
     if (pressure%edge_set == edge_set_none .or. pressure%edge_set == edge_set_axis) then
       call card_error(error, cards, card, 'edge set must be INNER, OUTER, TOP or BOTTOM, got "'//set//'"', &
-                      card%tokens(1)%column); return
+                      field_column(card, '1')); return
     end if
     pressure%line = card%line
     pressures = [pressures, pressure]
@@ -336,6 +335,7 @@ contains
     type(pending_t) :: force
     force%card = index
     call positional_word(cards, card, 1, 'node number', force%target, error); if (allocated(error)) return
+    force%column = field_column(card, '1')
     call named_real(cards, card, 'FR', force%values(1), error, default=0.0_dp); if (allocated(error)) return
     call named_real(cards, card, 'FZ', force%values(2), error, default=0.0_dp); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'FORCE n FR=.. FZ=..'); if (allocated(error)) return
@@ -365,6 +365,7 @@ contains
     if (has_field(card, 'NODE')) then
       call named_integer(cards, card, 'NODE', node, error); if (allocated(error)) return
       probe%target = itoa(node)
+      probe%column = field_column(card, 'NODE')
     else
       call named_real(cards, card, 'R', probe%values(1), error); if (allocated(error)) return
       call named_real(cards, card, 'Z', probe%values(2), error); if (allocated(error)) return
@@ -442,12 +443,12 @@ contains
     read(pending%target, *, iostat=ios) id
     if (ios /= 0 .or. verify(pending%target, '0123456789') /= 0) then
       call card_error(error, deck%cards, deck%cards%cards(pending%card), 'target must be a node number'// &
-        ' or a set name, got "'//pending%target//'"', deck%cards%cards(pending%card)%tokens(1)%column)
+        ' or a set name (AXIS, BOTTOM, TOP, INNER, OUTER), got "'//pending%target//'"', pending%column)
       return
     end if
     node = node_index(deck%mesh, id)
     if (node == 0) call card_error(error, deck%cards, deck%cards%cards(pending%card), 'node '// &
-      pending%target//' is not defined', deck%cards%cards(pending%card)%tokens(1)%column)
+      pending%target//' is not defined', pending%column)
   end function target_node
 
   subroutine resolve_fixes(deck, pending, error)
@@ -466,7 +467,7 @@ contains
         call node_set(deck%mesh, code, fix%nodes)
         if (size(fix%nodes) == 0) then
           call card_error(error, deck%cards, card, 'set '//pending(k)%target//' has no nodes in this mesh', &
-                          card%tokens(1)%column); return
+                          pending(k)%column); return
         end if
       else
         fix%nodes = [target_node(deck, pending(k), error)]
@@ -522,14 +523,4 @@ contains
     end do
   end subroutine check_pressures
 
-  pure function to_lower(text) result(lower)
-    character(*), intent(in) :: text
-    character(len(text)) :: lower
-    integer :: i, code
-    lower = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
-    end do
-  end function to_lower
 end module visco2d_deck

@@ -5,7 +5,7 @@ module visco2d_driver
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
   use visco2d_strings, only: itoa, gtoa, rtoa
-  use visco2d_cards, only: to_upper
+  use visco2d_cards, only: to_upper, to_lower
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_name, geometry_name
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_static, only: static_solution_t, solve_static, static_record
@@ -181,7 +181,7 @@ contains
         exit
       end do
       if (.not. found) then
-        call set_error(error, 'EXPECT names '//deck%expects(k)%key//', which is not a numeric summary key '// &
+        call set_error(error, 'key "'//to_lower(deck%expects(k)%key)//'" is not a numeric summary key '// &
           'of this run (see summary.txt for the keys)', file=deck%cards%file, line=deck%expects(k)%line, card='EXPECT')
         return
       end if

@@ -400,7 +400,7 @@ contains
       mesh%edge_side = input%edge_side
       mesh%edge_set = input%edge_set
     else
-      call find_boundary_edges(mesh, geometry)
+      call find_boundary_edges(mesh)
     end if
     mesh%source = input%source
 
@@ -418,9 +418,8 @@ contains
 
   !> Boundary edges (used by one element only), tagged by the bounding box:
   !> r = rmin -> INNER (AXIS if rmin = 0), r = rmax -> OUTER, z = zmin -> BOTTOM, z = zmax -> TOP.
-  subroutine find_boundary_edges(mesh, geometry)
+  subroutine find_boundary_edges(mesh)
     type(mesh_t), intent(inout) :: mesh
-    integer, intent(in) :: geometry
     integer(int64), allocatable :: keys(:)
     integer, allocatable :: order(:)
     integer :: e, side, k, count, a, b, i
@@ -461,8 +460,7 @@ contains
       set = edge_set_none
       if (abs(pa(1) - lower(1)) <= tol .and. abs(pb(1) - lower(1)) <= tol) then
         set = edge_set_inner
-        if (abs(lower(1)) <= tol .and. geometry == geometry_axisymmetric) set = edge_set_axis
-        if (abs(lower(1)) <= tol .and. geometry /= geometry_axisymmetric) set = edge_set_axis
+        if (abs(lower(1)) <= tol) set = edge_set_axis   ! the axis, or in plane strain the plane x = 0
       else if (abs(pa(1) - upper(1)) <= tol .and. abs(pb(1) - upper(1)) <= tol) then
         set = edge_set_outer
       else if (abs(pa(2) - lower(2)) <= tol .and. abs(pb(2) - lower(2)) <= tol) then

@@ -24,10 +24,11 @@ contains
   !> Reverse Cuthill-McKee: position(i) is the new place of node i (1..nnode).
   subroutine reverse_cuthill_mckee(nnode, connectivity, position)
     integer, intent(in) :: nnode, connectivity(:, :)
-    integer, intent(out) :: position(nnode)
+    integer, allocatable, intent(out) :: position(:)
     integer, allocatable :: start(:), neighbours(:), degree(:), order(:), level(:)
     integer :: placed, root
 
+    allocate(position(nnode))
     call node_graph(nnode, connectivity, start, neighbours)
     degree = start(2:nnode + 1) - start(1:nnode)
     allocate(order(nnode), level(nnode))

@@ -4,7 +4,7 @@ module visco2d_strings
   implicit none
   private
 
-  public :: itoa, rtoa, gtoa
+  public :: itoa, rtoa, gtoa, short_real
 
 contains
 
@@ -38,4 +38,21 @@ contains
     write(buffer, '(es17.9e3)') value
     text = trim(adjustl(buffer))
   end function gtoa
+
+  !> Shortest text (up to 15 significant digits) that reads back as the value:
+  !> 0.7 -> '0.7', 18.11e6 -> '18110000.', 1e-7 -> '0.1E-06'.
+  function short_real(value) result(text)
+    real(dp), intent(in) :: value
+    character(:), allocatable :: text
+    character(len=40) :: buffer, form
+    real(dp) :: back
+    integer :: digits, ios
+    do digits = 1, 15
+      write(form, '(a, i0, a)') '(g0.', digits, ')'
+      write(buffer, form) value
+      read(buffer, *, iostat=ios) back
+      if (ios == 0 .and. back == value) exit
+    end do
+    text = trim(adjustl(buffer))
+  end function short_real
 end module visco2d_strings

@@ -1,0 +1,270 @@
+#!/usr/bin/env bash
+# Command-line tests of visco2d.
+#
+#   bash scripts/test_cli.sh PATH/TO/visco2d
+#
+# (find the executable with `fpm run --runner` or
+#  `find build -type f -name visco2d -path '*app*' | head -1`)
+#
+# Prints one line per check, `PASS name` or `FAIL name: detail` (lines starting
+# with `#` are notes), and always exits 0: the caller counts the lines.
+# Everything happens in a fresh temporary folder, removed at the end.
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+good_source="$root/inputs/sphere_pressure.inp"
+
+pass() { echo "PASS $1"; }
+fail() { echo "FAIL $1: $2"; }
+# check NAME DETAIL COMMAND...: PASS if the command succeeds.
+check() {
+  local name=$1 detail=$2
+  shift 2
+  if "$@"; then pass "$name"; else fail "$name" "$detail"; fi
+}
+# check_rc NAME EXPECTED ACTUAL
+check_rc() {
+  if [ "$3" = "$2" ]; then pass "$1"; else fail "$1" "exit status $3, expected $2"; fi
+}
+# One line of a file, for details.
+first_lines() { head -c 400 "$1" 2>/dev/null | tr '\n' '|'; }
+# Entries (hidden ones too) of a folder whose name contains a text.
+entries_matching() { ls -A "$1" 2>/dev/null | grep -F -- "$2"; }
+
+if [ $# -ne 1 ] || [ ! -x "$1" ] || [ -d "$1" ]; then
+  fail executable "usage: bash scripts/test_cli.sh PATH/TO/visco2d (got '${1:-}')"
+  exit 0
+fi
+exe="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
+if [ ! -f "$good_source" ]; then
+  fail good_deck_source "$good_source is missing"
+  exit 0
+fi
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_cli.XXXXXX") || { fail mktemp "cannot create a temporary folder"; exit 0; }
+trap 'rm -rf "$work"' EXIT
+cd "$work" || { fail cd "cannot enter $work"; exit 0; }
+mkdir decks
+cp "$good_source" decks/sphere_pressure.inp
+
+# A bad deck: NU out of range on line 4, the NU field at column 32.
+cat > decks/bad.inp <<'EOF'
+TITLE bad
+ANALYSIS STATIC
+GEOMETRY PLANESTRAIN
+MATERIAL steel ELASTIC E=200e9 NU=0.7
+MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2
+FIX BOTTOM RZ
+END
+EOF
+# Small valid decks for the batch run.
+for name in first last; do
+  cat > "decks/$name.inp" <<'EOF'
+TITLE block
+ANALYSIS STATIC
+GEOMETRY PLANESTRAIN
+MATERIAL steel ELASTIC E=200e9 NU=0.3
+MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2
+FIX BOTTOM RZ
+PRESSURE TOP P=1e6
+END
+EOF
+done
+# Reads cleanly, fails at solve time (no supports: a rigid-body mode).
+cat > decks/loose.inp <<'EOF'
+TITLE no supports
+ANALYSIS STATIC
+GEOMETRY PLANESTRAIN
+MATERIAL steel ELASTIC E=200e9 NU=0.3
+MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2
+PRESSURE TOP P=1e6
+END
+EOF
+
+# ------------------------------------------------------------------ usage
+mkdir usage && cd usage || exit 0
+"$exe" --help > help.out 2> help.err
+check_rc help_exit_0 0 $?
+check help_mentions_check "--help output does not mention 'check': $(first_lines help.out)" grep -q check help.out
+
+"$exe" > none.out 2> none.err
+check_rc no_arguments_exit_2 2 $?
+check no_arguments_usage_on_stderr "stderr: $(first_lines none.err)" grep -qi usage none.err
+
+"$exe" --no-such-option ../decks/first.inp > opt.out 2> opt.err
+check_rc unknown_option_exit_2 2 $?
+check unknown_option_named "stderr: $(first_lines opt.err)" grep -qF -- --no-such-option opt.err
+check unknown_option_runs_nothing "an output folder was created" test ! -e out
+
+"$exe" -o > o.out 2> o.err
+check_rc out_option_without_folder_exit_2 2 $?
+cd "$work" || exit 0
+
+# --------------------------------------------------------------- good deck
+mkdir good && cd good || exit 0
+"$exe" ../decks/sphere_pressure.inp > run.out 2> run.err
+check_rc good_deck_exit_0 0 $?
+check good_deck_case_folder "out/sphere_pressure/ missing; stderr: $(first_lines run.err)" test -d out/sphere_pressure
+for file in listing.txt summary.txt history.csv results.h5; do
+  check "good_deck_writes_$file" "out/sphere_pressure/$file missing or empty" test -s "out/sphere_pressure/$file"
+done
+check good_deck_no_hidden_folders "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls -A out 2>/dev/null)" = sphere_pressure
+check good_deck_reports_case "stdout: $(first_lines run.out)" grep -q '^sphere_pressure:' run.out
+check good_deck_stderr_empty "stderr: $(first_lines run.err)" test ! -s run.err
+
+# summary.txt: key = value lines with the documented keys.
+summary=out/sphere_pressure/summary.txt
+bad_lines=$(grep -Evc '^[A-Za-z_][A-Za-z0-9_]* =( .*)?$' "$summary" 2>/dev/null)
+check summary_key_value_lines "$bad_lines line(s) not 'key = value': $(grep -Ev '^[A-Za-z_][A-Za-z0-9_]* =( .*)?$' "$summary" 2>/dev/null | head -3 | tr '\n' '|')" \
+  test -s "$summary" -a "$bad_lines" = 0
+for key in case title effects nodes elements dofs half_bandwidth steps cpu_s; do
+  check "summary_has_$key" "no '$key = ' line in summary.txt" grep -qs "^$key = " "$summary"
+done
+value_of() { sed -n "s/^$1 = //p" "$summary" 2>/dev/null | head -1; }
+nnode=$(value_of nodes)
+nelem=$(value_of elements)
+check summary_case_is_stem "case = '$(value_of case)'" test "$(value_of case)" = sphere_pressure
+check summary_dofs_twice_nodes "nodes = '$nnode', dofs = '$(value_of dofs)'" \
+  test -n "$nnode" -a "$(value_of dofs)" = "$((2 * ${nnode:-0}))"
+
+# results.h5 through h5dump.
+h5=out/sphere_pressure/results.h5
+if command -v h5dump > /dev/null; then
+  h5dump -H "$h5" > h5.header 2> h5.err
+  check_rc h5dump_reads_results 0 $?
+  h5dump -H -d /mesh/nodes "$h5" > /dev/null 2>&1
+  check_rc h5_has_mesh_nodes 0 $?
+  h5dump -H -d /mesh/elements "$h5" > /dev/null 2>&1
+  check_rc h5_has_mesh_elements 0 $?
+  h5dump -H -g /fields "$h5" > fields.header 2>&1
+  field=$(sed -n 's/^ *GROUP "\([^"/]*\)" {.*/\1/p' fields.header | grep -v '^fields$' | head -1)
+  check h5_has_a_field_group "no group under /fields: $(first_lines fields.header)" test -n "$field"
+  if [ -n "$field" ]; then
+    h5dump -H -d "/fields/$field/displacement" "$h5" > /dev/null 2>&1
+    check_rc h5_field_has_displacement 0 $?
+    h5dump -H -d "/fields/$field/stress" "$h5" > /dev/null 2>&1
+    check_rc h5_field_has_stress 0 $?
+    h5dump -a "/fields/$field/time" "$h5" > time.out 2>&1
+    check_rc h5_field_has_time_attribute 0 $?
+  fi
+else
+  fail h5dump_available "h5dump is not on PATH"
+fi
+
+# results.h5 through h5py (if available).
+if command -v python3 > /dev/null && python3 -c 'import h5py' > /dev/null 2>&1; then
+  python3 - "$h5" > h5py.out 2> h5py.err <<'EOF'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    nodes = f["/mesh/nodes"]
+    elements = f["/mesh/elements"][()]
+    print("nodes_shape", "x".join(str(n) for n in nodes.shape))
+    print("elements_shape", "x".join(str(n) for n in elements.shape))
+    print("elements_min", int(elements.min()))
+    print("elements_max", int(elements.max()))
+    print("elements_distinct", len(set(int(v) for v in elements.ravel())))
+EOF
+  check_rc h5py_reads_results 0 $?
+  got() { sed -n "s/^$1 //p" h5py.out; }
+  check h5py_nodes_shape "shape $(got nodes_shape), expected ${nnode}x2" test "$(got nodes_shape)" = "${nnode}x2"
+  check h5py_elements_shape "shape $(got elements_shape), expected ${nelem}x4" test "$(got elements_shape)" = "${nelem}x4"
+  check h5py_elements_min_1 "min $(got elements_min), expected 1 (1-based)" test "$(got elements_min)" = 1
+  check h5py_elements_max_nnode "max $(got elements_max), expected $nnode" \
+    test -n "$nnode" -a "$(got elements_max)" = "$nnode"
+  check h5py_elements_use_every_node "$(got elements_distinct) distinct node numbers, expected $nnode" \
+    test -n "$nnode" -a "$(got elements_distinct)" = "$nnode"
+else
+  echo "# h5py not available: h5py checks skipped"
+fi
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- -o DIR
+mkdir custom && cd custom || exit 0
+"$exe" -o results/nested ../decks/sphere_pressure.inp > run.out 2> run.err
+check_rc out_option_exit_0 0 $?
+check out_option_case_folder "results/nested/sphere_pressure/summary.txt missing; stderr: $(first_lines run.err)" \
+  test -s results/nested/sphere_pressure/summary.txt
+check out_option_default_unused "out/ was created although -o was given" test ! -e out
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- bad deck
+mkdir bad && cd bad || exit 0
+"$exe" ../decks/bad.inp > run.out 2> run.err
+check_rc bad_deck_exit_1 1 $?
+check bad_deck_located_error "stderr: $(first_lines run.err)" \
+  grep -qF '../decks/bad.inp:4:32: MATERIAL: NU must be in (-1, 0.5), got 0.7' run.err
+check bad_deck_error_format "no 'file:line:col: CARD:' line on stderr: $(first_lines run.err)" \
+  grep -Eq '^visco2d: error: [^ :]+:[0-9]+:[0-9]+: [A-Z]+: ' run.err
+check bad_deck_stderr_clean "stderr holds more than the error message: $(first_lines run.err)" \
+  test "$(grep -cv '^visco2d: error: ' run.err)" = 0
+check bad_deck_no_case_folder "out/bad exists" test ! -e out/bad
+check bad_deck_no_hidden_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(entries_matching out bad)"
+
+# A deck that reads but fails at solve time.
+"$exe" ../decks/loose.inp > loose.out 2> loose.err
+check_rc solve_failure_exit_1 1 $?
+check solve_failure_mentions_fix "stderr: $(first_lines loose.err)" grep -q 'FIX' loose.err
+check solve_failure_names_node "stderr: $(first_lines loose.err)" grep -Eq 'node [0-9]+' loose.err
+check solve_failure_no_case_folder "out/loose exists" test ! -e out/loose
+check solve_failure_no_hidden_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(entries_matching out loose)"
+
+# The case folder cannot be created (a plain file is in the way): the
+# temporary folder must be cleaned up and the file left alone.
+mkdir -p blocked && echo keep > blocked/first
+"$exe" -o blocked ../decks/first.inp > blocked.out 2> blocked.err
+check_rc blocked_case_exit_1 1 $?
+check blocked_case_error_names_folder "stderr: $(first_lines blocked.err)" grep -q 'blocked/first' blocked.err
+check blocked_case_no_hidden_folder "blocked/ holds: $(ls -A blocked | tr '\n' ' ')" \
+  test "$(ls -A blocked)" = first
+check blocked_case_file_untouched "blocked/first changed" test "$(cat blocked/first 2>/dev/null)" = keep
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- batch
+mkdir batch && cd batch || exit 0
+"$exe" ../decks/first.inp ../decks/bad.inp ../decks/last.inp > run.out 2> run.err
+check_rc batch_exit_1 1 $?
+check batch_first_deck_ran "out/first/summary.txt missing" test -s out/first/summary.txt
+check batch_deck_after_bad_ran "out/last/summary.txt missing; stderr: $(first_lines run.err)" test -s out/last/summary.txt
+check batch_bad_deck_no_folder "out/bad exists" test ! -e out/bad
+check batch_only_good_folders "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls -A out 2>/dev/null | tr '\n' ' ')" = "first last "
+check batch_reports_failure_count "stderr: $(first_lines run.err)" grep -q '1 of 3 decks failed' run.err
+check batch_reports_good_decks "stdout: $(first_lines run.out)" \
+  test "$(grep -c '^first:\|^last:' run.out)" = 2
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- rerun
+mkdir rerun && cd rerun || exit 0
+"$exe" ../decks/first.inp > run1.out 2> run1.err
+check rerun_first_run "out/first/summary.txt missing after the first run" test -s out/first/summary.txt
+echo stale 2>/dev/null > out/first/stale_marker.txt
+"$exe" ../decks/first.inp > run2.out 2> run2.err
+check_rc rerun_exit_0 0 $?
+check rerun_replaces_folder "out/first/stale_marker.txt survived the rerun (or out/first is missing)" \
+  test -d out/first -a ! -e out/first/stale_marker.txt
+check rerun_writes_all_files "out/first holds: $(ls -A out/first 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls out/first 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+check rerun_no_hidden_folders "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls -A out 2>/dev/null)" = first
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- check
+mkdir checking && cd checking || exit 0
+"$exe" check ../decks/sphere_pressure.inp > check.out 2> check.err
+check_rc check_exit_0 0 $?
+for word in nodes elements half-bandwidth effects; do
+  check "check_prints_$word" "stdout: $(first_lines check.out)" grep -q "^ *$word " check.out
+done
+check check_nodes_match_run "check says nodes '$(sed -n 's/^ *nodes *//p' check.out)', run says '$nnode'" \
+  test -n "$nnode" -a "$(sed -n 's/^ *nodes *//p' check.out)" = "$nnode"
+check check_writes_nothing "check created: $(ls -A | grep -v '^check\.' | tr '\n' ' ')" \
+  test -z "$(ls -A | grep -v '^check\.')"
+"$exe" check ../decks/bad.inp > checkbad.out 2> checkbad.err
+check_rc check_bad_deck_exit_1 1 $?
+check check_bad_deck_located_error "stderr: $(first_lines checkbad.err)" \
+  grep -qF '../decks/bad.inp:4:32: MATERIAL: ' checkbad.err
+cd "$work" || exit 0
+
+exit 0

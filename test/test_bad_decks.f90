@@ -1,0 +1,425 @@
+!> Bad card decks: every class of input error must be reported as
+!> `file:line:col: CARD: message` with the right file, line, card and message,
+!> and a failed run must leave nothing in the output root. A valid deck
+!> written loosely (lower case, extra spaces, `NAME = value`, tabs, comments)
+!> must parse to the intended model.
+program test_bad_decks
+  use visco2d_kinds, only: dp, geometry_plane_strain
+  use visco2d_error, only: error_t, error_text
+  use visco2d_deck, only: deck_t, read_deck, analysis_static
+  use visco2d_driver, only: run_deck
+  use visco2d_record, only: record_t
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary
+  implicit none
+
+  character(*), parameter :: folder = 'build/test_decks/bad'
+  character(*), parameter :: out_root = 'build/test_decks/bad_out'
+  character(len=100), allocatable :: lines(:)
+  character(len=1), parameter :: tab = achar(9)
+
+  call execute_command_line('rm -rf '//folder//' '//out_root)
+  call execute_command_line('mkdir -p '//folder//' '//out_root)
+
+  ! ---------------------------------------------------------------- card syntax
+  lines = [character(len=100) :: &
+    '# a comment line and a blank line come first: they still count', &  ! 1
+    '', &                                                                  ! 2
+    'TITLE t', &                                                           ! 3
+    'ANALYSIS STATIC', &                                                   ! 4
+    '! another comment', &                                                 ! 5
+    '  foo 1 2', &                                                         ! 6
+    'END']
+  call expect_read_error('unknown_card', lines, 6, 3, 'FOO', 'unknown card "FOO"')
+
+  lines = square()
+  lines(10) = 'FIX 1 RZ FOO=3'
+  call expect_read_error('unknown_field', lines, 10, 10, 'FIX', 'unknown field FOO')
+
+  lines = square()
+  lines(10) = 'FIX 1 RZ 7'
+  call expect_read_error('surplus_positional', lines, 10, 10, 'FIX', 'unexpected value "7"')
+
+  lines = square()
+  lines(4) = 'MATERIAL steel ELASTIC E=abc NU=0.3'
+  call expect_read_error('non_numeric_e', lines, 4, 24, 'MATERIAL', 'E must be a number, got "abc"')
+
+  lines = square()
+  lines(6) = 'NODE 2 1.2.3 0'
+  call expect_read_error('non_numeric_coordinate', lines, 6, 8, 'NODE', &
+                         'r coordinate must be a number, got "1.2.3"')
+
+  lines = square()
+  lines(4) = 'MATERIAL steel ELASTIC E=200e9 NU=0.7'
+  call expect_read_error('nu_out_of_range', lines, 4, 32, 'MATERIAL', 'NU must be in (-1, 0.5), got 0.7')
+
+  lines = square()
+  lines(4) = 'MATERIAL steel ELASTIC NU=0.3 E=-1'
+  call expect_read_error('e_not_positive', lines, 4, 31, 'MATERIAL', 'E must be > 0')
+
+  lines = square()
+  lines(4) = 'MATERIAL steel ELASTIC NU=0.3 E='
+  call expect_read_error('no_value_last_field', lines, 4, 31, 'MATERIAL', 'field E has no value')
+
+  lines = square()
+  lines(4) = 'MATERIAL steel ELASTIC E= NU=0.3'
+  call expect_read_error('no_value_before_next_field', lines, 4, 24, 'MATERIAL', 'field E has no value')
+
+  ! ------------------------------------------------------- missing / duplicated cards
+  lines = square()
+  call expect_missing_card('missing_end', lines(1:11), 'END', 'missing END card')
+
+  lines = square()
+  call expect_missing_card('missing_analysis', [lines(1:1), lines(3:12)], 'ANALYSIS', 'missing ANALYSIS card')
+
+  lines = square()
+  lines(9) = 'ELEMENT 1 1 2 3 4'
+  call expect_missing_card('missing_material', [lines(1:3), lines(5:12)], 'MATERIAL', 'missing MATERIAL card')
+
+  lines = square()
+  call expect_missing_card('missing_mesh', [lines(1:4), lines(12:12)], 'MESH', &
+                           'missing mesh: give NODE and ELEMENT cards or a MESH card')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:4), 'TITLE again', lines(5:12)]
+  call expect_read_error('duplicate_title', lines, 5, 1, 'TITLE', &
+                         'only one TITLE card is allowed (first on line 1)')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'analysis static', lines(10:12)]
+  call expect_read_error('duplicate_analysis', lines, 10, 1, 'ANALYSIS', &
+                         'only one ANALYSIS card is allowed (first on line 2)')
+
+  ! ------------------------------------------------------------------ mesh checks
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'NODE 2 5 5', lines(10:12)]
+  call expect_read_error('duplicate_node', lines, 10, 0, 'NODE', 'node 2 defined twice (also on line 6)')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'ELEMENT 1 1 2 3 4 MAT=steel', lines(10:12)]
+  call expect_read_error('duplicate_element', lines, 10, 0, 'ELEMENT', 'element 1 defined twice (also on line 9)')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:4), 'MATERIAL Steel ELASTIC E=1e9 NU=0.3', lines(5:12)]
+  call expect_read_error('duplicate_material', lines, 5, 1, 'MATERIAL', 'material STEEL defined twice')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'NODE 5 2 0', 'ELEMENT 2 2 5 6 3 MAT=steel', lines(10:12)]
+  call expect_read_error('undefined_node', lines, 11, 0, 'ELEMENT', 'element 2 uses node 6, which is not defined')
+
+  lines = square()
+  lines(9) = 'ELEMENT 1 1 2 3 4 MAT=wood'
+  call expect_read_error('undefined_material', lines, 9, 0, 'ELEMENT', &
+                         'element 1 uses material WOOD, which is not defined by a MATERIAL card')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'NODE 9 5 5', lines(10:12)]
+  call expect_read_error('unconnected_node', lines, 10, 0, 'NODE', 'node 9 is not connected to any element')
+
+  lines = square()
+  lines(9) = 'ELEMENT 1 1 4 3 2 MAT=steel'
+  call expect_read_error('clockwise_element', lines, 9, 0, 'ELEMENT', 'element 1 has a non-positive Jacobian')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2', lines(10:12)]
+  call expect_read_error('mesh_after_node_cards', lines, 10, 1, 'MESH', &
+                         'a MESH card cannot be combined with NODE/ELEMENT cards')
+
+  lines = [character(len=100) :: 'TITLE t', 'ANALYSIS STATIC', 'GEOMETRY PLANESTRAIN', &
+    'MATERIAL steel ELASTIC E=200e9 NU=0.3', 'MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2', &
+    'NODE 100 0 0', 'FIX BOTTOM RZ', 'END']
+  call expect_read_error('node_after_mesh_card', lines, 6, 1, 'NODE', &
+                         'NODE cards cannot be combined with the MESH card on line 5')
+
+  ! ------------------------------------------------------------- supports and loads
+  lines = square()
+  lines(10) = 'FIX 1 X'
+  call expect_read_error('fix_bad_component', lines, 10, 7, 'FIX', 'components must be R, Z or RZ, got "X"')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:11), 'PRESSURE LEFT P=1e3', lines(12:12)]
+  call expect_read_error('pressure_unknown_set', lines, 12, 10, 'PRESSURE', &
+                         'edge set must be INNER, OUTER, TOP or BOTTOM, got "LEFT"')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:11), 'PRESSURE P=1e3 LEFT', lines(12:12)]
+  call expect_read_error('pressure_unknown_set_after_p', lines, 12, 16, 'PRESSURE', &
+                         'edge set must be INNER, OUTER, TOP or BOTTOM, got "LEFT"')
+
+  lines = [character(len=100) :: 'TITLE sphere', 'ANALYSIS STATIC', 'MATERIAL fruit ELASTIC E=18e6 NU=0.2', &
+    'MESH SPHERE R=0.03', 'PRESSURE INNER P=1e6', 'FIX TOP Z', 'END']
+  call expect_read_error('pressure_set_without_edges', lines, 5, 0, 'PRESSURE', &
+                         'edge set INNER has no boundary edges in this mesh')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:11), 'FORCE 9 FZ=-1e3', lines(12:12)]
+  call expect_read_error('force_undefined_node', lines, 12, 7, 'FORCE', 'node 9 is not defined')
+
+  ! ------------------------------------------------------------- files
+  block
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(*), parameter :: missing = folder//'/does_not_exist.inp'
+    call read_deck(missing, deck, error)
+    call check('nonexistent_file_error', allocated(error), 'read_deck accepted a file that does not exist')
+    if (allocated(error)) then
+      call check_text_contains('nonexistent_file_name', error_text(error), missing//': ')
+      call check_text_contains('nonexistent_file_message', error_text(error), 'does not exist')
+    end if
+  end block
+
+  lines = [character(len=100) ::]
+  call expect_missing_card('empty_file', lines, 'no cards', 'an empty file?')
+  lines = [character(len=100) :: '# only comments', '', '   ! and blanks']
+  call expect_missing_card('comments_only_file', lines, 'no cards', 'an empty file?')
+
+  ! ------------------------------------------------------- errors found at solve time
+  lines = square()
+  lines = [character(len=100) :: lines(1:11), 'FORCE 3 FZ=-1e3', 'EXPECT no_such_key 1.0', lines(12:12)]
+  call expect_run_error('expect_unknown_key', lines, 13, 'EXPECT', &
+                        'key "no_such_key" is not a numeric summary key')
+
+  lines = square()
+  lines = [character(len=100) :: lines(1:9), 'FORCE 3 FZ=-1e3', lines(12:12)]
+  call expect_run_error('no_supports', lines, 0, '', 'singular')
+  call check_no_supports_message()
+
+  ! --------------------------------------------- a valid deck written loosely
+  call loose_deck()
+
+  call execute_command_line('rm -rf '//out_root)
+  call test_summary('test_bad_decks')
+
+contains
+
+  !> A valid one-element plane-strain deck; line k is lines(k).
+  function square() result(deck_lines)
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = [character(len=100) :: &
+      'TITLE unit square', &                         ! 1
+      'ANALYSIS STATIC', &                           ! 2
+      'GEOMETRY PLANESTRAIN', &                      ! 3
+      'MATERIAL steel ELASTIC E=200e9 NU=0.3', &     ! 4
+      'NODE 1 0 0', &                                ! 5
+      'NODE 2 1 0', &                                ! 6
+      'NODE 3 1 1', &                                ! 7
+      'NODE 4 0 1', &                                ! 8
+      'ELEMENT 1 1 2 3 4 MAT=steel', &               ! 9
+      'FIX 1 RZ', &                                  ! 10
+      'FIX 2 Z', &                                   ! 11
+      'END']                                         ! 12
+  end function square
+
+  function deck_path(name) result(path)
+    character(*), intent(in) :: name
+    character(:), allocatable :: path
+    path = folder//'/'//name//'.inp'
+  end function deck_path
+
+  subroutine write_deck(path, deck_lines)
+    character(*), intent(in) :: path
+    character(*), intent(in) :: deck_lines(:)
+    integer :: unit, i
+    open(newunit=unit, file=path, status='replace', action='write')
+    do i = 1, size(deck_lines)
+      write(unit, '(a)') trim(deck_lines(i))
+    end do
+    close(unit)
+  end subroutine write_deck
+
+  function itoa(value) result(text)
+    integer, intent(in) :: value
+    character(:), allocatable :: text
+    character(len=16) :: buffer
+    write(buffer, '(i0)') value
+    text = trim(buffer)
+  end function itoa
+
+  !> read_deck must fail with `path:line[:column]: CARD: ...fragment...`.
+  !> column = 0: the error must still carry the line, any column is accepted.
+  subroutine expect_read_error(name, deck_lines, line, column, card, fragment)
+    character(*), intent(in) :: name
+    character(*), intent(in) :: deck_lines(:)
+    integer, intent(in) :: line, column
+    character(*), intent(in) :: card, fragment
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path
+    path = deck_path(name)
+    call write_deck(path, deck_lines)
+    call read_deck(path, deck, error)
+    call check(name//'_error', allocated(error), 'read_deck accepted '//path)
+    if (.not. allocated(error)) return
+    call check_location(name, error, path, line, column, card, fragment)
+  end subroutine expect_read_error
+
+  subroutine check_location(name, error, path, line, column, card, fragment)
+    character(*), intent(in) :: name
+    type(error_t), intent(in) :: error
+    character(*), intent(in) :: path
+    integer, intent(in) :: line, column
+    character(*), intent(in) :: card, fragment
+    character(:), allocatable :: text
+    text = error_text(error)
+    call check(name//'_file', index(text, path//':') == 1, 'expected "'//path//':" at the start of "'//text//'"')
+    if (line > 0) call check_text_contains(name//'_line', text, path//':'//itoa(line)//':')
+    if (column > 0) call check_text_contains(name//'_column', text, path//':'//itoa(line)//':'//itoa(column)//': ')
+    if (len(card) > 0) call check_text_contains(name//'_card', text, ': '//card//': ')
+    call check_text_contains(name//'_message', text, fragment)
+  end subroutine check_location
+
+  !> A deck without a required card: the error names the file (no line: the
+  !> card is absent) and the missing card.
+  subroutine expect_missing_card(name, deck_lines, card, fragment)
+    character(*), intent(in) :: name
+    character(*), intent(in) :: deck_lines(:)
+    character(*), intent(in) :: card, fragment
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path, text
+    path = deck_path(name)
+    call write_deck(path, deck_lines)
+    call read_deck(path, deck, error)
+    call check(name//'_error', allocated(error), 'read_deck accepted '//path)
+    if (.not. allocated(error)) return
+    text = error_text(error)
+    call check(name//'_file', index(text, path//': ') == 1, 'expected "'//path//': " at the start of "'//text//'"')
+    call check_text_contains(name//'_card', text, card)
+    call check_text_contains(name//'_message', text, fragment)
+  end subroutine expect_missing_card
+
+  !> A deck that reads but fails in run_deck: the error is located, and the
+  !> output root is left exactly as it was (empty: no case folder, no hidden
+  !> partial folder).
+  subroutine expect_run_error(name, deck_lines, line, card, fragment)
+    character(*), intent(in) :: name
+    character(*), intent(in) :: deck_lines(:)
+    integer, intent(in) :: line
+    character(*), intent(in) :: card, fragment
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path, entries
+    path = deck_path(name)
+    call write_deck(path, deck_lines)
+    call read_deck(path, deck, error)
+    call check(name//'_reads', .not. allocated(error), 'the deck should read cleanly before it is run')
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    call run_deck(path, out_root, record, error)
+    call check(name//'_error', allocated(error), 'run_deck accepted '//path)
+    if (allocated(error)) call check_location(name, error, path, line, 0, card, fragment)
+    entries = folder_entries(out_root)
+    call check(name//'_nothing_left', len(entries) == 0, 'output root '//out_root//' holds: '//entries)
+  end subroutine expect_run_error
+
+  !> The rigid-body (no supports) failure must say what to do (FIX) and where.
+  subroutine check_no_supports_message()
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(:), allocatable :: text
+    integer :: at
+    call run_deck(deck_path('no_supports'), out_root, record, error)
+    if (.not. allocated(error)) return   ! already reported by expect_run_error
+    text = error_text(error)
+    call check_text_contains('no_supports_mentions_fix', text, 'FIX')
+    at = index(text, 'at node ')
+    call check('no_supports_names_node', at > 0, 'expected "at node <n>" in "'//text//'"')
+    if (at > 0) call check('no_supports_node_number', verify(text(at+8:at+8), '0123456789') == 0, &
+                           'expected a node number after "at node " in "'//text//'"')
+  end subroutine check_no_supports_message
+
+  !> All entries of a folder (hidden ones too), blank-separated; '' if none.
+  function folder_entries(path) result(entries)
+    character(*), intent(in) :: path
+    character(:), allocatable :: entries
+    character(*), parameter :: list = 'build/test_decks/bad_listing.txt'
+    character(len=1024) :: buffer
+    integer :: unit, ios
+    entries = ''
+    call execute_command_line('ls -A '//path//' > '//list//' 2>/dev/null')
+    open(newunit=unit, file=list, status='old', action='read', iostat=ios)
+    if (ios /= 0) return
+    do
+      read(unit, '(a)', iostat=ios) buffer
+      if (ios /= 0) exit
+      entries = entries//trim(buffer)//' '
+    end do
+    close(unit, status='delete')
+    entries = trim(entries)
+  end function folder_entries
+
+  !> Lower-case keywords, extra spaces, `NAME = value`, tabs, # and ! comments.
+  subroutine loose_deck()
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path, entries
+    character(len=100), allocatable :: deck_lines(:)
+    logical :: exists
+    path = deck_path('loose_valid')
+    deck_lines = [character(len=100) :: &
+      '   title   Loose   deck   # trailing comment', &
+      '', &
+      'analysis static ! bang comment', &
+      'geometry'//tab//'planestrain', &
+      'material Steel elastic  E = 200e9'//tab//'nu =0.3   rho= 7800  # comment', &
+      'node 1  0   0', &
+      'Node'//tab//'2'//tab//'1.0'//tab//'0.0', &
+      '  node 3 1 1 ! comment', &
+      'NODE 4 0.0 1.0e0', &
+      'element 1 1 2 3 4 mat = STEEL', &
+      'fix 1 rz', &
+      'Fix 2 z', &
+      'force 3 fz = -1e3', &
+      'probe corner node = 3', &
+      '  end  # done']
+    call write_deck(path, deck_lines)
+    call read_deck(path, deck, error)
+    call check('loose_deck_parses', .not. allocated(error), 'got an error')
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    call check('loose_deck_title', deck%title == 'Loose   deck', 'title "'//deck%title//'"')
+    call check('loose_deck_analysis', deck%analysis == analysis_static)
+    call check('loose_deck_geometry', deck%geometry == geometry_plane_strain)
+    call check('loose_deck_one_material', size(deck%materials) == 1)
+    if (size(deck%materials) == 1) then
+      call check('loose_deck_material_id', deck%materials(1)%id == 'STEEL', 'id "'//deck%materials(1)%id//'"')
+      call check_close('loose_deck_e', deck%materials(1)%young, 200.0e9_dp, 1.0e-12_dp)
+      call check_close('loose_deck_nu', deck%materials(1)%poisson, 0.3_dp, 1.0e-12_dp)
+      call check_close('loose_deck_rho', deck%materials(1)%density, 7800.0_dp, 1.0e-12_dp)
+    end if
+    call check('loose_deck_nodes', deck%mesh%nnode == 4)
+    call check('loose_deck_elements', deck%mesh%nelem == 1)
+    if (deck%mesh%nnode == 4) then
+      call check_close('loose_deck_node2_r', deck%mesh%xy(1, 2), 1.0_dp, 0.0_dp)
+      call check_close('loose_deck_node4_z', deck%mesh%xy(2, 4), 1.0_dp, 0.0_dp)
+    end if
+    call check('loose_deck_fixes', size(deck%fixes) == 2)
+    if (size(deck%fixes) == 2) then
+      call check('loose_deck_fix_rz', deck%fixes(1)%fix_r .and. deck%fixes(1)%fix_z)
+      call check('loose_deck_fix_z', deck%fixes(2)%fix_z .and. .not. deck%fixes(2)%fix_r)
+    end if
+    call check('loose_deck_forces', size(deck%forces) == 1)
+    if (size(deck%forces) == 1) call check_close('loose_deck_fz', deck%forces(1)%value(2), -1.0e3_dp, 1.0e-12_dp)
+    call check('loose_deck_probe', size(deck%probes) == 1)
+    if (size(deck%probes) == 1) call check('loose_deck_probe_node', deck%probes(1)%node == 3 &
+                                           .and. deck%probes(1)%name == 'corner')
+
+    ! The same deck runs and writes a complete case folder (so the failures
+    ! above left nothing behind because they failed, not because run_deck never writes).
+    call run_deck(path, out_root, record, error)
+    call check('loose_deck_runs', .not. allocated(error), 'run_deck failed')
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    inquire(file=out_root//'/loose_valid/summary.txt', exist=exists)
+    call check('loose_deck_case_folder', exists, out_root//'/loose_valid/summary.txt is missing')
+    entries = folder_entries(out_root)
+    call check('loose_deck_only_case_folder', entries == 'loose_valid', 'output root holds: '//entries)
+  end subroutine loose_deck
+end program test_bad_decks
