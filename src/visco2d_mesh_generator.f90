@@ -241,42 +241,16 @@ contains
     integer, intent(in) :: nr, nt
     real(dp), allocatable, intent(out) :: xy(:, :)
     integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
-    integer :: i, j, e, nedge, top_set
     real(dp) :: rho, phi
-    allocate(xy(2, (nr + 1)*(nt + 1)), connectivity(4, nr*nt))
-    allocate(edge_element(2*(nr + nt)), edge_side(2*(nr + nt)), edge_set(2*(nr + nt)))
-    top_set = merge(edge_set_axis, edge_set_top, abs(angle - 90.0_dp) < 1.0e-9_dp)
-    do j = 0, nt
-      phi = angle*pi/180.0_dp*real(j, dp)/nt
-      do i = 0, nr
-        rho = r0 + (r1 - r0)*real(i, dp)/nr
-        xy(:, id(i, j)) = [rho*cos(phi), rho*sin(phi)]
-        if (j == nt .and. top_set == edge_set_axis) xy(1, id(i, j)) = 0.0_dp
-      end do
+    integer :: i
+    ! The rectangle (rho, phi) in [r0, r1] x [0, angle], mapped to the plane.
+    call rectangle_grid(r0, r1, 0.0_dp, angle, nr, nt, xy, connectivity, edge_element, edge_side, edge_set)
+    do i = 1, size(xy, 2)
+      rho = xy(1, i)
+      phi = xy(2, i)*pi/180.0_dp
+      xy(:, i) = [rho*cos(phi), rho*sin(phi)]
+      if (abs(angle - 90.0_dp) < 1.0e-9_dp .and. i > size(xy, 2) - (nr + 1)) xy(1, i) = 0.0_dp
     end do
-    e = 0
-    nedge = 0
-    do j = 0, nt - 1
-      do i = 0, nr - 1
-        e = e + 1
-        connectivity(:, e) = [id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]
-        if (j == 0) call add(e, 1, edge_set_bottom)
-        if (i == nr - 1) call add(e, 2, edge_set_outer)
-        if (j == nt - 1) call add(e, 3, top_set)
-        if (i == 0) call add(e, 4, edge_set_inner)
-      end do
-    end do
-  contains
-    pure integer function id(ii, jj)
-      integer, intent(in) :: ii, jj
-      id = jj*(nr + 1) + ii + 1
-    end function id
-    subroutine add(element, side, set)
-      integer, intent(in) :: element, side, set
-      nedge = nedge + 1
-      edge_element(nedge) = element
-      edge_side(nedge) = side
-      edge_set(nedge) = set
-    end subroutine add
+    if (abs(angle - 90.0_dp) < 1.0e-9_dp) where (edge_set == edge_set_top) edge_set = edge_set_axis
   end subroutine ring_grid
 end module visco2d_mesh_generator

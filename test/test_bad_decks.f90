@@ -10,6 +10,7 @@ program test_bad_decks
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary
+  use visco2d_strings, only: itoa
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks/bad'
@@ -225,14 +226,6 @@ contains
     end do
     close(unit)
   end subroutine write_deck
-
-  function itoa(value) result(text)
-    integer, intent(in) :: value
-    character(:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(i0)') value
-    text = trim(buffer)
-  end function itoa
 
   !> read_deck must fail with `path:line[:column]: CARD: ...fragment...`.
   !> column = 0: the error must still carry the line, any column is accepted.

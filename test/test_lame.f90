@@ -33,6 +33,7 @@ program test_lame
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_element, only: element_gauss_points, strain_displacement, gauss_count, gauss_xi, gauss_eta
   use visco2d_testing, only: check, check_close, test_summary
+  use visco2d_strings, only: itoa
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks'
@@ -273,14 +274,6 @@ contains
       st = sig(3)
     end if
   end subroutine polar
-
-  function itoa(i) result(text)
-    integer, intent(in) :: i
-    character(:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(i0)') i
-    text = trim(buffer)
-  end function itoa
 
   function rtoa3(x) result(text)
     real(dp), intent(in) :: x
