@@ -8,7 +8,7 @@ module visco2d_banded
   private
 
   public :: band_matrix_t, band_create, band_add_element, band_multiply, band_constrain
-  public :: band_factor, band_solve, band_diagonal
+  public :: band_factor, band_solve
 
   interface
     subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
@@ -79,13 +79,6 @@ contains
       end do
     end do
   end function band_multiply
-
-  !> The diagonal of A.
-  pure function band_diagonal(matrix) result(diagonal)
-    type(band_matrix_t), intent(in) :: matrix
-    real(dp) :: diagonal(matrix%n)
-    diagonal = matrix%ab(1, :)
-  end function band_diagonal
 
   !> Impose u(p) = value(p) on the equations with constrained(p) without losing
   !> symmetry: move the columns to the right-hand side, zero row and column p,

@@ -6,11 +6,12 @@ module visco2d_cards
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
+  use visco2d_strings, only: to_upper
   implicit none
   private
 
   public :: token_t, card_t, card_deck_t
-  public :: read_cards, to_upper, to_lower
+  public :: read_cards
   public :: card_error, named_real, named_integer, named_word, has_field
   public :: positional_count, positional_real, positional_integer, positional_word
   public :: check_fields_used, field_column
@@ -205,30 +206,6 @@ contains
       i = i + 1
     end do
   end subroutine split_line
-
-  !> Upper-case copy of a string.
-  pure function to_upper(text) result(upper)
-    character(*), intent(in) :: text
-    character(len(text)) :: upper
-    integer :: i, code
-    upper = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('a') .and. code <= iachar('z')) upper(i:i) = achar(code - 32)
-    end do
-  end function to_upper
-
-  !> Lower-case copy of a string.
-  pure function to_lower(text) result(lower)
-    character(*), intent(in) :: text
-    character(len(text)) :: lower
-    integer :: i, code
-    lower = text
-    do i = 1, len(text)
-      code = iachar(text(i:i))
-      if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
-    end do
-  end function to_lower
 
   !> Error located at a card (and a column, if known).
   subroutine card_error(error, deck, card, message, column)

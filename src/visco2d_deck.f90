@@ -4,9 +4,9 @@
 module visco2d_deck
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, short_real
+  use visco2d_strings, only: itoa, short_real, to_lower
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
-                           named_word, positional_word, positional_real, to_lower, positional_count, check_fields_used, has_field, &
+                           named_word, positional_word, positional_real, check_fields_used, has_field, &
                            field_column
   use visco2d_material, only: material_t, material_kind_elastic, elastic_constants_from_e_nu
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &

@@ -4,8 +4,7 @@
 module visco2d_driver
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
-  use visco2d_strings, only: itoa, gtoa, rtoa
-  use visco2d_cards, only: to_upper, to_lower
+  use visco2d_strings, only: itoa, rtoa, to_upper, to_lower
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_name, geometry_name
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_static, only: static_solution_t, solve_static, static_record

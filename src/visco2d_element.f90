@@ -11,7 +11,6 @@ module visco2d_element
   public :: shape_functions, strain_displacement, element_stiffness, element_lumped_mass
   public :: element_strains, element_internal_force, edge_pressure_load
   public :: element_gauss_points, element_min_jacobian, gauss_to_node_extrapolation
-  public :: element_body_force
 
   integer, parameter :: gauss_count = 4
   real(dp), parameter :: g = 0.577350269189625764509148780501957456_dp  ! 1/sqrt(3)
@@ -99,22 +98,6 @@ contains
     end do
   end function element_lumped_mass
 
-  !> Consistent nodal forces of a uniform body force (b_r, b_z) per unit volume.
-  pure function element_body_force(geometry, xy, body) result(f)
-    integer, intent(in) :: geometry
-    real(dp), intent(in) :: xy(2, 4), body(2)
-    real(dp) :: f(8)
-    real(dp) :: b(4, 8), detj, radius, factor, n(4), dn(2, 4)
-    integer :: gp
-    f = 0.0_dp
-    do gp = 1, gauss_count
-      call strain_displacement(geometry, xy, gauss_xi(gp), gauss_eta(gp), b, detj, radius, factor)
-      call shape_functions(gauss_xi(gp), gauss_eta(gp), n, dn)
-      f(1:7:2) = f(1:7:2) + factor*n*body(1)
-      f(2:8:2) = f(2:8:2) + factor*n*body(2)
-    end do
-  end function element_body_force
-
   !> Strains at the four Gauss points from the element displacements (u_r1, u_z1, ...).
   pure function element_strains(geometry, xy, displacement) result(strain)
     integer, intent(in) :: geometry
@@ -187,12 +170,11 @@ contains
     real(dp) :: n(4), dn(2, 4), jac(2, 2)
     integer :: i
     minimum = huge(1.0_dp)
-    do i = 1, 8
-      if (i <= 4) then
-        call shape_functions(node_xi(i), node_eta(i), n, dn)
-      else
-        call shape_functions(gauss_xi(i - 4), gauss_eta(i - 4), n, dn)
-      end if
+    do i = 1, 4
+      call shape_functions(node_xi(i), node_eta(i), n, dn)
+      jac = matmul(dn, transpose(xy))
+      minimum = min(minimum, jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1))
+      call shape_functions(gauss_xi(i), gauss_eta(i), n, dn)
       jac = matmul(dn, transpose(xy))
       minimum = min(minimum, jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1))
     end do

@@ -422,7 +422,7 @@ contains
     type(mesh_t), intent(inout) :: mesh
     integer(int64), allocatable :: keys(:)
     integer, allocatable :: order(:)
-    integer :: e, side, k, count, a, b, i
+    integer :: e, side, k, count, a, b, i, nedge
     real(dp) :: lower(2), upper(2), tol
     allocate(keys(4*mesh%nelem))
     do e = 1, mesh%nelem
@@ -432,7 +432,8 @@ contains
       end do
     end do
     call sort_integers(keys, order)
-    allocate(mesh%edge_element(0), mesh%edge_side(0), mesh%edge_set(0))
+    allocate(mesh%edge_element(size(keys)), mesh%edge_side(size(keys)), mesh%edge_set(size(keys)))
+    nedge = 0
     lower = minval(mesh%xy, dim=2)
     upper = maxval(mesh%xy, dim=2)
     tol = geometry_tolerance*mesh%size
@@ -449,11 +450,15 @@ contains
       e = (k - 1)/4 + 1
       side = k - 4*(e - 1)
       call side_nodes(mesh, e, side, a, b)
-      mesh%edge_element = [mesh%edge_element, e]
-      mesh%edge_side = [mesh%edge_side, side]
-      mesh%edge_set = [mesh%edge_set, classify(mesh%xy(:, a), mesh%xy(:, b))]
+      nedge = nedge + 1
+      mesh%edge_element(nedge) = e
+      mesh%edge_side(nedge) = side
+      mesh%edge_set(nedge) = classify(mesh%xy(:, a), mesh%xy(:, b))
       i = i + 1
     end do
+    mesh%edge_element = mesh%edge_element(1:nedge)
+    mesh%edge_side = mesh%edge_side(1:nedge)
+    mesh%edge_set = mesh%edge_set(1:nedge)
   contains
     integer function classify(pa, pb) result(set)
       real(dp), intent(in) :: pa(2), pb(2)

@@ -4,7 +4,7 @@ module visco2d_strings
   implicit none
   private
 
-  public :: itoa, rtoa, gtoa, short_real
+  public :: itoa, rtoa, gtoa, short_real, to_upper, to_lower
 
 contains
 
@@ -55,4 +55,28 @@ contains
     end do
     text = trim(adjustl(buffer))
   end function short_real
+
+  !> Upper-case copy of a string.
+  pure function to_upper(text) result(upper)
+    character(*), intent(in) :: text
+    character(len(text)) :: upper
+    integer :: i, code
+    upper = text
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code >= iachar('a') .and. code <= iachar('z')) upper(i:i) = achar(code - 32)
+    end do
+  end function to_upper
+
+  !> Lower-case copy of a string.
+  pure function to_lower(text) result(lower)
+    character(*), intent(in) :: text
+    character(len(text)) :: lower
+    integer :: i, code
+    lower = text
+    do i = 1, len(text)
+      code = iachar(text(i:i))
+      if (code >= iachar('A') .and. code <= iachar('Z')) lower(i:i) = achar(code + 32)
+    end do
+  end function to_lower
 end module visco2d_strings
