@@ -1,9 +1,11 @@
 !> Global assembly shared by every analysis: equation numbering, the banded
 !> stiffness S of eq. [25], lumped mass M (eq. [32]), load vectors from
-!> PRESSURE/FORCE cards, the support mask, and stress recovery to nodes.
+!> PRESSURE/FORCE cards (with their CURVE time histories), the support mask
+!> and prescribed displacements, and stress recovery to nodes.
 module visco2d_assembly
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_deck, only: deck_t
+  use visco2d_curve, only: curve_value
   use visco2d_mesh, only: mesh_t, side_nodes
   use visco2d_material, only: elastic_matrix
   use visco2d_element, only: element_stiffness, element_lumped_mass, edge_pressure_load, &
@@ -12,7 +14,7 @@ module visco2d_assembly
   implicit none
   private
 
-  public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask
+  public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask, prescribed_displacement
   public :: lumped_mass, internal_force, nodal_average, gather, scatter_add
 
 contains
@@ -70,16 +72,19 @@ contains
     end associate
   end subroutine assemble_stiffness
 
-  !> Load vector of the PRESSURE and FORCE cards, scaled by `factor`.
-  function external_load(deck, factor) result(load)
+  !> Load vector R(t) of the PRESSURE and FORCE cards at time t (s): each
+  !> card's value times its curve (1 without a curve).
+  function external_load(deck, time) result(load)
     type(deck_t), intent(in) :: deck
-    real(dp), intent(in) :: factor
+    real(dp), intent(in) :: time
     real(dp) :: load(2*deck%mesh%nnode)
     integer :: k, edge, a, b
-    real(dp) :: f(4)
+    real(dp) :: f(4), factor
     load = 0.0_dp
     associate (mesh => deck%mesh)
     do k = 1, size(deck%pressures)
+      factor = curve_factor(deck, deck%pressures(k)%curve, time)
+      if (factor == 0.0_dp) cycle
       do edge = 1, size(mesh%edge_set)
         if (mesh%edge_set(edge) /= deck%pressures(k)%edge_set) cycle
         call side_nodes(mesh, mesh%edge_element(edge), mesh%edge_side(edge), a, b)
@@ -89,12 +94,44 @@ contains
       end do
     end do
     do k = 1, size(deck%forces)
+      factor = curve_factor(deck, deck%forces(k)%curve, time)
       a = deck%forces(k)%node
       load(node_dof(mesh, a, 1)) = load(node_dof(mesh, a, 1)) + factor*deck%forces(k)%value(1)
       load(node_dof(mesh, a, 2)) = load(node_dof(mesh, a, 2)) + factor*deck%forces(k)%value(2)
     end do
     end associate
   end function external_load
+
+  !> Value of curve `curve` of the deck at time t; 1 for curve 0 (constant load).
+  pure real(dp) function curve_factor(deck, curve, time) result(factor)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: curve
+    real(dp), intent(in) :: time
+    factor = 1.0_dp
+    if (curve > 0) factor = curve_value(deck%curves(curve), time)
+  end function curve_factor
+
+  !> Prescribed displacement of every supported equation at time t (m): the
+  !> UR=/UZ= of the FIX cards times their curves (0 for plain supports).
+  function prescribed_displacement(deck, time) result(values)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: time
+    real(dp) :: values(2*deck%mesh%nnode)
+    integer :: k, i, c
+    real(dp) :: factor
+    values = 0.0_dp
+    do k = 1, size(deck%fixes)
+      associate (fix => deck%fixes(k))
+      if (all(fix%value == 0.0_dp)) cycle
+      factor = curve_factor(deck, fix%curve, time)
+      do i = 1, size(fix%nodes)
+        do c = 1, 2
+          if (merge(fix%fix_r, fix%fix_z, c == 1)) values(node_dof(deck%mesh, fix%nodes(i), c)) = factor*fix%value(c)
+        end do
+      end do
+      end associate
+    end do
+  end function prescribed_displacement
 
   !> Supported equations: the FIX cards, plus u_r = 0 on the axis in axisymmetry.
   function support_mask(deck) result(fixed)

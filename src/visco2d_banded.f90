@@ -8,6 +8,7 @@ module visco2d_banded
   private
 
   public :: band_matrix_t, band_create, band_add_element, band_multiply, band_constrain
+  public :: band_constrain_matrix, band_constrain_rhs
   public :: band_factor, band_solve
 
   interface
@@ -88,12 +89,17 @@ contains
     logical, intent(in) :: constrained(:)
     real(dp), intent(in) :: values(:)
     real(dp), intent(inout) :: rhs(:)
-    real(dp), allocatable :: prescribed(:)
+    call band_constrain_rhs(matrix, constrained, values, rhs)
+    call band_constrain_matrix(matrix, constrained)
+  end subroutine band_constrain
+
+  !> The matrix part of band_constrain: zero row and column p of every
+  !> constrained equation, keep its diagonal (1 if it was 0). Done once per
+  !> factorization; each right-hand side then goes through band_constrain_rhs.
+  pure subroutine band_constrain_matrix(matrix, constrained)
+    type(band_matrix_t), intent(inout) :: matrix
+    logical, intent(in) :: constrained(:)
     integer :: i, j, p
-    if (any(constrained .and. values /= 0.0_dp)) then
-      prescribed = merge(values, 0.0_dp, constrained)
-      rhs = rhs - band_multiply(matrix, prescribed)
-    end if
     do p = 1, matrix%n
       if (.not. constrained(p)) cycle
       do i = p + 1, min(matrix%n, p + matrix%kd)          ! column p below the diagonal
@@ -103,9 +109,28 @@ contains
         matrix%ab(1 + p - j, j) = 0.0_dp
       end do
       if (matrix%ab(1, p) == 0.0_dp) matrix%ab(1, p) = 1.0_dp
-      rhs(p) = matrix%ab(1, p)*values(p)
     end do
-  end subroutine band_constrain
+  end subroutine band_constrain_matrix
+
+  !> The right-hand-side part of band_constrain, with `matrix` the original
+  !> (unconstrained, unfactored) matrix: rhs <- rhs - A v on the free
+  !> equations, rhs(p) = A(p,p) v(p) on the constrained ones.
+  subroutine band_constrain_rhs(matrix, constrained, values, rhs)
+    type(band_matrix_t), intent(in) :: matrix
+    logical, intent(in) :: constrained(:)
+    real(dp), intent(in) :: values(:)
+    real(dp), intent(inout) :: rhs(:)
+    integer :: p
+    if (any(constrained .and. values /= 0.0_dp)) rhs = rhs - band_multiply(matrix, merge(values, 0.0_dp, constrained))
+    do p = 1, matrix%n
+      if (.not. constrained(p)) cycle
+      if (matrix%ab(1, p) == 0.0_dp) then
+        rhs(p) = values(p)
+      else
+        rhs(p) = matrix%ab(1, p)*values(p)
+      end if
+    end do
+  end subroutine band_constrain_rhs
 
   !> Cholesky factorization in place (LAPACK dpbtrf). info > 0: equation info
   !> has a non-positive pivot, or a pivot below 1e-13 of its original diagonal

@@ -1,45 +1,66 @@
 !> A deck: the cards of one input file interpreted as a model (title,
-!> analysis, geometry, materials, mesh, supports, loads, probes), with every
-!> reference checked. Errors name the file, line, column and card.
+!> analysis, geometry, materials, mesh, supports, loads, time histories,
+!> time stages, probes), with every reference checked. Errors name the
+!> file, line, column and card.
 module visco2d_deck
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, short_real, to_lower
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
-                           named_word, positional_word, positional_real, check_fields_used, has_field, &
-                           field_column
-  use visco2d_material, only: material_t, material_kind_elastic, elastic_constants_from_e_nu
+                           named_word, positional_word, positional_real, positional_count, &
+                           check_fields_used, has_field, field_column
+  use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
+                              material_kind_uniaxial, elastic_constants_from_e_nu, has_memory
+  use visco2d_relaxation, only: uniaxial_to_shear
+  use visco2d_curve, only: curve_t
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &
                           build_mesh, node_set, node_index, edge_set_code, edge_set_name, &
                           edge_set_none, edge_set_axis
   implicit none
   private
 
-  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, read_deck
-  public :: analysis_static, analysis_name, geometry_name
+  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, time_stage_t, read_deck
+  public :: analysis_static, analysis_quasistatic, analysis_name, geometry_name, total_steps
 
-  integer, parameter :: analysis_static = 1
+  integer, parameter :: analysis_static = 1       !< S U = R once
+  integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
 
-  !> A support: components fixed at a set of nodes.
+  !> Most steps a deck may ask for (a guard against a mistyped DT).
+  integer, parameter :: max_steps = 10000000
+
+  !> A support: components prescribed at a set of nodes, u = value * curve(t)
+  !> (value 0, no curve: a fixed support).
   type :: fix_t
     integer, allocatable :: nodes(:)
     logical :: fix_r = .false., fix_z = .false.
+    real(dp) :: value(2) = 0.0_dp  !< prescribed (u_r, u_z), m
+    integer :: curve = 0           !< index into deck%curves; 0 = constant
     integer :: line = 0
   end type fix_t
 
-  !> A uniform normal pressure on a boundary edge set (positive = compressive).
+  !> A uniform normal pressure on a boundary edge set (positive = compressive), p * curve(t).
   type :: pressure_t
     integer :: edge_set = edge_set_none
     real(dp) :: value = 0.0_dp     !< Pa
+    integer :: curve = 0           !< index into deck%curves; 0 = constant
     integer :: line = 0
   end type pressure_t
 
-  !> A point load at a node (per radian in axisymmetry), N.
+  !> A point load at a node (per radian in axisymmetry), N, times curve(t).
   type :: force_t
     integer :: node = 0
     real(dp) :: value(2) = 0.0_dp
+    integer :: curve = 0           !< index into deck%curves; 0 = constant
     integer :: line = 0
   end type force_t
+
+  !> A stage of the time axis: constant steps dt from the previous stage's end to end_time.
+  type :: time_stage_t
+    real(dp) :: dt = 0.0_dp        !< s (as used: (end - start)/steps)
+    real(dp) :: end_time = 0.0_dp  !< s
+    integer :: steps = 0
+    integer :: line = 0
+  end type time_stage_t
 
   !> A node whose displacement and stress are reported in the summary and history.
   type :: probe_t
@@ -68,6 +89,8 @@ module visco2d_deck
     type(force_t), allocatable :: forces(:)
     type(probe_t), allocatable :: probes(:)
     type(expect_t), allocatable :: expects(:)
+    type(curve_t), allocatable :: curves(:)
+    type(time_stage_t), allocatable :: stages(:)  !< TIME cards, in order (QUASISTATIC)
   end type deck_t
 
   !> A target of FIX or FORCE or PROBE, kept until the mesh exists.
@@ -77,6 +100,7 @@ module visco2d_deck
     character(:), allocatable :: target
     character(:), allocatable :: components
     real(dp) :: values(2) = 0.0_dp
+    character(:), allocatable :: curve  !< CURVE= name, '' if none
   end type pending_t
 
 contains
@@ -86,6 +110,7 @@ contains
     character(:), allocatable :: name
     select case (code)
     case (analysis_static); name = 'STATIC'
+    case (analysis_quasistatic); name = 'QUASISTATIC'
     case default; name = 'NONE'
     end select
   end function analysis_name
@@ -97,6 +122,13 @@ contains
     name = trim(name)
   end function geometry_name
 
+  !> Total number of time steps of the deck's TIME stages.
+  pure integer function total_steps(deck)
+    type(deck_t), intent(in) :: deck
+    total_steps = 0
+    if (allocated(deck%stages)) total_steps = sum(deck%stages%steps)
+  end function total_steps
+
   !> Read and check a deck file.
   subroutine read_deck(file, deck, error)
     character(*), intent(in) :: file
@@ -104,16 +136,20 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(mesh_input_t) :: mesh_input
     type(pending_t), allocatable :: fixes(:), forces(:), probes(:)
-    integer :: i, title_line, analysis_line, geometry_line
+    character(len=32), allocatable :: pressure_curves(:)
+    integer, allocatable :: pressure_cards(:)
+    integer :: i, title_line, analysis_line, geometry_line, material_card
     character(:), allocatable :: word
 
     call read_cards(file, deck%cards, error)
     if (allocated(error)) return
     deck%title = ''
     allocate(deck%materials(0), deck%pressures(0), deck%expects(0), fixes(0), forces(0), probes(0))
+    allocate(deck%curves(0), deck%stages(0), pressure_curves(0), pressure_cards(0))
     title_line = 0
     analysis_line = 0
     geometry_line = 0
+    material_card = 0
 
     associate (cards => deck%cards)
     do i = 1, cards%count
@@ -130,16 +166,21 @@ contains
           call duplicate_card(analysis_line); return
         end if
         analysis_line = card%line
-        call positional_word(cards, card, 1, 'analysis kind (STATIC)', word, error); if (allocated(error)) return
-        call check_fields_used(cards, card, error, 'ANALYSIS STATIC'); if (allocated(error)) return
+        call positional_word(cards, card, 1, 'analysis kind (STATIC or QUASISTATIC)', word, error)
+        if (allocated(error)) return
+        call check_fields_used(cards, card, error, 'ANALYSIS STATIC | QUASISTATIC'); if (allocated(error)) return
         select case (word)
         case ('STATIC')
           deck%analysis = analysis_static
-        case ('QUASISTATIC', 'DYNAMIC')
-          call card_error(error, cards, card, word//' analysis is not available in this version (STATIC only)')
+        case ('QUASISTATIC')
+          deck%analysis = analysis_quasistatic
+        case ('DYNAMIC')
+          call card_error(error, cards, card, word//' analysis is not available in this version '// &
+                          '(STATIC or QUASISTATIC)')
           return
         case default
-          call card_error(error, cards, card, 'analysis kind must be STATIC, got "'//word//'"'); return
+          call card_error(error, cards, card, 'analysis kind must be STATIC or QUASISTATIC, got "'//word//'"')
+          return
         end select
       case ('GEOMETRY')
         if (geometry_line > 0) then
@@ -160,6 +201,18 @@ contains
         end select
       case ('MATERIAL')
         call read_material(cards, card, deck%materials, error); if (allocated(error)) return
+        material_card = i
+      case ('PRONY')
+        if (material_card == 0 .or. (cards%cards(i - 1)%keyword /= 'MATERIAL' .and. &
+                                     cards%cards(i - 1)%keyword /= 'PRONY')) then
+          call card_error(error, cards, card, 'PRONY must follow its MATERIAL card (or another PRONY card)')
+          return
+        end if
+        call read_prony(cards, card, deck%materials(size(deck%materials)), error); if (allocated(error)) return
+      case ('CURVE')
+        call read_curve(cards, card, deck%curves, error); if (allocated(error)) return
+      case ('TIME')
+        call read_time(cards, card, deck%stages, error); if (allocated(error)) return
       case ('NODE')
         call read_node_card(mesh_input, cards, card, error); if (allocated(error)) return
       case ('ELEMENT')
@@ -169,7 +222,9 @@ contains
       case ('FIX')
         call read_fix(cards, card, i, fixes, error); if (allocated(error)) return
       case ('PRESSURE')
-        call read_pressure(cards, card, deck%pressures, error); if (allocated(error)) return
+        call read_pressure(cards, card, deck%pressures, word, error); if (allocated(error)) return
+        pressure_curves = [character(len=32) :: pressure_curves, word]
+        pressure_cards = [pressure_cards, i]
       case ('FORCE')
         call read_force(cards, card, i, forces, error); if (allocated(error)) return
       case ('PROBE')
@@ -180,7 +235,7 @@ contains
         call check_fields_used(cards, card, error, 'END'); if (allocated(error)) return
       case default
         call card_error(error, cards, card, 'unknown card "'//card%keyword//'" (known: TITLE ANALYSIS '// &
-          'GEOMETRY MATERIAL NODE ELEMENT MESH FIX PRESSURE FORCE PROBE EXPECT END)')
+          'GEOMETRY MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE CURVE TIME PROBE EXPECT END)')
         return
       end select
       end associate
@@ -193,11 +248,15 @@ contains
       call set_error(error, 'missing END card (is the deck truncated?)', file=file); return
     end if
     if (analysis_line == 0) then
-      call set_error(error, 'missing ANALYSIS card (ANALYSIS STATIC)', file=file); return
+      call set_error(error, 'missing ANALYSIS card (ANALYSIS STATIC or ANALYSIS QUASISTATIC)', file=file); return
     end if
     if (size(deck%materials) == 0) then
       call set_error(error, 'missing MATERIAL card', file=file); return
     end if
+    do i = 1, size(deck%materials)
+      call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
+    end do
+    call check_time_stages(deck, analysis_line, error); if (allocated(error)) return
 
     call build_mesh(mesh_input, cards, deck%geometry, deck%mesh, error); if (allocated(error)) return
     call resolve_materials(deck, error); if (allocated(error)) return
@@ -205,6 +264,11 @@ contains
     call resolve_forces(deck, forces, error); if (allocated(error)) return
     call resolve_probes(deck, probes, error); if (allocated(error)) return
     call check_pressures(deck, error); if (allocated(error)) return
+    do i = 1, size(deck%pressures)
+      deck%pressures(i)%curve = curve_index(deck, pressure_cards(i), trim(pressure_curves(i)), error)
+      if (allocated(error)) return
+    end do
+    call check_memory_needs_time(deck, analysis_line, error); if (allocated(error)) return
     end associate
 
   contains
@@ -217,6 +281,8 @@ contains
   end subroutine read_deck
 
   !> MATERIAL id ELASTIC E=.. NU=.. [RHO=..]   or   MATERIAL id ELASTIC G=.. K=.. [RHO=..]
+  !> MATERIAL id VISCOELASTIC K=.. [RHO=..]      followed by PRONY G=.. BETA=.. cards
+  !> MATERIAL id UNIAXIAL NU=.. [RHO=..]         followed by PRONY E=.. ALPHA=.. cards
   subroutine read_material(cards, card, materials, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -226,12 +292,18 @@ contains
     character(:), allocatable :: kind
     integer :: k
     call positional_word(cards, card, 1, 'material id', material%id, error); if (allocated(error)) return
-    call positional_word(cards, card, 2, 'material kind (ELASTIC)', kind, error); if (allocated(error)) return
+    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC or UNIAXIAL)', kind, error)
+    if (allocated(error)) return
+    material%line = card%line
     do k = 1, size(materials)
       if (materials(k)%id == material%id) then
         call card_error(error, cards, card, 'material '//material%id//' defined twice'); return
       end if
     end do
+    call named_real(cards, card, 'RHO', material%density, error, default=0.0_dp); if (allocated(error)) return
+    if (material%density < 0.0_dp) then
+      call field_error('RHO must be >= 0', 'RHO'); return
+    end if
     select case (kind)
     case ('ELASTIC')
       material%kind = material_kind_elastic
@@ -254,21 +326,32 @@ contains
         if (material%bulk <= 0.0_dp) then
           call field_error('K must be > 0, got '//short_real(material%bulk), 'K'); return
         end if
-        material%young = 9.0_dp*material%bulk*material%shear/(3.0_dp*material%bulk + material%shear)
-        material%poisson = (3.0_dp*material%bulk - 2.0_dp*material%shear)/ &
-                           (2.0_dp*(3.0_dp*material%bulk + material%shear))
+        call instantaneous_e_nu(material)
       end if
-      call named_real(cards, card, 'RHO', material%density, error, default=0.0_dp); if (allocated(error)) return
-      if (material%density < 0.0_dp) then
-        call field_error('RHO must be >= 0', 'RHO'); return
-      end if
+      material%long_term_shear = material%shear
       call check_fields_used(cards, card, error, 'MATERIAL id ELASTIC E=.. NU=.. [RHO=..] or G=.. K=.. [RHO=..]')
       if (allocated(error)) return
-    case ('VISCOELASTIC', 'UNIAXIAL')
-      call card_error(error, cards, card, kind//' materials are not available in this version (ELASTIC only)')
-      return
+    case ('VISCOELASTIC')
+      material%kind = material_kind_viscoelastic
+      call named_real(cards, card, 'K', material%bulk, error); if (allocated(error)) return
+      if (material%bulk <= 0.0_dp) then
+        call field_error('K must be > 0, got '//short_real(material%bulk), 'K'); return
+      end if
+      call check_fields_used(cards, card, error, 'MATERIAL id VISCOELASTIC K=.. [RHO=..], then PRONY G=.. BETA=..')
+      if (allocated(error)) return
+      allocate(material%prony_shear(0), material%prony_rate(0))
+    case ('UNIAXIAL')
+      material%kind = material_kind_uniaxial
+      call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
+      if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
+        call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
+      end if
+      call check_fields_used(cards, card, error, 'MATERIAL id UNIAXIAL NU=.. [RHO=..], then PRONY E=.. ALPHA=..')
+      if (allocated(error)) return
+      allocate(material%uniaxial_young(0), material%uniaxial_rate(0))
     case default
-      call card_error(error, cards, card, 'material kind must be ELASTIC, got "'//kind//'"'); return
+      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC or UNIAXIAL, got "'// &
+                      kind//'"', field_column(card, '2')); return
     end select
     materials = [materials, material]
   contains
@@ -282,7 +365,8 @@ contains
     end subroutine field_error
   end subroutine read_material
 
-  !> FIX target R|Z|RZ  (target: node number, AXIS, BOTTOM, TOP, INNER or OUTER)
+  !> FIX target R|Z|RZ [UR=..] [UZ=..] [CURVE=name]  (target: node number, AXIS, BOTTOM, TOP,
+  !> INNER or OUTER); UR/UZ prescribe a displacement (default 0), scaled by the curve.
   subroutine read_fix(cards, card, index, fixes, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -295,27 +379,46 @@ contains
                          fix%target, error); if (allocated(error)) return
     fix%column = field_column(card, '1')
     call positional_word(cards, card, 2, 'components (R, Z or RZ)', fix%components, error); if (allocated(error)) return
-    call check_fields_used(cards, card, error, 'FIX target R|Z|RZ'); if (allocated(error)) return
+    call named_real(cards, card, 'UR', fix%values(1), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'UZ', fix%values(2), error, default=0.0_dp); if (allocated(error)) return
+    call named_word(cards, card, 'CURVE', fix%curve, error, default=''); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'FIX target R|Z|RZ [UR=..] [UZ=..] [CURVE=name]')
+    if (allocated(error)) return
     if (fix%components /= 'R' .and. fix%components /= 'Z' .and. fix%components /= 'RZ' &
         .and. fix%components /= 'ZR') then
       call card_error(error, cards, card, 'components must be R, Z or RZ, got "'//fix%components//'"', &
                       field_column(card, '2')); return
     end if
+    if (has_field(card, 'UR') .and. scan(fix%components, 'R') == 0) then
+      call card_error(error, cards, card, 'UR= prescribes u_r, so the components must include R', &
+                      field_column(card, 'UR')); return
+    end if
+    if (has_field(card, 'UZ') .and. scan(fix%components, 'Z') == 0) then
+      call card_error(error, cards, card, 'UZ= prescribes u_z, so the components must include Z', &
+                      field_column(card, 'UZ')); return
+    end if
+    if (len(fix%curve) > 0 .and. all(fix%values == 0.0_dp)) then
+      call card_error(error, cards, card, 'CURVE= scales the prescribed UR=/UZ=, which are zero here', &
+                      field_column(card, 'CURVE')); return
+    end if
     fixes = [fixes, fix]
   end subroutine read_fix
 
-  !> PRESSURE edge-set P=..
-  subroutine read_pressure(cards, card, pressures, error)
+  !> PRESSURE edge-set P=.. [CURVE=name]
+  subroutine read_pressure(cards, card, pressures, curve, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
     type(pressure_t), allocatable, intent(inout) :: pressures(:)
+    character(:), allocatable, intent(out) :: curve
     type(error_t), allocatable, intent(inout) :: error
     type(pressure_t) :: pressure
     character(:), allocatable :: set
     call positional_word(cards, card, 1, 'edge set (INNER, OUTER, TOP or BOTTOM)', set, error)
     if (allocated(error)) return
     call named_real(cards, card, 'P', pressure%value, error); if (allocated(error)) return
-    call check_fields_used(cards, card, error, 'PRESSURE INNER|OUTER|TOP|BOTTOM P=..'); if (allocated(error)) return
+    call named_word(cards, card, 'CURVE', curve, error, default=''); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'PRESSURE INNER|OUTER|TOP|BOTTOM P=.. [CURVE=name]')
+    if (allocated(error)) return
     pressure%edge_set = edge_set_code(set)
     if (pressure%edge_set == edge_set_none .or. pressure%edge_set == edge_set_axis) then
       call card_error(error, cards, card, 'edge set must be INNER, OUTER, TOP or BOTTOM, got "'//set//'"', &
@@ -325,7 +428,7 @@ contains
     pressures = [pressures, pressure]
   end subroutine read_pressure
 
-  !> FORCE n FR=.. FZ=..   (N per radian in axisymmetry, N per metre in plane strain)
+  !> FORCE n FR=.. FZ=.. [CURVE=name]  (N per radian in axisymmetry, N per metre in plane strain)
   subroutine read_force(cards, card, index, forces, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -338,7 +441,8 @@ contains
     force%column = field_column(card, '1')
     call named_real(cards, card, 'FR', force%values(1), error, default=0.0_dp); if (allocated(error)) return
     call named_real(cards, card, 'FZ', force%values(2), error, default=0.0_dp); if (allocated(error)) return
-    call check_fields_used(cards, card, error, 'FORCE n FR=.. FZ=..'); if (allocated(error)) return
+    call named_word(cards, card, 'CURVE', force%curve, error, default=''); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'FORCE n FR=.. FZ=.. [CURVE=name]'); if (allocated(error)) return
     forces = [forces, force]
   end subroutine read_force
 
@@ -451,17 +555,25 @@ contains
       pending%target//' is not defined', pending%column)
   end function target_node
 
+  !> FIX targets to nodes. A component prescribed twice must be prescribed
+  !> alike (same value and curve); the axis condition u_r = 0 counts as one.
   subroutine resolve_fixes(deck, pending, error)
     type(deck_t), intent(inout) :: deck
     type(pending_t), intent(in) :: pending(:)
     type(error_t), allocatable, intent(inout) :: error
-    integer :: k, code
-    allocate(deck%fixes(size(pending)))
+    integer, allocatable :: owner(:, :)
+    integer :: k, i, c, code, node, other
+    logical :: fixed(2)
+    allocate(deck%fixes(size(pending)), owner(2, deck%mesh%nnode))
+    owner = 0
     do k = 1, size(pending)
       associate (fix => deck%fixes(k), card => deck%cards%cards(pending(k)%card))
       fix%line = card%line
       fix%fix_r = index(pending(k)%components, 'R') > 0
       fix%fix_z = index(pending(k)%components, 'Z') > 0
+      fix%value = pending(k)%values
+      fix%curve = curve_index(deck, pending(k)%card, pending(k)%curve, error)
+      if (allocated(error)) return
       code = edge_set_code(pending(k)%target)
       if (code /= edge_set_none) then
         call node_set(deck%mesh, code, fix%nodes)
@@ -473,6 +585,29 @@ contains
         fix%nodes = [target_node(deck, pending(k), error)]
         if (allocated(error)) return
       end if
+      fixed = [fix%fix_r, fix%fix_z]
+      do i = 1, size(fix%nodes)
+        node = fix%nodes(i)
+        if (deck%geometry == geometry_axisymmetric .and. deck%mesh%xy(1, node) == 0.0_dp .and. &
+            fix%fix_r .and. fix%value(1) /= 0.0_dp) then
+          call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))// &
+            ' is on the axis, where u_r = 0 always; it cannot have UR='//short_real(fix%value(1)))
+          return
+        end if
+        do c = 1, 2
+          if (.not. fixed(c)) cycle
+          other = owner(c, node)
+          if (other > 0) then
+            if (deck%fixes(other)%value(c) /= fix%value(c) .or. deck%fixes(other)%curve /= fix%curve) then
+              call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))//' gets a '// &
+                'different prescribed '//trim(merge('u_r', 'u_z', c == 1))//' from the FIX card on line '// &
+                itoa(deck%fixes(other)%line)//' (a node may be prescribed twice only alike)')
+              return
+            end if
+          end if
+          owner(c, node) = k
+        end do
+      end do
       end associate
     end do
   end subroutine resolve_fixes
@@ -488,8 +623,265 @@ contains
       if (allocated(error)) return
       deck%forces(k)%value = pending(k)%values
       deck%forces(k)%line = deck%cards%cards(pending(k)%card)%line
+      deck%forces(k)%curve = curve_index(deck, pending(k)%card, pending(k)%curve, error)
+      if (allocated(error)) return
     end do
   end subroutine resolve_forces
+
+  !> Index of the curve named on card `card` (0 for ''); error if undefined or
+  !> if the analysis has no time axis.
+  integer function curve_index(deck, card, name, error) result(found)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: card
+    character(*), intent(in) :: name
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    found = 0
+    if (len(name) == 0) return
+    associate (the_card => deck%cards%cards(card))
+    if (deck%analysis == analysis_static) then
+      call card_error(error, deck%cards, the_card, 'CURVE= needs a time axis: use ANALYSIS QUASISTATIC '// &
+                      'with TIME cards (STATIC applies every load once, in full)', field_column(the_card, 'CURVE'))
+      return
+    end if
+    do k = 1, size(deck%curves)
+      if (deck%curves(k)%name == name) found = k
+    end do
+    if (found == 0) call card_error(error, deck%cards, the_card, 'curve '//name// &
+      ' is not defined by a CURVE card', field_column(the_card, 'CURVE'))
+    end associate
+  end function curve_index
+
+  !> PRONY G=.. BETA=.. (VISCOELASTIC) or PRONY E=.. ALPHA=.. (UNIAXIAL): one term of eq. [12] or [47].
+  subroutine read_prony(cards, card, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: modulus, rate
+    select case (material%kind)
+    case (material_kind_viscoelastic)
+      call named_real(cards, card, 'G', modulus, error); if (allocated(error)) return
+      call named_real(cards, card, 'BETA', rate, error); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'PRONY G=.. BETA=.. after MATERIAL id VISCOELASTIC')
+      if (allocated(error)) return
+      if (modulus <= 0.0_dp) then
+        call card_error(error, cards, card, 'G must be > 0, got '//short_real(modulus), field_column(card, 'G'))
+        return
+      end if
+      if (rate < 0.0_dp) then
+        call card_error(error, cards, card, 'BETA must be >= 0 (1/s), got '//short_real(rate), &
+                        field_column(card, 'BETA')); return
+      end if
+      material%prony_shear = [material%prony_shear, modulus]
+      material%prony_rate = [material%prony_rate, rate]
+    case (material_kind_uniaxial)
+      call named_real(cards, card, 'E', modulus, error); if (allocated(error)) return
+      call named_real(cards, card, 'ALPHA', rate, error); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'PRONY E=.. ALPHA=.. after MATERIAL id UNIAXIAL')
+      if (allocated(error)) return
+      if (modulus <= 0.0_dp) then
+        call card_error(error, cards, card, 'E must be > 0, got '//short_real(modulus), field_column(card, 'E'))
+        return
+      end if
+      if (rate < 0.0_dp) then
+        call card_error(error, cards, card, 'ALPHA must be >= 0 (1/s), got '//short_real(rate), &
+                        field_column(card, 'ALPHA')); return
+      end if
+      material%uniaxial_young = [material%uniaxial_young, modulus]
+      material%uniaxial_rate = [material%uniaxial_rate, rate]
+    case default
+      call card_error(error, cards, card, 'PRONY terms belong to a VISCOELASTIC or UNIAXIAL material; material '// &
+                      material%id//' is ELASTIC')
+    end select
+  end subroutine read_prony
+
+  !> Complete a material once its PRONY cards are read: convert a uniaxial
+  !> series (eq. [48], exactly), fold beta = 0 terms into G_inf, sort the
+  !> memory terms by rate, and set the instantaneous G, E and nu.
+  subroutine finish_material(cards, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp), allocatable :: shear(:), rate(:)
+    character(:), allocatable :: message
+    integer, allocatable :: order(:)
+    integer :: i, j
+    if (material%kind == material_kind_elastic) return
+    if (material%kind == material_kind_uniaxial) then
+      if (size(material%uniaxial_young) == 0) then
+        call material_error('material '//material%id//' needs at least one PRONY E=.. ALPHA=.. card'); return
+      end if
+      call uniaxial_to_shear(material%uniaxial_young, material%uniaxial_rate, material%poisson, &
+                             material%bulk, shear, rate, message)
+      if (len(message) > 0) then
+        call material_error('material '//material%id//': the uniaxial series does not convert to shear: '// &
+                            message); return
+      end if
+    else
+      if (size(material%prony_shear) == 0) then
+        call material_error('material '//material%id//' needs at least one PRONY G=.. BETA=.. card'); return
+      end if
+      shear = material%prony_shear
+      rate = material%prony_rate
+    end if
+    material%long_term_shear = sum(shear, mask=rate == 0.0_dp)
+    shear = pack(shear, rate > 0.0_dp)
+    rate = pack(rate, rate > 0.0_dp)
+    order = [(i, i = 1, size(rate))]
+    do i = 2, size(order)                       ! insertion sort by rate (few terms)
+      j = i
+      do while (j > 1)
+        if (rate(order(j - 1)) <= rate(order(j))) exit
+        order([j - 1, j]) = order([j, j - 1])
+        j = j - 1
+      end do
+    end do
+    material%prony_shear = shear(order)
+    material%prony_rate = rate(order)
+    material%shear = material%long_term_shear + sum(material%prony_shear)
+    call instantaneous_e_nu(material)
+  contains
+    subroutine material_error(message)
+      character(*), intent(in) :: message
+      integer :: k
+      do k = 1, cards%count
+        if (cards%cards(k)%line == material%line) then
+          call card_error(error, cards, cards%cards(k), message)
+          return
+        end if
+      end do
+    end subroutine material_error
+  end subroutine finish_material
+
+  !> E and nu of the instantaneous moduli G(0), K.
+  pure subroutine instantaneous_e_nu(material)
+    type(material_t), intent(inout) :: material
+    material%young = 9.0_dp*material%bulk*material%shear/(3.0_dp*material%bulk + material%shear)
+    material%poisson = (3.0_dp*material%bulk - 2.0_dp*material%shear)/ &
+                       (2.0_dp*(3.0_dp*material%bulk + material%shear))
+  end subroutine instantaneous_e_nu
+
+  !> CURVE name STEP   or   CURVE name t1 v1 t2 v2 ...  (t in s, strictly increasing; v a factor)
+  subroutine read_curve(cards, card, curves, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(curve_t), allocatable, intent(inout) :: curves(:)
+    type(error_t), allocatable, intent(inout) :: error
+    type(curve_t) :: curve
+    character(:), allocatable :: word
+    integer :: k, npoint
+    call positional_word(cards, card, 1, 'curve name', curve%name, error); if (allocated(error)) return
+    if (verify(curve%name, 'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0 .or. len(curve%name) > 32) then
+      call card_error(error, cards, card, 'curve name must be letters, digits or _ (32 at most), got "'// &
+                      curve%name//'"', field_column(card, '1')); return
+    end if
+    do k = 1, size(curves)
+      if (curves(k)%name == curve%name) then
+        call card_error(error, cards, card, 'curve '//curve%name//' defined twice (first on line '// &
+                        itoa(curves(k)%line)//')'); return
+      end if
+    end do
+    curve%line = card%line
+    call positional_word(cards, card, 2, 'STEP or pairs of time (s) and value', word, error)
+    if (allocated(error)) return
+    if (word == 'STEP') then
+      curve%time = [0.0_dp]
+      curve%value = [1.0_dp]
+    else
+      npoint = positional_count(card) - 1
+      if (mod(npoint, 2) /= 0) then
+        call card_error(error, cards, card, 'CURVE points come in pairs (time value); got '//itoa(npoint)// &
+                        ' numbers'); return
+      end if
+      npoint = npoint/2
+      allocate(curve%time(npoint), curve%value(npoint))
+      do k = 1, npoint
+        call positional_real(cards, card, 2*k, 'time of point '//itoa(k), curve%time(k), error)
+        if (allocated(error)) return
+        call positional_real(cards, card, 2*k + 1, 'value of point '//itoa(k), curve%value(k), error)
+        if (allocated(error)) return
+        if (curve%time(k) < 0.0_dp) then
+          call card_error(error, cards, card, 'curve times must be >= 0 s, got '//short_real(curve%time(k)), &
+                          field_column(card, itoa(2*k))); return
+        end if
+        if (k > 1) then
+          if (curve%time(k) <= curve%time(k - 1)) then
+            call card_error(error, cards, card, 'curve times must increase strictly (point '//itoa(k)// &
+              ' at t = '//short_real(curve%time(k))//' s)', field_column(card, itoa(2*k))); return
+          end if
+        end if
+      end do
+    end if
+    call check_fields_used(cards, card, error, 'CURVE name STEP | CURVE name t1 v1 t2 v2 ...')
+    if (allocated(error)) return
+    curves = [curves, curve]
+  end subroutine read_curve
+
+  !> TIME DT=.. TEND=..: one stage of constant steps; several TIME cards follow each other in time.
+  subroutine read_time(cards, card, stages, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(time_stage_t), allocatable, intent(inout) :: stages(:)
+    type(error_t), allocatable, intent(inout) :: error
+    type(time_stage_t) :: stage
+    real(dp) :: start, requested
+    call named_real(cards, card, 'DT', requested, error); if (allocated(error)) return
+    call named_real(cards, card, 'TEND', stage%end_time, error); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'TIME DT=.. TEND=..'); if (allocated(error)) return
+    if (requested <= 0.0_dp) then
+      call card_error(error, cards, card, 'DT must be > 0 s, got '//short_real(requested), field_column(card, 'DT'))
+      return
+    end if
+    start = 0.0_dp
+    if (size(stages) > 0) start = stages(size(stages))%end_time
+    if (stage%end_time <= start) then
+      call card_error(error, cards, card, 'TEND must be after the start of this stage ('//short_real(start)// &
+                      ' s), got '//short_real(stage%end_time), field_column(card, 'TEND')); return
+    end if
+    ! Whole steps: DT is shortened (never lengthened) to end exactly at TEND.
+    if ((stage%end_time - start)/requested > real(max_steps, dp)) then
+      call card_error(error, cards, card, 'DT = '//short_real(requested)//' s would take more than '// &
+                      itoa(max_steps)//' steps to reach TEND', field_column(card, 'DT')); return
+    end if
+    stage%steps = max(1, ceiling((stage%end_time - start)/requested*(1.0_dp - 1.0e-12_dp)))
+    stage%dt = (stage%end_time - start)/stage%steps
+    stage%line = card%line
+    stages = [stages, stage]
+    if (sum(stages%steps) > max_steps) then
+      call card_error(error, cards, card, 'the TIME stages add up to more than '//itoa(max_steps)//' steps')
+    end if
+  end subroutine read_time
+
+  !> TIME belongs to QUASISTATIC (required there), not to STATIC.
+  subroutine check_time_stages(deck, analysis_line, error)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: analysis_line
+    type(error_t), allocatable, intent(inout) :: error
+    if (deck%analysis == analysis_quasistatic .and. size(deck%stages) == 0) then
+      call set_error(error, 'QUASISTATIC analysis needs a TIME DT=.. TEND=.. card', file=deck%cards%file, &
+                     line=analysis_line, card='ANALYSIS')
+    else if (deck%analysis == analysis_static .and. size(deck%stages) > 0) then
+      call set_error(error, 'TIME cards need ANALYSIS QUASISTATIC (STATIC has no time axis)', &
+                     file=deck%cards%file, line=deck%stages(1)%line, card='TIME')
+    end if
+  end subroutine check_time_stages
+
+  !> A material with memory needs time: STATIC cannot say which modulus to use.
+  subroutine check_memory_needs_time(deck, analysis_line, error)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: analysis_line
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (deck%analysis /= analysis_static) return
+    do k = 1, size(deck%materials)
+      if (.not. has_memory(deck%materials(k))) cycle
+      if (.not. any(deck%mesh%element_material == k)) cycle
+      call set_error(error, 'material '//deck%materials(k)%id//' relaxes in time (PRONY terms with BETA > 0): '// &
+        'use ANALYSIS QUASISTATIC with TIME cards', file=deck%cards%file, line=analysis_line, card='ANALYSIS')
+      return
+    end do
+  end subroutine check_memory_needs_time
 
   subroutine resolve_probes(deck, pending, error)
     type(deck_t), intent(inout) :: deck

@@ -5,9 +5,10 @@ module visco2d_driver
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
   use visco2d_strings, only: itoa, rtoa, to_upper, to_lower
-  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_name, geometry_name
+  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_name, &
+                          geometry_name, total_steps
   use visco2d_scene, only: effects_t, scene_effects, effects_text
-  use visco2d_static, only: static_solution_t, solve_static, static_record
+  use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
@@ -40,6 +41,8 @@ contains
     print '(a)', path//': ok'
     print '(a)', '  title           '//deck%title
     print '(a)', '  analysis        '//analysis_name(deck%analysis)
+    if (deck%analysis == analysis_quasistatic) print '(a)', '  time steps      '//itoa(total_steps(deck))// &
+      ' in '//itoa(size(deck%stages))//' stage(s) to t = '//rtoa(deck%stages(size(deck%stages))%end_time)//' s'
     print '(a)', '  geometry        '//geometry_name(deck%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
     print '(a)', '  materials       '//itoa(size(deck%materials))
@@ -85,6 +88,12 @@ contains
       if (allocated(error)) return
       call static_record(deck, static_solution, record)
       call record_put_integer(record, 'factorizations', 1)
+    case (analysis_quasistatic)
+      call record_put_integer(record, 'steps', total_steps(deck))
+      call record_put_integer(record, 'time_stages', size(deck%stages))
+      call record_put_real(record, 'dt_s', deck%stages(1)%dt)
+      call solve_quasistatic(deck, record, error)
+      if (allocated(error)) return
     case default
       call set_error(error, 'no analysis to run', file=path)
       return

@@ -1,15 +1,23 @@
 !> Materials: isotropic elasticity split into deviatoric and volumetric
-!> parts (eqs. [1]-[4], [8]-[9]). The viscoelastic-in-shear law of
-!> eqs. [10]-[24] extends this type with Prony terms (later module).
+!> parts (eqs. [1]-[4], [8]-[9]), and the constants of the viscoelastic-in-
+!> shear / elastic-in-bulk law (eqs. [10]-[12]): a shear relaxation modulus
+!> phi1(t) = G_inf + sum_m G_m exp(-beta_m t). Terms with beta = 0 have no
+!> memory and are folded into G_inf, so an elastic material is the
+!> no-memory limit (G_inf = G, no Prony terms). The incremental update is in
+!> visco2d_viscoelastic.
 module visco2d_material
   use visco2d_kinds, only: dp
   implicit none
   private
 
-  public :: material_t, material_kind_elastic, elastic_matrix, stress_from_strain
+  public :: material_t, material_kind_elastic, material_kind_viscoelastic, material_kind_uniaxial
+  public :: material_kind_name, has_memory, shear_relaxation_modulus
+  public :: elastic_matrix, stress_from_strain
   public :: von_mises, max_shear, elastic_constants_from_e_nu
 
-  integer, parameter :: material_kind_elastic = 1
+  integer, parameter :: material_kind_elastic = 1       !< MATERIAL id ELASTIC
+  integer, parameter :: material_kind_viscoelastic = 2  !< MATERIAL id VISCOELASTIC + PRONY G= BETA=
+  integer, parameter :: material_kind_uniaxial = 3      !< MATERIAL id UNIAXIAL + PRONY E= ALPHA= (eq. [47])
 
   !> One material of the deck.
   type :: material_t
@@ -20,9 +28,43 @@ module visco2d_material
     real(dp) :: shear = 0.0_dp           !< G = mu, Pa   (eq. [8])
     real(dp) :: bulk = 0.0_dp            !< K = k, Pa    (eq. [9])
     real(dp) :: density = 0.0_dp         !< rho, kg/m^3
+    !> Viscoelastic shear (eq. [12]): G(t) = long_term_shear + sum prony_shear exp(-prony_rate t).
+    !> `shear` above is the instantaneous modulus G(0); `young`, `poisson` are instantaneous too.
+    real(dp) :: long_term_shear = 0.0_dp     !< G_inf, Pa (= shear for an elastic material)
+    real(dp), allocatable :: prony_shear(:)  !< G_m, Pa, terms with memory (beta_m > 0) only
+    real(dp), allocatable :: prony_rate(:)   !< beta_m, 1/s, increasing
+    !> The uniaxial series of a UNIAXIAL material as given (eq. [47]), kept for the listing.
+    real(dp), allocatable :: uniaxial_young(:)  !< E_i, Pa
+    real(dp), allocatable :: uniaxial_rate(:)   !< alpha_i, 1/s
+    integer :: line = 0                      !< line of the MATERIAL card
   end type material_t
 
 contains
+
+  pure function material_kind_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(:), allocatable :: name
+    select case (kind)
+    case (material_kind_viscoelastic); name = 'VISCOELASTIC'
+    case (material_kind_uniaxial); name = 'UNIAXIAL'
+    case default; name = 'ELASTIC'
+    end select
+  end function material_kind_name
+
+  !> True if the material has Prony terms with memory (beta > 0): it needs history.
+  pure logical function has_memory(material)
+    type(material_t), intent(in) :: material
+    has_memory = .false.
+    if (allocated(material%prony_rate)) has_memory = size(material%prony_rate) > 0
+  end function has_memory
+
+  !> Shear relaxation modulus phi1(t), eq. [12], Pa.
+  pure real(dp) function shear_relaxation_modulus(material, t) result(modulus)
+    type(material_t), intent(in) :: material
+    real(dp), intent(in) :: t
+    modulus = material%long_term_shear
+    if (has_memory(material)) modulus = modulus + sum(material%prony_shear*exp(-material%prony_rate*t))
+  end function shear_relaxation_modulus
 
   !> G and K from E and nu.
   pure subroutine elastic_constants_from_e_nu(young, poisson, shear, bulk)

@@ -1,22 +1,39 @@
-!> The legacy base: static linear analysis S U = R (eq. [25] without inertia).
-!> Assemble, impose supports, factor once (dpbtrf), back-substitute (dpbtrs),
-!> recover strains and stresses at the Gauss points and at the nodes.
+!> The legacy base: static linear analysis S U = R (eq. [25] without inertia),
+!> and the legacy program's quasi-static time loop for viscoelastic bodies.
+!>
+!> STATIC: assemble, impose supports, factor once (dpbtrf), back-substitute
+!> (dpbtrs), recover strains and stresses at the Gauss points and the nodes.
+!>
+!> QUASISTATIC: step 0 is the instantaneous response at t = 0 (dt = 0, so
+!> mu = G(0)); each later step n solves S_n dU = R(t_n) - F(sigma_{n-1} + s0_n)
+!> with S_n assembled from mu_n (eq. [21]) and the history stress s0_n
+!> (eq. [23]) as a pseudo-load, then updates stress and history
+!> (eqs. [13], [14], [24], module visco2d_viscoelastic). Writing the right-hand
+!> side as the full out-of-balance force (not Delta R alone) keeps round-off
+!> from accumulating into drift. S_n depends on dt only, so its factor is
+!> reused while dt is constant (elastic bodies: one factorization in all).
 module visco2d_static
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa
-  use visco2d_deck, only: deck_t
+  use visco2d_deck, only: deck_t, total_steps
   use visco2d_mesh, only: mesh_t
-  use visco2d_material, only: stress_from_strain, von_mises, max_shear
-  use visco2d_element, only: element_strains
-  use visco2d_banded, only: band_matrix_t, band_constrain, band_factor, band_solve, band_multiply
-  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average
-  use visco2d_record, only: record_t, snapshot_t, record_put_real, history_define, history_append, &
-                            record_add_snapshot
+  use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
+  use visco2d_element, only: element_strains, gauss_to_node_extrapolation
+  use visco2d_banded, only: band_matrix_t, band_constrain, band_factor, band_solve, band_multiply, &
+                            band_constrain_matrix, band_constrain_rhs
+  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
+                              prescribed_displacement, internal_force, scatter_add
+  use visco2d_element, only: element_internal_force
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
+                                  viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
+                                  update_history
+  use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, history_define, &
+                            history_append, record_add_snapshot
   implicit none
   private
 
-  public :: static_solution_t, solve_static, static_record, singular_message
+  public :: static_solution_t, solve_static, static_record, singular_message, solve_quasistatic
 
   !> Fields of a static solution.
   type :: static_solution_t
@@ -45,10 +62,9 @@ contains
     shear = deck%materials(mesh%element_material)%shear
     bulk = deck%materials(mesh%element_material)%bulk
     call assemble_stiffness(deck, shear, bulk, stiffness)
-    load = external_load(deck, 1.0_dp)
+    load = external_load(deck, 0.0_dp)
     fixed = support_mask(deck)
-    allocate(zero(size(load)))
-    zero = 0.0_dp
+    zero = prescribed_displacement(deck, 0.0_dp)
     u = load
     constrained = stiffness
     call band_constrain(constrained, fixed, zero, u)
@@ -160,4 +176,246 @@ contains
     call record_add_snapshot(record, snapshot)
     end associate
   end subroutine static_record
+  !> The quasi-static incremental analysis of a deck (ANALYSIS QUASISTATIC):
+  !> fills the record with the summary, one history row per step (step 0 at
+  !> t = 0 included) and snapshots at t = 0 and at the end.
+  subroutine solve_quasistatic(deck, record, error)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: error
+    type(band_matrix_t) :: stiffness, factor
+    type(step_coefficients_t), allocatable :: coefficients(:)
+    type(viscoelastic_state_t) :: state
+    real(dp), allocatable :: u(:), du(:), rhs(:), load(:), internal(:), stress(:, :, :), trial(:, :, :)
+    real(dp), allocatable :: shear(:), bulk(:)
+    logical, allocatable :: fixed(:)
+    logical :: memory
+    integer :: step, stage, k, e, g, nterm, factorizations, first_step
+    real(dp) :: t, dt, stage_start, equilibrium_error
+    real(dp) :: increment(4, 4), deviatoric(4), volumetric
+
+    associate (mesh => deck%mesh, materials => deck%materials)
+    memory = .false.
+    do k = 1, size(materials)
+      if (has_memory(materials(k)) .and. any(mesh%element_material == k)) memory = .true.
+    end do
+    if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
+    allocate(coefficients(size(materials)))
+    fixed = support_mask(deck)
+    allocate(u(2*mesh%nnode), du(2*mesh%nnode), internal(2*mesh%nnode))
+    u = 0.0_dp
+    internal = 0.0_dp
+    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem))
+    stress = 0.0_dp
+    factorizations = 0
+    equilibrium_error = 0.0_dp
+    call define_history()
+
+    ! Step 0 (t = 0, dt = 0), then each TIME stage.
+    stage_start = 0.0_dp
+    do stage = 0, size(deck%stages)
+      if (stage == 0) then
+        first_step = 0
+        dt = 0.0_dp
+      else
+        first_step = 1
+        dt = deck%stages(stage)%dt
+      end if
+      do step = first_step, merge(0, deck%stages(max(stage, 1))%steps, stage == 0)
+        t = stage_start + step*dt
+        if (stage > 0 .and. step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
+        if (coefficients(1)%dt /= dt .and. (memory .or. factorizations == 0)) then
+          call factor_for(dt)
+          if (allocated(error)) return
+        end if
+        call advance(t)
+      end do
+      if (stage > 0) stage_start = deck%stages(stage)%end_time
+      if (stage == 0) call keep_snapshot('step_000000', 'initial', 0.0_dp)
+    end do
+    call keep_snapshot('step_'//zero_padded(total_steps(deck)), 'final', t)
+    call record_put_integer(record, 'factorizations', factorizations)
+    call record_put_real(record, 'time_end_s', t)
+    call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
+    call put_field_summary(deck, u, stress, record)
+    end associate
+
+  contains
+
+    !> S_n with the moduli (mu_n, K) of step length dt, constrained and factored.
+    subroutine factor_for(dt)
+      real(dp), intent(in) :: dt
+      integer :: info, m
+      do m = 1, size(deck%materials)
+        coefficients(m) = step_coefficients(deck%materials(m), dt)
+      end do
+      shear = coefficients(deck%mesh%element_material)%shear
+      bulk = coefficients(deck%mesh%element_material)%bulk
+      call assemble_stiffness(deck, shear, bulk, stiffness)
+      factor = stiffness
+      call band_constrain_matrix(factor, fixed)
+      call band_factor(factor, info)
+      factorizations = factorizations + 1
+      if (info > 0) call set_error(error, singular_message(deck, info), file=deck%cards%file)
+    end subroutine factor_for
+
+    !> One increment to time t: pseudo-load, solve, stress and history update.
+    subroutine advance(t)
+      real(dp), intent(in) :: t
+      integer :: slot
+      real(dp) :: s0(4)
+      trial = stress
+      rhs = -internal                                   ! F(sigma_{n-1})
+      if (memory) then
+        do e = 1, deck%mesh%nelem
+          nterm = element_terms(state, e)
+          if (nterm == 0) cycle
+          associate (material => deck%materials(deck%mesh%element_material(e)), &
+                     c => coefficients(deck%mesh%element_material(e)))
+          do g = 1, 4
+            slot = state%first(e) + (g - 1)*nterm
+            s0 = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
+            trial(:, g, e) = trial(:, g, e) + s0
+          end do
+          call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
+            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e)), rhs)
+          end associate
+        end do
+      end if
+      load = external_load(deck, t)
+      rhs = rhs + load
+      du = prescribed_displacement(deck, t) - u          ! increments of the prescribed values
+      call band_constrain_rhs(stiffness, fixed, du, rhs)
+      call band_solve(factor, rhs)
+      du = rhs
+      u = u + du
+      do e = 1, deck%mesh%nelem
+        increment = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                    gather(deck%mesh, e, du))
+        nterm = 0
+        if (memory) nterm = element_terms(state, e)
+        do g = 1, 4
+          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increment(:, g))  ! [13], [14]
+          if (nterm > 0) then
+            call deviatoric_part(increment(:, g), deviatoric, volumetric)
+            slot = state%first(e) + (g - 1)*nterm
+            call update_history(coefficients(deck%mesh%element_material(e)), deviatoric, &
+                                state%history(:, slot:slot + nterm - 1))                        ! eq. [24]
+          end if
+        end do
+      end do
+      internal = internal_force(deck, stress)
+      equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
+                              max(maxval(abs(internal)), tiny(1.0_dp)))
+      call append_row(t, internal - load)
+    end subroutine advance
+
+    subroutine define_history()
+      character(len=48), allocatable :: columns(:)
+      integer :: p
+      columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'reaction_r_N', 'reaction_z_N']
+      do p = 1, size(deck%probes)
+        columns = [character(len=48) :: columns, deck%probes(p)%name//'_ur_m', deck%probes(p)%name//'_uz_m', &
+                   deck%probes(p)%name//'_sr_Pa', deck%probes(p)%name//'_sz_Pa', &
+                   deck%probes(p)%name//'_st_Pa', deck%probes(p)%name//'_trz_Pa']
+      end do
+      call history_define(record, columns, total_steps(deck) + 1)
+    end subroutine define_history
+
+    subroutine append_row(t, residual)
+      real(dp), intent(in) :: t, residual(:)
+      real(dp), allocatable :: row(:)
+      integer :: p, node
+      row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
+             sum(residual(1::2), mask=fixed(1::2)), sum(residual(2::2), mask=fixed(2::2))]
+      do p = 1, size(deck%probes)
+        node = deck%probes(p)%node
+        row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]
+      end do
+      call history_append(record, row)
+    end subroutine append_row
+
+    subroutine keep_snapshot(name, label, time)
+      character(*), intent(in) :: name, label
+      real(dp), intent(in) :: time
+      type(snapshot_t) :: snapshot
+      integer :: node
+      snapshot%name = name
+      snapshot%label = label
+      snapshot%time = time
+      allocate(snapshot%displacement(2, deck%mesh%nnode))
+      do node = 1, deck%mesh%nnode
+        snapshot%displacement(:, node) = u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2))
+      end do
+      snapshot%stress_gauss = stress
+      snapshot%stress = nodal_average(deck%mesh, stress)
+      snapshot%max_shear = max_shear(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
+                                     snapshot%stress(4, :))
+      snapshot%von_mises = von_mises(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
+                                     snapshot%stress(4, :))
+      call record_add_snapshot(record, snapshot)
+    end subroutine keep_snapshot
+  end subroutine solve_quasistatic
+
+  !> Nodal stress at one node: Gauss values extrapolated in each element that
+  !> has the node, then averaged (the same recovery as nodal_average).
+  function node_stress(mesh, stress, node) result(value)
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: stress(:, :, :)
+    integer, intent(in) :: node
+    real(dp) :: value(4)
+    real(dp) :: extrapolation(4, 4)
+    integer :: e, a, count
+    extrapolation = gauss_to_node_extrapolation()
+    value = 0.0_dp
+    count = 0
+    do e = 1, mesh%nelem
+      do a = 1, 4
+        if (mesh%connectivity(a, e) /= node) cycle
+        value = value + matmul(stress(:, :, e), extrapolation(:, a))
+        count = count + 1
+      end do
+    end do
+    value = value/max(count, 1)
+  end function node_stress
+
+  !> Summary of the final fields: extreme displacement and stresses.
+  subroutine put_field_summary(deck, u, stress, record)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: u(:), stress(:, :, :)
+    type(record_t), intent(inout) :: record
+    integer :: p, node, c
+    real(dp) :: nodal(4)
+    character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
+    associate (s => stress)
+    call record_put_real(record, 'max_displacement_m', maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)))
+    call record_put_real(record, 'sigma_r_min_Pa', minval(s(1, :, :)))
+    call record_put_real(record, 'sigma_r_max_Pa', maxval(s(1, :, :)))
+    call record_put_real(record, 'sigma_z_min_Pa', minval(s(2, :, :)))
+    call record_put_real(record, 'sigma_z_max_Pa', maxval(s(2, :, :)))
+    call record_put_real(record, 'sigma_theta_min_Pa', minval(s(3, :, :)))
+    call record_put_real(record, 'sigma_theta_max_Pa', maxval(s(3, :, :)))
+    call record_put_real(record, 'tau_rz_max_abs_Pa', maxval(abs(s(4, :, :))))
+    call record_put_real(record, 'von_mises_max_Pa', maxval(von_mises(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
+    call record_put_real(record, 'max_shear_max_Pa', maxval(max_shear(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
+    end associate
+    do p = 1, size(deck%probes)
+      node = deck%probes(p)%node
+      call record_put_real(record, 'probe_'//deck%probes(p)%name//'_r_m', deck%mesh%xy(1, node))
+      call record_put_real(record, 'probe_'//deck%probes(p)%name//'_z_m', deck%mesh%xy(2, node))
+      nodal = node_stress(deck%mesh, stress, node)
+      associate (values => [u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), nodal])
+      do c = 1, 6
+        call record_put_real(record, 'probe_'//deck%probes(p)%name//'_'//trim(probe_columns(c)), values(c))
+      end do
+      end associate
+    end do
+  end subroutine put_field_summary
+
+  !> n as a six-digit, zero-padded text (snapshot names sort in time order).
+  pure function zero_padded(n) result(text)
+    integer, intent(in) :: n
+    character(len=6) :: text
+    write(text, '(i6.6)') n
+  end function zero_padded
 end module visco2d_static

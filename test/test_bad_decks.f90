@@ -188,6 +188,114 @@ program test_bad_decks
   call loose_deck()
 
   call execute_command_line('rm -rf '//out_root)
+  ! ------------------------------------------ viscoelastic materials, CURVE and TIME cards
+  lines = creep()
+  lines(4:5) = [character(len=100) :: 'PRONY G=1e6 BETA=10', 'MATERIAL flesh VISCOELASTIC K=2e6']
+  call expect_read_error('prony_before_material', lines, 4, 1, 'PRONY', 'PRONY must follow its MATERIAL card')
+
+  lines = creep()
+  lines(4) = 'MATERIAL flesh ELASTIC E=1e6 NU=0.3'
+  call expect_read_error('prony_after_elastic', lines, 5, 1, 'PRONY', 'material FLESH is ELASTIC')
+
+  lines = creep()
+  lines(5) = 'PRONY G=1e6 BETA=-1'
+  call expect_read_error('prony_negative_beta', lines, 5, 13, 'PRONY', 'BETA must be >= 0')
+
+  lines = creep()
+  lines(5) = 'PRONY G=0 BETA=1'
+  call expect_read_error('prony_zero_shear', lines, 5, 7, 'PRONY', 'G must be > 0')
+
+  lines = creep()
+  lines(5) = 'PRONY E=1e6 ALPHA=1'
+  call expect_read_error('prony_uniaxial_field_on_viscoelastic', lines, 5, 0, 'PRONY', 'missing field G')
+
+  lines = creep()
+  call expect_read_error('viscoelastic_without_prony', [lines(1:4), lines(6:11)], 4, 1, 'MATERIAL', &
+                         'needs at least one PRONY G=.. BETA=.. card')
+
+  lines = creep()
+  lines(4:5) = [character(len=100) :: 'MATERIAL flesh UNIAXIAL NU=0.5', 'PRONY E=1e6 ALPHA=1']
+  call expect_read_error('uniaxial_nu', lines, 4, 25, 'MATERIAL', 'NU must be in (-1, 0.5), got 0.5')
+
+  lines = creep()
+  lines(4) = 'MATERIAL flesh UNIAXIAL NU=0.25'
+  call expect_read_error('uniaxial_with_shear_term', lines, 5, 0, 'PRONY', 'missing field E')
+
+  lines = creep()
+  call expect_read_error('quasistatic_without_time', [lines(1:9), lines(11:11)], 2, 0, 'ANALYSIS', &
+                         'QUASISTATIC analysis needs a TIME')
+
+  lines = creep()
+  lines(2) = 'ANALYSIS STATIC'
+  call expect_read_error('time_in_static', lines, 10, 0, 'TIME', 'TIME cards need ANALYSIS QUASISTATIC')
+
+  lines = creep()
+  lines(2) = 'ANALYSIS STATIC'
+  lines(8) = 'PRESSURE TOP P=1e4'
+  call expect_read_error('memory_in_static', [lines(1:9), lines(11:11)], 2, 0, 'ANALYSIS', &
+                         'relaxes in time (PRONY terms with BETA > 0): use ANALYSIS QUASISTATIC')
+
+  lines = creep()
+  lines(2) = 'ANALYSIS STATIC'
+  lines(4:5) = [character(len=100) :: 'MATERIAL flesh ELASTIC E=1e6 NU=0.3', '# no terms']
+  call expect_read_error('curve_in_static', [lines(1:9), lines(11:11)], 8, 20, 'PRESSURE', &
+                         'CURVE= needs a time axis')
+
+  lines = creep()
+  lines(8) = 'PRESSURE TOP P=1e4 CURVE=lode'
+  call expect_read_error('curve_undefined', lines, 8, 20, 'PRESSURE', 'curve LODE is not defined by a CURVE card')
+
+  lines = creep()
+  lines(9) = 'CURVE load 0 0 1'
+  call expect_read_error('curve_odd_count', lines, 9, 0, 'CURVE', 'CURVE points come in pairs')
+
+  lines = creep()
+  lines(9) = 'CURVE load 0 0 1 1 0.5 2'
+  call expect_read_error('curve_not_increasing', lines, 9, 20, 'CURVE', 'curve times must increase strictly')
+
+  lines = creep()
+  lines(9) = 'CURVE load 0 0 1 x'
+  call expect_read_error('curve_not_a_number', lines, 9, 18, 'CURVE', 'value of point 2 must be a number')
+
+  lines = creep()
+  call expect_read_error('curve_twice', [lines(1:9), lines(9:11)], 10, 0, 'CURVE', &
+                         'curve LOAD defined twice (first on line 9)')
+
+  lines = creep()
+  lines(10) = 'TIME DT=-1 TEND=1'
+  call expect_read_error('time_negative_dt', lines, 10, 6, 'TIME', 'DT must be > 0 s')
+
+  lines = creep()
+  call expect_read_error('time_stage_backwards', [lines(1:10), lines(10:11)], 11, 0, 'TIME', &
+                         'TEND must be after the start of this stage')
+
+  lines = creep()
+  lines(10) = 'TIME DT=1e-12 TEND=1'
+  call expect_read_error('time_too_many_steps', lines, 10, 6, 'TIME', 'would take more than 10000000 steps')
+
+  lines = creep()
+  lines(7) = 'FIX BOTTOM Z UR=1e-3'
+  call expect_read_error('fix_ur_without_r', lines, 7, 14, 'FIX', 'the components must include R')
+
+  lines = creep()
+  lines(7) = 'FIX BOTTOM Z CURVE=load'
+  call expect_read_error('fix_curve_without_value', lines, 7, 14, 'FIX', 'which are zero here')
+
+  lines = creep()
+  lines(8) = 'FIX TOP Z UZ=-1e-4'
+  lines(9) = 'FIX OUTER Z'
+  lines(10) = 'TIME DT=0.1 TEND=1'
+  call expect_read_error('fix_conflict', lines, 9, 1, 'FIX', &
+                         'different prescribed u_z from the FIX card on line 8')
+
+  lines = creep()
+  lines(8) = 'FIX TOP RZ UR=1e-4'
+  call expect_read_error('fix_ur_on_axis', lines, 8, 1, 'FIX', 'is on the axis, where u_r = 0 always')
+
+  lines = creep()
+  lines(2) = 'ANALYSIS DYNAMIC'
+  call expect_read_error('analysis_dynamic', lines, 2, 1, 'ANALYSIS', 'not available in this version')
+
   call test_summary('test_bad_decks')
 
 contains
@@ -209,6 +317,23 @@ contains
       'FIX 2 Z', &                                   ! 11
       'END']                                         ! 12
   end function square
+
+  !> A valid quasi-static viscoelastic deck: a creeping block under a ramped pressure.
+  function creep() result(deck_lines)
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = [character(len=100) :: &
+      'TITLE creep block', &                              ! 1
+      'ANALYSIS QUASISTATIC', &                           ! 2
+      'GEOMETRY AXISYMMETRIC', &                          ! 3
+      'MATERIAL flesh VISCOELASTIC K=2e6', &              ! 4
+      'PRONY G=1e6 BETA=10', &                            ! 5
+      'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', &  ! 6
+      'FIX BOTTOM Z', &                                   ! 7
+      'PRESSURE TOP P=1e4 CURVE=load', &                  ! 8
+      'CURVE load 0 0 1 1', &                             ! 9
+      'TIME DT=0.1 TEND=1', &                             ! 10
+      'END']                                              ! 11
+  end function creep
 
   function deck_path(name) result(path)
     character(*), intent(in) :: name
