@@ -5,7 +5,8 @@ module visco2d_output
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, gtoa
-  use visco2d_deck, only: deck_t, analysis_name, geometry_name
+  use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps
+  use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
   use visco2d_mesh, only: edge_set_name
   use visco2d_record, only: record_t
   use visco2d_hdf5, only: h5_writer_t, h5_open_file, h5_close_file, h5_group, h5_close_group, &
@@ -108,13 +109,48 @@ contains
     write(unit, '(a)') '   half-bandwidth    '//itoa(mesh%half_bandwidth_before)//' as input, '// &
                        itoa(mesh%half_bandwidth)//' after reverse Cuthill-McKee'
     write(unit, '(/, a)') ' MATERIALS'
-    write(unit, '(a)') '   id               E (Pa)          nu        G (Pa)          K (Pa)          rho (kg/m3)'
+    write(unit, '(a)') '   id           kind          E(0) (Pa)       nu(0)     G(0) (Pa)       K (Pa)          rho (kg/m3)'
     do k = 1, size(deck%materials)
       associate (m => deck%materials(k))
-      write(unit, '(3x, a12, 1x, es15.7, 1x, f9.6, 3(1x, es15.7))') m%id, m%young, m%poisson, m%shear, &
-                                                                     m%bulk, m%density
+      write(unit, '(3x, a12, 1x, a12, 1x, es15.7, 1x, f9.6, 3(1x, es15.7))') m%id, material_kind_name(m%kind), &
+        m%young, m%poisson, m%shear, m%bulk, m%density
+      if (m%kind == material_kind_uniaxial) then
+        write(unit, '(a)') '     uniaxial relaxation E(t) = sum E_i exp(-alpha_i t), eq. [47], as given:'
+        do i = 1, size(m%uniaxial_young)
+          write(unit, '(7x, a, es16.8, a, es16.8, a)') 'E_i = ', m%uniaxial_young(i), ' Pa   alpha_i = ', &
+            m%uniaxial_rate(i), ' 1/s'
+        end do
+        write(unit, '(a)') '     converted exactly (eq. [48], partial fractions) to the shear terms below'
+      end if
+      if (m%kind /= material_kind_elastic) then
+        write(unit, '(a)') '     shear relaxation phi1(t) = G_inf + sum G_m exp(-beta_m t), eq. [12]:'
+        write(unit, '(7x, a, es16.8, a)') 'G_inf = ', m%long_term_shear, ' Pa'
+        if (has_memory(m)) then
+          do i = 1, size(m%prony_shear)
+            write(unit, '(7x, a, es16.8, a, es16.8, a)') 'G_m = ', m%prony_shear(i), ' Pa   beta_m = ', &
+              m%prony_rate(i), ' 1/s'
+          end do
+        end if
+      end if
       end associate
     end do
+    if (size(deck%stages) > 0) then
+      write(unit, '(/, a)') ' TIME STAGES  (line, steps, dt (s), end (s))'
+      do k = 1, size(deck%stages)
+        write(unit, '(i9, i9, 2(1x, es16.8))') deck%stages(k)%line, deck%stages(k)%steps, deck%stages(k)%dt, &
+          deck%stages(k)%end_time
+      end do
+      write(unit, '(a)') '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0'
+    end if
+    if (size(deck%curves) > 0) then
+      write(unit, '(/, a)') ' CURVES  (name: time (s) -> factor; constant outside the points)'
+      do k = 1, size(deck%curves)
+        write(unit, '(3x, a)') deck%curves(k)%name//':'
+        do i = 1, size(deck%curves(k)%time)
+          write(unit, '(7x, es16.8, a, es16.8)') deck%curves(k)%time(i), ' -> ', deck%curves(k)%value(i)
+        end do
+      end do
+    end if
     write(unit, '(/, a)') ' NODES  (number, r (m), z (m), band position)'
     do i = 1, min(mesh%nnode, listing_row_limit)
       write(unit, '(i9, 2(1x, es16.8), i9)') mesh%node_id(i), mesh%xy(:, i), mesh%equation(i)
@@ -131,16 +167,18 @@ contains
     write(unit, '(/, a)') ' SUPPORTS AND LOADS'
     do k = 1, size(deck%fixes)
       write(unit, '(a)') '   FIX      line '//itoa(deck%fixes(k)%line)//': '//itoa(size(deck%fixes(k)%nodes))// &
-        ' node(s), '//merge('u_r ', '    ', deck%fixes(k)%fix_r)//merge('u_z', '   ', deck%fixes(k)%fix_z)
+        ' node(s), '//merge('u_r ', '    ', deck%fixes(k)%fix_r)//merge('u_z', '   ', deck%fixes(k)%fix_z)// &
+        trim(prescribed_text(deck, k))
     end do
     do k = 1, size(deck%pressures)
       write(unit, '(a)') '   PRESSURE line '//itoa(deck%pressures(k)%line)//': '// &
-        edge_set_name(deck%pressures(k)%edge_set)//' p = '//gtoa(deck%pressures(k)%value)//' Pa'
+        edge_set_name(deck%pressures(k)%edge_set)//' p = '//gtoa(deck%pressures(k)%value)//' Pa'// &
+        curve_text(deck, deck%pressures(k)%curve)
     end do
     do k = 1, size(deck%forces)
       write(unit, '(a)') '   FORCE    line '//itoa(deck%forces(k)%line)//': node '// &
         itoa(mesh%node_id(deck%forces(k)%node))//' F = ('//gtoa(deck%forces(k)%value(1))//', '// &
-        gtoa(deck%forces(k)%value(2))//') N'
+        gtoa(deck%forces(k)%value(2))//') N'//curve_text(deck, deck%forces(k)%curve)
     end do
     write(unit, '(/, a)') ' RESULTS'
     do i = 1, record%nsummary
@@ -158,6 +196,30 @@ contains
     end associate
     close(unit)
   end subroutine write_listing
+
+  !> ' x curve NAME' or '' (constant in time).
+  function curve_text(deck, curve) result(text)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: curve
+    character(:), allocatable :: text
+    text = ''
+    if (curve > 0) text = ' x curve '//deck%curves(curve)%name
+  end function curve_text
+
+  !> ', prescribed u_r = .., u_z = .. m [x curve]' for a FIX card with values.
+  function prescribed_text(deck, k) result(text)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: k
+    character(:), allocatable :: text
+    text = ''
+    associate (fix => deck%fixes(k))
+    if (all(fix%value == 0.0_dp)) return
+    text = ', prescribed'
+    if (fix%fix_r) text = text//' u_r = '//gtoa(fix%value(1))//' m'
+    if (fix%fix_z) text = text//' u_z = '//gtoa(fix%value(2))//' m'
+    text = text//curve_text(deck, fix%curve)
+    end associate
+  end function prescribed_text
 
   !> results.h5: /mesh, /history/<column>, /fields/<snapshot>/..., summary as root attributes.
   subroutine write_results_h5(path, case_name, deck, record, status)
