@@ -4,7 +4,7 @@
 !> no body force without gravity.
 module visco2d_scene
   use visco2d_deck, only: deck_t
-  use visco2d_material, only: material_kind_elastic
+  use visco2d_material, only: has_memory
   implicit none
   private
 
@@ -13,22 +13,22 @@ module visco2d_scene
   !> The effects a run simulates.
   type :: effects_t
     logical :: inertia = .false.       !< mass and Wilson-theta stepping (ANALYSIS DYNAMIC)
-    logical :: viscoelastic = .false.  !< Prony history per Gauss point (a VISCOELASTIC/UNIAXIAL material)
+    logical :: viscoelastic = .false.  !< Prony history per Gauss point (a material with memory, beta > 0, in use)
     logical :: contact = .false.       !< rigid-plate contact search (a PLATE card)
     logical :: gravity = .false.       !< body force rho g (a GRAVITY card)
   end type effects_t
 
 contains
 
-  !> The effects a deck calls for. (This version reads static elastic decks only:
-  !> the dynamic, contact and gravity cards arrive with their extensions.)
+  !> The effects a deck calls for. (The dynamic, contact and gravity cards
+  !> arrive with their extensions.)
   function scene_effects(deck) result(effects)
     type(deck_t), intent(in) :: deck
     type(effects_t) :: effects
     integer :: k
     effects = effects_t()
     do k = 1, size(deck%materials)
-      if (deck%materials(k)%kind /= material_kind_elastic) effects%viscoelastic = .true.
+      if (has_memory(deck%materials(k)) .and. any(deck%mesh%element_material == k)) effects%viscoelastic = .true.
     end do
   end function scene_effects
 

@@ -129,17 +129,8 @@ contains
     integer :: k, node, c
     character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
 
-    associate (mesh => deck%mesh, s => solution%stress)
-    call record_put_real(record, 'max_displacement_m', maxval(norm2(solution%displacement, dim=1)))
-    call record_put_real(record, 'sigma_r_min_Pa', minval(s(1, :, :)))
-    call record_put_real(record, 'sigma_r_max_Pa', maxval(s(1, :, :)))
-    call record_put_real(record, 'sigma_z_min_Pa', minval(s(2, :, :)))
-    call record_put_real(record, 'sigma_z_max_Pa', maxval(s(2, :, :)))
-    call record_put_real(record, 'sigma_theta_min_Pa', minval(s(3, :, :)))
-    call record_put_real(record, 'sigma_theta_max_Pa', maxval(s(3, :, :)))
-    call record_put_real(record, 'tau_rz_max_abs_Pa', maxval(abs(s(4, :, :))))
-    call record_put_real(record, 'von_mises_max_Pa', maxval(von_mises(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
-    call record_put_real(record, 'max_shear_max_Pa', maxval(max_shear(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
+    associate (mesh => deck%mesh)
+    call put_field_summary(solution%displacement, solution%stress, record)
     call record_put_real(record, 'strain_energy_J', solution%strain_energy)
     call record_put_real(record, 'external_work_J', solution%external_work)
     call record_put_real(record, 'reaction_r_N', sum(solution%reaction(1, :)))
@@ -148,17 +139,13 @@ contains
     columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'strain_J', 'work_J']
     row = [1.0_dp, 0.0_dp, maxval(norm2(solution%displacement, dim=1)), solution%strain_energy, &
            solution%external_work]
+    call put_probe_summary(deck, solution%displacement, solution%stress, record)
     do k = 1, size(deck%probes)
       node = deck%probes(k)%node
-      call record_put_real(record, 'probe_'//deck%probes(k)%name//'_r_m', mesh%xy(1, node))
-      call record_put_real(record, 'probe_'//deck%probes(k)%name//'_z_m', mesh%xy(2, node))
-      associate (values => [solution%displacement(:, node), solution%nodal_stress(:, node)])
       do c = 1, 6
-        call record_put_real(record, 'probe_'//deck%probes(k)%name//'_'//trim(probe_columns(c)), values(c))
         columns = [character(len=48) :: columns, deck%probes(k)%name//'_'//trim(probe_columns(c))]
       end do
-      row = [row, values]
-      end associate
+      row = [row, solution%displacement(:, node), solution%nodal_stress(:, node)]
     end do
     call history_define(record, columns, 1)
     call history_append(record, row)
@@ -237,7 +224,8 @@ contains
     call record_put_integer(record, 'factorizations', factorizations)
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
-    call put_field_summary(deck, u, stress, record)
+    call put_field_summary(displacement_field(), stress, record)
+    call put_probe_summary(deck, displacement_field(), stress, record)
     end associate
 
   contains
@@ -343,10 +331,7 @@ contains
       snapshot%name = name
       snapshot%label = label
       snapshot%time = time
-      allocate(snapshot%displacement(2, deck%mesh%nnode))
-      do node = 1, deck%mesh%nnode
-        snapshot%displacement(:, node) = u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2))
-      end do
+      snapshot%displacement = displacement_field()
       snapshot%stress_gauss = stress
       snapshot%stress = nodal_average(deck%mesh, stress)
       snapshot%max_shear = max_shear(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
@@ -355,6 +340,14 @@ contains
                                      snapshot%stress(4, :))
       call record_add_snapshot(record, snapshot)
     end subroutine keep_snapshot
+    !> u as (2, nnode) in node order.
+    function displacement_field() result(field)
+      real(dp) :: field(2, deck%mesh%nnode)
+      integer :: node
+      do node = 1, deck%mesh%nnode
+        field(:, node) = u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2))
+      end do
+    end function displacement_field
   end subroutine solve_quasistatic
 
   !> Nodal stress at one node: Gauss values extrapolated in each element that
@@ -379,16 +372,12 @@ contains
     value = value/max(count, 1)
   end function node_stress
 
-  !> Summary of the final fields: extreme displacement and stresses.
-  subroutine put_field_summary(deck, u, stress, record)
-    type(deck_t), intent(in) :: deck
-    real(dp), intent(in) :: u(:), stress(:, :, :)
+  !> Summary of a state: largest displacement, extreme stresses over the Gauss points.
+  subroutine put_field_summary(displacement, stress, record)
+    real(dp), intent(in) :: displacement(:, :), stress(:, :, :)
     type(record_t), intent(inout) :: record
-    integer :: p, node, c
-    real(dp) :: nodal(4)
-    character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
     associate (s => stress)
-    call record_put_real(record, 'max_displacement_m', maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)))
+    call record_put_real(record, 'max_displacement_m', maxval(norm2(displacement, dim=1)))
     call record_put_real(record, 'sigma_r_min_Pa', minval(s(1, :, :)))
     call record_put_real(record, 'sigma_r_max_Pa', maxval(s(1, :, :)))
     call record_put_real(record, 'sigma_z_min_Pa', minval(s(2, :, :)))
@@ -399,18 +388,26 @@ contains
     call record_put_real(record, 'von_mises_max_Pa', maxval(von_mises(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
     call record_put_real(record, 'max_shear_max_Pa', maxval(max_shear(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
     end associate
+  end subroutine put_field_summary
+
+  !> Summary keys probe_<name>_{r_m, z_m, ur_m, uz_m, sr_Pa, sz_Pa, st_Pa, trz_Pa} of a state.
+  subroutine put_probe_summary(deck, displacement, stress, record)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: displacement(:, :), stress(:, :, :)
+    type(record_t), intent(inout) :: record
+    integer :: p, node, c
+    character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
     do p = 1, size(deck%probes)
       node = deck%probes(p)%node
       call record_put_real(record, 'probe_'//deck%probes(p)%name//'_r_m', deck%mesh%xy(1, node))
       call record_put_real(record, 'probe_'//deck%probes(p)%name//'_z_m', deck%mesh%xy(2, node))
-      nodal = node_stress(deck%mesh, stress, node)
-      associate (values => [u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), nodal])
+      associate (values => [displacement(:, node), node_stress(deck%mesh, stress, node)])
       do c = 1, 6
         call record_put_real(record, 'probe_'//deck%probes(p)%name//'_'//trim(probe_columns(c)), values(c))
       end do
       end associate
     end do
-  end subroutine put_field_summary
+  end subroutine put_probe_summary
 
   !> n as a six-digit, zero-padded text (snapshot names sort in time order).
   pure function zero_padded(n) result(text)
