@@ -1,10 +1,16 @@
 !> visco2d command line:
 !>   visco2d [options] DECK...     run decks into OUT/<deck stem>/
 !>   visco2d check DECK...         parse and check, print mesh statistics and effects
+!>   visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]
+!>                                 exact shear relaxation series of a uniaxial one (eq. [48])
 program visco2d
+  use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, check_deck, run_line
+  use visco2d_cards, only: parse_real
+  use visco2d_relaxation, only: uniaxial_to_shear
+  use visco2d_strings, only: itoa
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   interface
@@ -23,6 +29,10 @@ program visco2d
   out_root = 'out'
   quiet = .false.
   checking = .false.
+  if (command_argument_count() >= 1) then
+    call get_argument(1, argument)
+    if (argument == 'relax') call run_relax()
+  end if
   allocate(character(len=4096) :: decks(command_argument_count()))
   count = 0
   i = 1
@@ -96,6 +106,85 @@ contains
     call c_exit(2_c_int)
   end subroutine usage_error
 
+  !> visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]: the uniaxial Prony series
+  !> (eq. [47]) to the exact shear series (eqs. [48]-[49]). stdout holds only
+  !> "K = <Pa>" and one "G_m beta_m" line per term, so scripts can read it.
+  subroutine run_relax()
+    real(dp), allocatable :: values(:), shear(:), beta(:)
+    real(dp) :: poisson, bulk
+    character(:), allocatable :: option, text, message
+    logical :: have_poisson, ok
+    integer :: position, count, m
+
+    allocate(values(command_argument_count()))
+    count = 0
+    poisson = 0.0_dp
+    have_poisson = .false.
+    position = 2
+    do while (position <= command_argument_count())
+      call get_argument(position, option)
+      if (option == '--nu' .or. index(option, '--nu=') == 1) then
+        if (have_poisson) call relax_usage_error('--nu is given twice')
+        if (option == '--nu') then
+          if (position == command_argument_count()) call relax_usage_error('option --nu needs a value')
+          position = position + 1
+          call get_argument(position, text)
+        else
+          text = option(6:)
+        end if
+        call parse_real(text, poisson, ok)
+        if (.not. ok) call relax_usage_error('--nu: "'//text//'" is not a finite number')
+        have_poisson = .true.
+      else if (option == '-h' .or. option == '--help') then
+        call print_help()
+        stop
+      else
+        count = count + 1
+        call parse_real(option, values(count), ok)
+        if (.not. ok) then
+          if (index(option, '-') == 1) call relax_usage_error('unknown option '//option)
+          call relax_usage_error('value '//itoa(count)//' ("'//option//'") is not a finite number')
+        end if
+      end if
+      position = position + 1
+    end do
+    if (.not. have_poisson) call relax_usage_error("missing --nu NU (Poisson's ratio at t = 0)")
+    if (count == 0) call relax_usage_error('no terms: give pairs E ALPHA (Pa, 1/s)')
+    if (mod(count, 2) /= 0) &
+      call relax_usage_error('an odd number of values ('//itoa(count)//'): expected pairs E ALPHA')
+
+    call uniaxial_to_shear(values(1:count:2), values(2:count:2), poisson, bulk, shear, beta, message)
+    if (len(message) > 0) then
+      write(0, '(a)') 'visco2d relax: '//message
+      flush(0)
+      call c_exit(1_c_int)
+    end if
+    print '(a)', 'K = '//scientific(bulk)
+    do m = 1, size(shear)
+      print '(a)', scientific(shear(m))//'  '//scientific(beta(m))
+    end do
+    flush(6)
+    stop
+  end subroutine run_relax
+
+
+  !> A real with 12 significant digits, no blanks (es format, 3-digit exponent).
+  function scientific(value) result(text)
+    real(dp), intent(in) :: value
+    character(:), allocatable :: text
+    character(len=32) :: buffer
+    write(buffer, '(es19.11e3)') value
+    text = trim(adjustl(buffer))
+  end function scientific
+
+  subroutine relax_usage_error(message)
+    character(*), intent(in) :: message
+    write(0, '(a)') 'visco2d relax: '//message
+    write(0, '(a)') 'usage: visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]   (Pa, 1/s; see visco2d --help)'
+    flush(0)
+    call c_exit(2_c_int)
+  end subroutine relax_usage_error
+
   subroutine print_help()
     print '(a)', 'visco2d - axisymmetric / plane-strain viscoelastic finite elements (fruit impact)'
     print '(a)', ''
@@ -104,6 +193,14 @@ contains
     print '(a)', '  visco2d check DECK...       read and check decks without solving; print the mesh'
     print '(a)', '                              statistics (nodes, elements, half-bandwidth) and the'
     print '(a)', '                              active effects'
+    print '(a)', '  visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]'
+    print '(a)', '                              exact shear relaxation G(t) = sum G_m exp(-beta_m t)'
+    print '(a)', '                              of E(t) = sum E_i exp(-alpha_i t), eq. [48], with'
+    print '(a)', '                              K = sum E_i/(3(1 - 2 NU)); SI units (Pa, 1/s).'
+    print '(a)', '                              Prints "K = <Pa>", then "G_m beta_m" per term by'
+    print '(a)', '                              increasing beta (--nu=NU works too). Exit status 2:'
+    print '(a)', '                              usage (no --nu, odd count, not a finite number); 1: invalid'
+    print '(a)', '                              values (E <= 0, ALPHA < 0, NU outside (-1, 0.5))'
     print '(a)', ''
     print '(a)', 'options:'
     print '(a)', '  -o, --out DIR   output root folder (default: out)'

@@ -267,4 +267,62 @@ check check_bad_deck_located_error "stderr: $(first_lines checkbad.err)" \
   grep -qF '../decks/bad.inp:4:32: MATERIAL: ' checkbad.err
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- relax
+# visco2d relax: uniaxial Prony series -> exact shear series (eq. [48]).
+mkdir relax && cd relax || exit 0
+check help_mentions_relax "--help output does not mention 'relax'" grep -q 'visco2d relax' ../usage/help.out
+# Numbers with at least 8 significant digits (mantissa d.ddddddd or more).
+number='[-+]?[0-9]\.[0-9]{7,}[eE][-+]?[0-9]+'
+# Table 4, 0.7 m/s, nu = 0.25: K* = 1.756 MPa (Table 3), four shear terms.
+"$exe" relax --nu 0.25 1.703e6 0.000311 0.258e6 0.0401 0.461e6 1.075 0.212e6 34.49 > table4.out 2> table4.err
+check_rc relax_table4_exit_0 0 $?
+check relax_table4_stderr_empty "stderr: $(first_lines table4.err)" test ! -s table4.err
+check relax_table4_k_line "first line: $(head -1 table4.out)" grep -Eq "^K = $number\$" <(head -1 table4.out)
+k4=$(sed -n 's/^K = //p' table4.out | awk '{printf "%.3e", $1}')
+check relax_table4_k_4_digits "K = $k4, expected 1.756e+06" test "$k4" = 1.756e+06
+check relax_table4_four_terms "stdout: $(first_lines table4.out)" \
+  test "$(tail -n +2 table4.out | grep -Ec "^$number +$number\$")" = 4 -a "$(wc -l < table4.out)" = 5
+# G(0) = sum G_m = 3K E(0)/(9K - E(0)) = 1.0536 MPa (E(0) = 2.634 MPa).
+g0=$(tail -n +2 table4.out | awk '{s += $1} END {printf "%.5e", s}')
+check relax_table4_initial_value "sum G = $g0, expected 1.05360e+06" test "$g0" = 1.05360e+06
+check relax_table4_increasing_beta "stdout: $(first_lines table4.out)" \
+  awk 'NR > 1 { n++; if (n > 1 && $2 <= last) bad = 1; last = $2 } END { exit !(n > 0 && !bad) }' table4.out
+"$exe" relax --nu=0.25 1.703e6 0.000311 0.258e6 0.0401 0.461e6 1.075 0.212e6 34.49 > equals.out 2> equals.err
+check_rc relax_nu_equals_exit_0 0 $?
+check relax_nu_equals_same_output "--nu=0.25 and --nu 0.25 differ (or print nothing)" \
+  test -s equals.out -a "$(cat equals.out)" = "$(cat table4.out)"
+# Elastic limit: one term with alpha = 0 -> G = 3KE/(9K - E) = E/2.5, beta = 0.
+"$exe" relax --nu 0.25 2.634e6 0 > elastic.out 2> elastic.err
+check_rc relax_elastic_exit_0 0 $?
+check relax_elastic_one_term "stdout: $(first_lines elastic.out)" test "$(wc -l < elastic.out)" = 2
+check relax_elastic_shear "stdout: $(first_lines elastic.out)" \
+  awk 'NR == 2 { ok = ($1 > 1.0536e6 * (1 - 1e-10) && $1 < 1.0536e6 * (1 + 1e-10) && $2 == 0) } END { exit !ok }' \
+  elastic.out
+# Errors: exit status (2 usage, 1 invalid value), a message naming the
+# problem on stderr, nothing on stdout.
+relax_error() {  # relax_error NAME STATUS FRAGMENT ARGUMENTS...
+  local name=$1 status=$2 fragment=$3
+  shift 3
+  "$exe" relax "$@" > "$name.out" 2> "$name.err"
+  check_rc "relax_${name}_exit_$status" "$status" $?
+  check "relax_${name}_message" "stderr: $(first_lines "$name.err")" grep -qF -- "visco2d relax: " "$name.err"
+  check "relax_${name}_names_problem" "no '$fragment' in stderr: $(first_lines "$name.err")" \
+    grep -qF -- "$fragment" "$name.err"
+  check "relax_${name}_stdout_empty" "stdout: $(first_lines "$name.out")" test ! -s "$name.out"
+}
+relax_error missing_nu 2 '--nu' 1e6 1
+relax_error nu_without_value 2 '--nu' 1e6 1 --nu
+relax_error odd_count 2 'odd number of values' --nu 0.25 1e6 1 2e6
+relax_error no_terms 2 'no terms' --nu 0.25
+relax_error not_a_number 2 '"abc"' --nu 0.25 1e6 abc
+relax_error nu_not_a_number 2 '"x"' --nu x 1e6 1
+relax_error unknown_option 2 '--bogus' --nu 0.25 --bogus 1e6 1
+relax_error young_zero 1 'term 2: E must be > 0' --nu 0.25 1e6 1 0 2
+relax_error young_negative 1 'term 1: E must be > 0' --nu 0.25 -1e6 1
+relax_error alpha_negative 1 'alpha must be >= 0' --nu 0.25 1e6 -1
+relax_error nu_half 1 'nu must be in (-1, 0.5)' --nu 0.5 1e6 1
+relax_error nu_minus_one 1 'nu must be in (-1, 0.5)' --nu -1 1e6 1
+relax_error young_infinite 2 'is not a finite number' --nu 0.25 1e999 1
+cd "$work" || exit 0
+
 exit 0

@@ -14,7 +14,7 @@ module visco2d_cards
   public :: read_cards
   public :: card_error, named_real, named_integer, named_word, has_field
   public :: positional_count, positional_real, positional_integer, positional_word
-  public :: check_fields_used, field_column
+  public :: check_fields_used, field_column, parse_real
 
   !> One field of a card.
   type :: token_t
@@ -240,18 +240,41 @@ contains
     end do
   end function find_named
 
-  !> Strict real parse: digits, one optional sign, point and exponent; finite.
+  !> Strict real: [sign] digits [. digits] [e|d [sign] digits], a digit in the
+  !> mantissa, finite. Shared by the card reader and the command line.
   subroutine parse_real(text, value, ok)
     character(*), intent(in) :: text
     real(dp), intent(out) :: value
     logical, intent(out) :: ok
-    integer :: ios, i
+    integer :: i, mantissa_digits, exponent_digits, ios
+    logical :: in_exponent, seen_point
     value = 0.0_dp
-    ok = len(text) > 0 .and. verify(text, '0123456789.+-eEdD') == 0 .and. scan(text, '0123456789') > 0
-    if (.not. ok) return
+    mantissa_digits = 0
+    exponent_digits = 0
+    in_exponent = .false.
+    seen_point = .false.
+    ok = len(text) > 0
     do i = 1, len(text)
-      if (scan(text(i:i), 'eEdD') > 0 .and. i == 1) ok = .false.
+      select case (text(i:i))
+      case ('0':'9')
+        if (in_exponent) then
+          exponent_digits = exponent_digits + 1
+        else
+          mantissa_digits = mantissa_digits + 1
+        end if
+      case ('+', '-')
+        if (i > 1) ok = ok .and. scan(text(i - 1:i - 1), 'eEdD') > 0
+      case ('.')
+        ok = ok .and. .not. (seen_point .or. in_exponent)
+        seen_point = .true.
+      case ('e', 'E', 'd', 'D')
+        ok = ok .and. .not. in_exponent .and. mantissa_digits > 0
+        in_exponent = .true.
+      case default
+        ok = .false.
+      end select
     end do
+    ok = ok .and. mantissa_digits > 0 .and. (exponent_digits > 0 .or. .not. in_exponent)
     if (.not. ok) return
     read(text, *, iostat=ios) value
     ok = ios == 0

@@ -55,6 +55,8 @@ program test_viscoelastic
   call test_elastic_quasistatic_equals_static()
   call test_cylinder()
   call test_no_history_without_memory()
+  call test_uniaxial_materials()
+  call test_uniaxial_relaxation()
   call test_summary('test_viscoelastic')
 
 contains
@@ -315,6 +317,98 @@ contains
     call check_close('long_step_modulus', coefficients%shear, 0.5e6_dp + 0.5e6_dp/3.0e9_dp, 1.0e-14_dp)
     call check('elastic_has_no_memory', .not. has_memory(materials(1)) .and. has_memory(materials(2)))
   end subroutine test_no_history_without_memory
+
+  !> UNIAXIAL cards: K from the Table 3 footnote, the instantaneous shear
+  !> modulus G(0) = 3K E(0)/(9K - E(0)) (elastic relation at t = 0, independent
+  !> of the pole finding), the elastic limit alpha = 0, and beta = 0 terms
+  !> folded into the long-term modulus.
+  subroutine test_uniaxial_materials()
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(len=100), allocatable :: head(:)
+    real(dp) :: young0, bulk
+    head = [character(len=100) :: 'TITLE u', 'ANALYSIS QUASISTATIC', 'MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=1 NZ=1', &
+            'FIX BOTTOM Z', 'TIME DT=1 TEND=1']
+    call write_deck(folder//'/uniaxial_table4.inp', [character(len=100) :: head, &
+      'MATERIAL apple UNIAXIAL NU=0.25', 'PRONY E=1.703e6 ALPHA=0.000311', 'PRONY E=0.258e6 ALPHA=0.0401', &
+      'PRONY E=0.461e6 ALPHA=1.075', 'PRONY E=0.212e6 ALPHA=34.49', 'END'])
+    call read_deck(folder//'/uniaxial_table4.inp', deck, error)
+    call check('uniaxial_table4_reads', .not. allocated(error))
+    if (allocated(error)) return
+    young0 = 1.703e6_dp + 0.258e6_dp + 0.461e6_dp + 0.212e6_dp
+    bulk = young0/(3.0_dp*(1.0_dp - 2.0_dp*0.25_dp))
+    associate (m => deck%materials(1))
+    call check_close('uniaxial_table4_bulk', m%bulk, bulk, 1.0e-15_dp)
+    call check_close('uniaxial_table4_instantaneous_shear', m%shear, 3.0_dp*bulk*young0/(9.0_dp*bulk - young0), &
+                     1.0e-13_dp)
+    call check_close('uniaxial_table4_instantaneous_nu', m%poisson, 0.25_dp, 1.0e-13_dp)
+    call check('uniaxial_table4_terms', size(m%prony_rate) == 4 .and. m%long_term_shear == 0.0_dp)
+    call check('uniaxial_table4_sorted', all(m%prony_rate(2:) > m%prony_rate(:3)))
+    end associate
+    call write_deck(folder//'/uniaxial_elastic.inp', [character(len=100) :: head, &
+      'MATERIAL solid UNIAXIAL NU=0.3', 'PRONY E=2e6 ALPHA=0', 'END'])
+    call read_deck(folder//'/uniaxial_elastic.inp', deck, error)
+    call check('uniaxial_elastic_reads', .not. allocated(error))
+    if (allocated(error)) return
+    call check_close('uniaxial_elastic_limit', deck%materials(1)%long_term_shear, 2.0e6_dp/2.6_dp, 1.0e-14_dp)
+    call check('uniaxial_elastic_no_memory', .not. has_memory(deck%materials(1)) .and. &
+               effects_text(scene_effects(deck)) == 'none')
+    call write_deck(folder//'/long_term_term.inp', [character(len=100) :: head, &
+      'MATERIAL solid VISCOELASTIC K=3e6', 'PRONY G=1e6 BETA=5', 'PRONY G=0.5e6 BETA=0', 'END'])
+    call read_deck(folder//'/long_term_term.inp', deck, error)
+    call check('long_term_term_reads', .not. allocated(error))
+    if (allocated(error)) return
+    call check('long_term_term_folded', deck%materials(1)%long_term_shear == 0.5e6_dp .and. &
+               size(deck%materials(1)%prony_rate) == 1 .and. deck%materials(1)%shear == 1.5e6_dp)
+  end subroutine test_uniaxial_materials
+
+  !> The whole chain on the paper's own data: a free block of UNIAXIAL
+  !> material (Table 4, 0.7 m/s) held at a step eps_z must relax as
+  !> sigma_z(t) = eps_z E(t), eq. [47], the definition of the data. The
+  !> lateral strain now varies in time (the Poisson ratio relaxes), so the
+  !> strain is not linear within a step and the time error is O(dt^2): shown
+  !> by 10 and 40 steps per decade.
+  subroutine test_uniaxial_relaxation()
+    real(dp) :: error_coarse, error_fine, order
+    error_coarse = uniaxial_relaxation_error(10)
+    error_fine = uniaxial_relaxation_error(40)
+    order = log(error_coarse/error_fine)/log(4.0_dp)
+    print '(a, es9.2, a, es9.2, a, f5.2)', '# uniaxial relaxation vs eps E(t): 10 steps/decade ', error_coarse, &
+      ', 40 steps/decade ', error_fine, ', observed order ', order
+    call check('uniaxial_relaxation_10_per_decade', error_coarse < 3.0e-3_dp, gtoa(error_coarse))
+    call check('uniaxial_relaxation_40_per_decade', error_fine < 2.0e-4_dp, gtoa(error_fine))
+    call check('uniaxial_relaxation_second_order', abs(order - 2.0_dp) < 0.2_dp, 'order '//gtoa(order))
+  end subroutine test_uniaxial_relaxation
+
+  real(dp) function uniaxial_relaxation_error(per_decade) result(worst)
+    integer, intent(in) :: per_decade
+    character(len=100), allocatable :: lines(:)
+    type(record_t) :: record
+    real(dp), allocatable :: t(:), sz(:)
+    real(dp), parameter :: young(4) = [1.703e6_dp, 0.258e6_dp, 0.461e6_dp, 0.212e6_dp]
+    real(dp), parameter :: rate(4) = [0.000311_dp, 0.0401_dp, 1.075_dp, 34.49_dp]
+    real(dp) :: stage_end
+    integer :: k, row
+    lines = [character(len=100) :: 'TITLE uniaxial relaxation', 'ANALYSIS QUASISTATIC', 'GEOMETRY AXISYMMETRIC', &
+             'MATERIAL apple UNIAXIAL NU=0.25', 'PRONY E=1.703e6 ALPHA=0.000311', 'PRONY E=0.258e6 ALPHA=0.0401', &
+             'PRONY E=0.461e6 ALPHA=1.075', 'PRONY E=0.212e6 ALPHA=34.49', &
+             'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', 'FIX BOTTOM Z', 'FIX TOP Z UZ=-1e-4', &
+             'PROBE c R=0.005 Z=0.005']
+    do k = 0, 9                                     ! decades 1e-5 .. 1e4 s
+      stage_end = 10.0_dp**(k - 5)
+      lines = [character(len=100) :: lines, 'TIME DT='//gtoa(stage_end*merge(1.0_dp, 0.9_dp, k == 0)/per_decade)// &
+               ' TEND='//gtoa(stage_end)]
+    end do
+    lines = [character(len=100) :: lines, 'END']
+    worst = huge(1.0_dp)
+    if (.not. run('uniaxial_relaxation_'//itoa(per_decade), lines, record)) return
+    t = column(record, 't_s')
+    sz = column(record, 'c_sz_Pa')
+    worst = 0.0_dp
+    do row = 1, size(t)
+      worst = max(worst, abs(sz(row)/(-0.01_dp*sum(young*exp(-rate*t(row)))) - 1.0_dp))
+    end do
+  end function uniaxial_relaxation_error
 
   ! ------------------------------------------------------------------ helpers
 
