@@ -3,10 +3,14 @@
 !> points, held constant before the first and after the last point.
 module visco2d_curve
   use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t
+  use visco2d_strings, only: itoa, short_real
+  use visco2d_cards, only: card_t, card_deck_t, card_error, positional_word, positional_real, positional_count, &
+                           check_fields_used, field_column
   implicit none
   private
 
-  public :: curve_t, curve_value
+  public :: curve_t, curve_value, read_curve
 
   !> One named time history. A load without a curve is constant in time (a step at t = 0).
   type :: curve_t
@@ -37,4 +41,60 @@ contains
     end do
     factor = curve%value(n)
   end function curve_value
+
+  !> CURVE name STEP   or   CURVE name t1 v1 t2 v2 ...  (t in s, strictly increasing; v a factor)
+  subroutine read_curve(cards, card, curves, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(curve_t), allocatable, intent(inout) :: curves(:)
+    type(error_t), allocatable, intent(inout) :: error
+    type(curve_t) :: curve
+    character(:), allocatable :: word
+    integer :: k, npoint
+    call positional_word(cards, card, 1, 'curve name', curve%name, error); if (allocated(error)) return
+    if (verify(curve%name, 'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0 .or. len(curve%name) > 32) then
+      call card_error(error, cards, card, 'curve name must be letters, digits or _ (32 at most), got "'// &
+                      curve%name//'"', field_column(card, '1')); return
+    end if
+    do k = 1, size(curves)
+      if (curves(k)%name == curve%name) then
+        call card_error(error, cards, card, 'curve '//curve%name//' defined twice (first on line '// &
+                        itoa(curves(k)%line)//')'); return
+      end if
+    end do
+    curve%line = card%line
+    call positional_word(cards, card, 2, 'STEP or pairs of time (s) and value', word, error)
+    if (allocated(error)) return
+    if (word == 'STEP') then
+      curve%time = [0.0_dp]
+      curve%value = [1.0_dp]
+    else
+      npoint = positional_count(card) - 1
+      if (mod(npoint, 2) /= 0) then
+        call card_error(error, cards, card, 'CURVE points come in pairs (time value); got '//itoa(npoint)// &
+                        ' numbers'); return
+      end if
+      npoint = npoint/2
+      allocate(curve%time(npoint), curve%value(npoint))
+      do k = 1, npoint
+        call positional_real(cards, card, 2*k, 'time of point '//itoa(k), curve%time(k), error)
+        if (allocated(error)) return
+        call positional_real(cards, card, 2*k + 1, 'value of point '//itoa(k), curve%value(k), error)
+        if (allocated(error)) return
+        if (curve%time(k) < 0.0_dp) then
+          call card_error(error, cards, card, 'curve times must be >= 0 s, got '//short_real(curve%time(k)), &
+                          field_column(card, itoa(2*k))); return
+        end if
+        if (k > 1) then
+          if (curve%time(k) <= curve%time(k - 1)) then
+            call card_error(error, cards, card, 'curve times must increase strictly (point '//itoa(k)// &
+              ' at t = '//short_real(curve%time(k))//' s)', field_column(card, itoa(2*k))); return
+          end if
+        end if
+      end do
+    end if
+    call check_fields_used(cards, card, error, 'CURVE name STEP | CURVE name t1 v1 t2 v2 ...')
+    if (allocated(error)) return
+    curves = [curves, curve]
+  end subroutine read_curve
 end module visco2d_curve

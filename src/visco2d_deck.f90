@@ -7,12 +7,12 @@ module visco2d_deck
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, short_real, to_lower
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
-                           named_word, positional_word, positional_real, positional_count, &
+                           named_word, positional_word, positional_real, &
                            check_fields_used, has_field, field_column
-  use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
-                              material_kind_uniaxial, elastic_constants_from_e_nu, has_memory
-  use visco2d_relaxation, only: uniaxial_to_shear
-  use visco2d_curve, only: curve_t
+  use visco2d_material, only: material_t, has_memory
+  use visco2d_material_cards, only: read_material, read_prony, finish_material
+  use visco2d_curve, only: curve_t, read_curve
+  use visco2d_time, only: time_stage_t, read_time
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &
                           build_mesh, node_set, node_index, edge_set_code, edge_set_name, &
                           edge_set_none, edge_set_axis
@@ -24,9 +24,6 @@ module visco2d_deck
 
   integer, parameter :: analysis_static = 1       !< S U = R once
   integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
-
-  !> Most steps a deck may ask for (a guard against a mistyped DT).
-  integer, parameter :: max_steps = 10000000
 
   !> A support: components prescribed at a set of nodes, u = value * curve(t)
   !> (value 0, no curve: a fixed support).
@@ -53,14 +50,6 @@ module visco2d_deck
     integer :: curve = 0           !< index into deck%curves; 0 = constant
     integer :: line = 0
   end type force_t
-
-  !> A stage of the time axis: constant steps dt from the previous stage's end to end_time.
-  type :: time_stage_t
-    real(dp) :: dt = 0.0_dp        !< s (as used: (end - start)/steps)
-    real(dp) :: end_time = 0.0_dp  !< s
-    integer :: steps = 0
-    integer :: line = 0
-  end type time_stage_t
 
   !> A node whose displacement and stress are reported in the summary and history.
   type :: probe_t
@@ -279,91 +268,6 @@ contains
         ' card is allowed (first on line '//itoa(first_line)//')')
     end subroutine duplicate_card
   end subroutine read_deck
-
-  !> MATERIAL id ELASTIC E=.. NU=.. [RHO=..]   or   MATERIAL id ELASTIC G=.. K=.. [RHO=..]
-  !> MATERIAL id VISCOELASTIC K=.. [RHO=..]      followed by PRONY G=.. BETA=.. cards
-  !> MATERIAL id UNIAXIAL NU=.. [RHO=..]         followed by PRONY E=.. ALPHA=.. cards
-  subroutine read_material(cards, card, materials, error)
-    type(card_deck_t), intent(in) :: cards
-    type(card_t), intent(inout) :: card
-    type(material_t), allocatable, intent(inout) :: materials(:)
-    type(error_t), allocatable, intent(inout) :: error
-    type(material_t) :: material
-    character(:), allocatable :: kind
-    integer :: k
-    call positional_word(cards, card, 1, 'material id', material%id, error); if (allocated(error)) return
-    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC or UNIAXIAL)', kind, error)
-    if (allocated(error)) return
-    material%line = card%line
-    do k = 1, size(materials)
-      if (materials(k)%id == material%id) then
-        call card_error(error, cards, card, 'material '//material%id//' defined twice'); return
-      end if
-    end do
-    call named_real(cards, card, 'RHO', material%density, error, default=0.0_dp); if (allocated(error)) return
-    if (material%density < 0.0_dp) then
-      call field_error('RHO must be >= 0', 'RHO'); return
-    end if
-    select case (kind)
-    case ('ELASTIC')
-      material%kind = material_kind_elastic
-      if (has_field(card, 'E') .or. has_field(card, 'NU')) then
-        call named_real(cards, card, 'E', material%young, error); if (allocated(error)) return
-        call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
-        if (material%young <= 0.0_dp) then
-          call field_error('E must be > 0, got '//short_real(material%young), 'E'); return
-        end if
-        if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
-          call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
-        end if
-        call elastic_constants_from_e_nu(material%young, material%poisson, material%shear, material%bulk)
-      else
-        call named_real(cards, card, 'G', material%shear, error); if (allocated(error)) return
-        call named_real(cards, card, 'K', material%bulk, error); if (allocated(error)) return
-        if (material%shear <= 0.0_dp) then
-          call field_error('G must be > 0, got '//short_real(material%shear), 'G'); return
-        end if
-        if (material%bulk <= 0.0_dp) then
-          call field_error('K must be > 0, got '//short_real(material%bulk), 'K'); return
-        end if
-        call instantaneous_e_nu(material)
-      end if
-      material%long_term_shear = material%shear
-      call check_fields_used(cards, card, error, 'MATERIAL id ELASTIC E=.. NU=.. [RHO=..] or G=.. K=.. [RHO=..]')
-      if (allocated(error)) return
-    case ('VISCOELASTIC')
-      material%kind = material_kind_viscoelastic
-      call named_real(cards, card, 'K', material%bulk, error); if (allocated(error)) return
-      if (material%bulk <= 0.0_dp) then
-        call field_error('K must be > 0, got '//short_real(material%bulk), 'K'); return
-      end if
-      call check_fields_used(cards, card, error, 'MATERIAL id VISCOELASTIC K=.. [RHO=..], then PRONY G=.. BETA=..')
-      if (allocated(error)) return
-      allocate(material%prony_shear(0), material%prony_rate(0))
-    case ('UNIAXIAL')
-      material%kind = material_kind_uniaxial
-      call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
-      if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
-        call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
-      end if
-      call check_fields_used(cards, card, error, 'MATERIAL id UNIAXIAL NU=.. [RHO=..], then PRONY E=.. ALPHA=..')
-      if (allocated(error)) return
-      allocate(material%uniaxial_young(0), material%uniaxial_rate(0))
-    case default
-      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC or UNIAXIAL, got "'// &
-                      kind//'"', field_column(card, '2')); return
-    end select
-    materials = [materials, material]
-  contains
-    subroutine field_error(message, name)
-      character(*), intent(in) :: message
-      character(*), intent(in), optional :: name
-      integer :: column
-      column = card%column
-      if (present(name)) column = field_column(card, name)
-      call card_error(error, cards, card, message, column)
-    end subroutine field_error
-  end subroutine read_material
 
   !> FIX target R|Z|RZ [UR=..] [UZ=..] [CURVE=name]  (target: node number, AXIS, BOTTOM, TOP,
   !> INNER or OUTER); UR/UZ prescribe a displacement (default 0), scaled by the curve.
@@ -651,207 +555,6 @@ contains
       ' is not defined by a CURVE card', field_column(the_card, 'CURVE'))
     end associate
   end function curve_index
-
-  !> PRONY G=.. BETA=.. (VISCOELASTIC) or PRONY E=.. ALPHA=.. (UNIAXIAL): one term of eq. [12] or [47].
-  subroutine read_prony(cards, card, material, error)
-    type(card_deck_t), intent(in) :: cards
-    type(card_t), intent(inout) :: card
-    type(material_t), intent(inout) :: material
-    type(error_t), allocatable, intent(inout) :: error
-    real(dp) :: modulus, rate
-    select case (material%kind)
-    case (material_kind_viscoelastic)
-      call named_real(cards, card, 'G', modulus, error); if (allocated(error)) return
-      call named_real(cards, card, 'BETA', rate, error); if (allocated(error)) return
-      call check_fields_used(cards, card, error, 'PRONY G=.. BETA=.. after MATERIAL id VISCOELASTIC')
-      if (allocated(error)) return
-      if (modulus <= 0.0_dp) then
-        call card_error(error, cards, card, 'G must be > 0, got '//short_real(modulus), field_column(card, 'G'))
-        return
-      end if
-      if (rate < 0.0_dp) then
-        call card_error(error, cards, card, 'BETA must be >= 0 (1/s), got '//short_real(rate), &
-                        field_column(card, 'BETA')); return
-      end if
-      material%prony_shear = [material%prony_shear, modulus]
-      material%prony_rate = [material%prony_rate, rate]
-    case (material_kind_uniaxial)
-      call named_real(cards, card, 'E', modulus, error); if (allocated(error)) return
-      call named_real(cards, card, 'ALPHA', rate, error); if (allocated(error)) return
-      call check_fields_used(cards, card, error, 'PRONY E=.. ALPHA=.. after MATERIAL id UNIAXIAL')
-      if (allocated(error)) return
-      if (modulus <= 0.0_dp) then
-        call card_error(error, cards, card, 'E must be > 0, got '//short_real(modulus), field_column(card, 'E'))
-        return
-      end if
-      if (rate < 0.0_dp) then
-        call card_error(error, cards, card, 'ALPHA must be >= 0 (1/s), got '//short_real(rate), &
-                        field_column(card, 'ALPHA')); return
-      end if
-      material%uniaxial_young = [material%uniaxial_young, modulus]
-      material%uniaxial_rate = [material%uniaxial_rate, rate]
-    case default
-      call card_error(error, cards, card, 'PRONY terms belong to a VISCOELASTIC or UNIAXIAL material; material '// &
-                      material%id//' is ELASTIC')
-    end select
-  end subroutine read_prony
-
-  !> Complete a material once its PRONY cards are read: convert a uniaxial
-  !> series (eq. [48], exactly), fold beta = 0 terms into G_inf, sort the
-  !> memory terms by rate, and set the instantaneous G, E and nu.
-  subroutine finish_material(cards, material, error)
-    type(card_deck_t), intent(in) :: cards
-    type(material_t), intent(inout) :: material
-    type(error_t), allocatable, intent(inout) :: error
-    real(dp), allocatable :: shear(:), rate(:)
-    character(:), allocatable :: message
-    integer, allocatable :: order(:)
-    integer :: i, j
-    if (material%kind == material_kind_elastic) return
-    if (material%kind == material_kind_uniaxial) then
-      if (size(material%uniaxial_young) == 0) then
-        call material_error('material '//material%id//' needs at least one PRONY E=.. ALPHA=.. card'); return
-      end if
-      call uniaxial_to_shear(material%uniaxial_young, material%uniaxial_rate, material%poisson, &
-                             material%bulk, shear, rate, message)
-      if (len(message) > 0) then
-        call material_error('material '//material%id//': the uniaxial series does not convert to shear: '// &
-                            message); return
-      end if
-    else
-      if (size(material%prony_shear) == 0) then
-        call material_error('material '//material%id//' needs at least one PRONY G=.. BETA=.. card'); return
-      end if
-      shear = material%prony_shear
-      rate = material%prony_rate
-    end if
-    material%long_term_shear = sum(shear, mask=rate == 0.0_dp)
-    shear = pack(shear, rate > 0.0_dp)
-    rate = pack(rate, rate > 0.0_dp)
-    order = [(i, i = 1, size(rate))]
-    do i = 2, size(order)                       ! insertion sort by rate (few terms)
-      j = i
-      do while (j > 1)
-        if (rate(order(j - 1)) <= rate(order(j))) exit
-        order([j - 1, j]) = order([j, j - 1])
-        j = j - 1
-      end do
-    end do
-    material%prony_shear = shear(order)
-    material%prony_rate = rate(order)
-    material%shear = material%long_term_shear + sum(material%prony_shear)
-    call instantaneous_e_nu(material)
-  contains
-    subroutine material_error(message)
-      character(*), intent(in) :: message
-      integer :: k
-      do k = 1, cards%count
-        if (cards%cards(k)%line == material%line) then
-          call card_error(error, cards, cards%cards(k), message)
-          return
-        end if
-      end do
-    end subroutine material_error
-  end subroutine finish_material
-
-  !> E and nu of the instantaneous moduli G(0), K.
-  pure subroutine instantaneous_e_nu(material)
-    type(material_t), intent(inout) :: material
-    material%young = 9.0_dp*material%bulk*material%shear/(3.0_dp*material%bulk + material%shear)
-    material%poisson = (3.0_dp*material%bulk - 2.0_dp*material%shear)/ &
-                       (2.0_dp*(3.0_dp*material%bulk + material%shear))
-  end subroutine instantaneous_e_nu
-
-  !> CURVE name STEP   or   CURVE name t1 v1 t2 v2 ...  (t in s, strictly increasing; v a factor)
-  subroutine read_curve(cards, card, curves, error)
-    type(card_deck_t), intent(in) :: cards
-    type(card_t), intent(inout) :: card
-    type(curve_t), allocatable, intent(inout) :: curves(:)
-    type(error_t), allocatable, intent(inout) :: error
-    type(curve_t) :: curve
-    character(:), allocatable :: word
-    integer :: k, npoint
-    call positional_word(cards, card, 1, 'curve name', curve%name, error); if (allocated(error)) return
-    if (verify(curve%name, 'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0 .or. len(curve%name) > 32) then
-      call card_error(error, cards, card, 'curve name must be letters, digits or _ (32 at most), got "'// &
-                      curve%name//'"', field_column(card, '1')); return
-    end if
-    do k = 1, size(curves)
-      if (curves(k)%name == curve%name) then
-        call card_error(error, cards, card, 'curve '//curve%name//' defined twice (first on line '// &
-                        itoa(curves(k)%line)//')'); return
-      end if
-    end do
-    curve%line = card%line
-    call positional_word(cards, card, 2, 'STEP or pairs of time (s) and value', word, error)
-    if (allocated(error)) return
-    if (word == 'STEP') then
-      curve%time = [0.0_dp]
-      curve%value = [1.0_dp]
-    else
-      npoint = positional_count(card) - 1
-      if (mod(npoint, 2) /= 0) then
-        call card_error(error, cards, card, 'CURVE points come in pairs (time value); got '//itoa(npoint)// &
-                        ' numbers'); return
-      end if
-      npoint = npoint/2
-      allocate(curve%time(npoint), curve%value(npoint))
-      do k = 1, npoint
-        call positional_real(cards, card, 2*k, 'time of point '//itoa(k), curve%time(k), error)
-        if (allocated(error)) return
-        call positional_real(cards, card, 2*k + 1, 'value of point '//itoa(k), curve%value(k), error)
-        if (allocated(error)) return
-        if (curve%time(k) < 0.0_dp) then
-          call card_error(error, cards, card, 'curve times must be >= 0 s, got '//short_real(curve%time(k)), &
-                          field_column(card, itoa(2*k))); return
-        end if
-        if (k > 1) then
-          if (curve%time(k) <= curve%time(k - 1)) then
-            call card_error(error, cards, card, 'curve times must increase strictly (point '//itoa(k)// &
-              ' at t = '//short_real(curve%time(k))//' s)', field_column(card, itoa(2*k))); return
-          end if
-        end if
-      end do
-    end if
-    call check_fields_used(cards, card, error, 'CURVE name STEP | CURVE name t1 v1 t2 v2 ...')
-    if (allocated(error)) return
-    curves = [curves, curve]
-  end subroutine read_curve
-
-  !> TIME DT=.. TEND=..: one stage of constant steps; several TIME cards follow each other in time.
-  subroutine read_time(cards, card, stages, error)
-    type(card_deck_t), intent(in) :: cards
-    type(card_t), intent(inout) :: card
-    type(time_stage_t), allocatable, intent(inout) :: stages(:)
-    type(error_t), allocatable, intent(inout) :: error
-    type(time_stage_t) :: stage
-    real(dp) :: start, requested
-    call named_real(cards, card, 'DT', requested, error); if (allocated(error)) return
-    call named_real(cards, card, 'TEND', stage%end_time, error); if (allocated(error)) return
-    call check_fields_used(cards, card, error, 'TIME DT=.. TEND=..'); if (allocated(error)) return
-    if (requested <= 0.0_dp) then
-      call card_error(error, cards, card, 'DT must be > 0 s, got '//short_real(requested), field_column(card, 'DT'))
-      return
-    end if
-    start = 0.0_dp
-    if (size(stages) > 0) start = stages(size(stages))%end_time
-    if (stage%end_time <= start) then
-      call card_error(error, cards, card, 'TEND must be after the start of this stage ('//short_real(start)// &
-                      ' s), got '//short_real(stage%end_time), field_column(card, 'TEND')); return
-    end if
-    ! Whole steps: DT is shortened (never lengthened) to end exactly at TEND.
-    if ((stage%end_time - start)/requested > real(max_steps, dp)) then
-      call card_error(error, cards, card, 'DT = '//short_real(requested)//' s would take more than '// &
-                      itoa(max_steps)//' steps to reach TEND', field_column(card, 'DT')); return
-    end if
-    stage%steps = max(1, ceiling((stage%end_time - start)/requested*(1.0_dp - 1.0e-12_dp)))
-    stage%dt = (stage%end_time - start)/stage%steps
-    stage%line = card%line
-    stages = [stages, stage]
-    if (sum(stages%steps) > max_steps) then
-      call card_error(error, cards, card, 'the TIME stages add up to more than '//itoa(max_steps)//' steps')
-    end if
-  end subroutine read_time
 
   !> TIME belongs to QUASISTATIC (required there), not to STATIC.
   subroutine check_time_stages(deck, analysis_line, error)

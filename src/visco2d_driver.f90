@@ -16,7 +16,7 @@ module visco2d_driver
   implicit none
   private
 
-  public :: run_deck, check_deck, case_name_of, run_line
+  public :: run_deck, check_deck, case_name_of, run_line, summary_value
 
 contains
 

@@ -24,6 +24,7 @@ program test_viscoelastic
   use visco2d_static, only: solve_quasistatic, solve_static, static_solution_t
   use visco2d_scene, only: scene_effects, effects_text
   use visco2d_record, only: record_t
+  use visco2d_driver, only: summary_value
   use visco2d_analytic, only: shear_relaxation, shear_ramp_response, uniaxial_creep_compliance_one_term, &
                               cylinder_bore_displacement
   use visco2d_testing, only: check, check_close, test_summary
@@ -124,8 +125,8 @@ contains
     call check(name//'_follows_phi1', worst_deviatoric < 1.0e-9_dp, 'worst relative error '//gtoa(worst_deviatoric))
     call check(name//'_mean_stress_elastic', worst_mean < 1.0e-12_dp, 'worst relative error '//gtoa(worst_mean))
     ! Eleven stages of different dt after the dt = 0 step: 12 factorizations, no more.
-    call check(name//'_factorizations', summary(record, 'factorizations') == '12', &
-               'factorizations = '//summary(record, 'factorizations'))
+    call check(name//'_factorizations', summary_value(record, 'factorizations') == '12', &
+               'factorizations = '//summary_value(record, 'factorizations'))
   end subroutine test_step_relaxation
 
   !> The archived relaxation deck (inputs/relaxation_step.inp) reads as intended.
@@ -232,8 +233,8 @@ contains
              'PRESSURE OUTER P=1e5 CURVE=load', 'CURVE load 0 0 1 1 3 0.25', 'TIME DT=0.1 TEND=2', &
              'TIME DT=0.25 TEND=4', 'END']
     if (.not. run('elastic_quasistatic', lines, record)) return
-    call check('elastic_quasistatic_one_factorization', summary(record, 'factorizations') == '1', &
-               'factorizations = '//summary(record, 'factorizations'))
+    call check('elastic_quasistatic_one_factorization', summary_value(record, 'factorizations') == '1', &
+               'factorizations = '//summary_value(record, 'factorizations'))
     call read_deck(folder//'/elastic_quasistatic.inp', deck, error)
     call check('elastic_quasistatic_effects', effects_text(scene_effects(deck)) == 'none', &
                effects_text(scene_effects(deck)))
@@ -453,15 +454,4 @@ contains
     if (size(values) == 0) call check('column_'//name, .false., 'no history column '//name)
   end function column
 
-  !> A summary value by key ('' if absent).
-  function summary(record, key) result(value)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: key
-    character(:), allocatable :: value
-    integer :: i
-    value = ''
-    do i = 1, record%nsummary
-      if (trim(record%summary(i)%key) == key) value = record%summary(i)%value
-    end do
-  end function summary
 end program test_viscoelastic
