@@ -98,10 +98,20 @@ contains
     call get_command_argument(position, value)
   end subroutine get_argument
 
-  subroutine usage_error(message)
+  !> A usage error (of the relax subcommand if `relax`): message and usage on stderr, exit status 2.
+  subroutine usage_error(message, relax)
     character(*), intent(in) :: message
-    write(0, '(a)') 'visco2d: '//message
-    write(0, '(a)') 'usage: visco2d [-o DIR] [-q] DECK...   |   visco2d check DECK...   |   visco2d --help'
+    logical, intent(in), optional :: relax
+    logical :: for_relax
+    for_relax = .false.
+    if (present(relax)) for_relax = relax
+    if (for_relax) then
+      write(0, '(a)') 'visco2d relax: '//message
+      write(0, '(a)') 'usage: visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]   (Pa, 1/s; see visco2d --help)'
+    else
+      write(0, '(a)') 'visco2d: '//message
+      write(0, '(a)') 'usage: visco2d [-o DIR] [-q] DECK...   |   visco2d check DECK...   |   visco2d --help'
+    end if
     flush(0)
     call c_exit(2_c_int)
   end subroutine usage_error
@@ -124,16 +134,16 @@ contains
     do while (position <= command_argument_count())
       call get_argument(position, option)
       if (option == '--nu' .or. index(option, '--nu=') == 1) then
-        if (have_poisson) call relax_usage_error('--nu is given twice')
+        if (have_poisson) call usage_error('--nu is given twice', relax=.true.)
         if (option == '--nu') then
-          if (position == command_argument_count()) call relax_usage_error('option --nu needs a value')
+          if (position == command_argument_count()) call usage_error('option --nu needs a value', relax=.true.)
           position = position + 1
           call get_argument(position, text)
         else
           text = option(6:)
         end if
         call parse_real(text, poisson, ok)
-        if (.not. ok) call relax_usage_error('--nu: "'//text//'" is not a finite number')
+        if (.not. ok) call usage_error('--nu: "'//text//'" is not a finite number', relax=.true.)
         have_poisson = .true.
       else if (option == '-h' .or. option == '--help') then
         call print_help()
@@ -142,16 +152,16 @@ contains
         count = count + 1
         call parse_real(option, values(count), ok)
         if (.not. ok) then
-          if (index(option, '-') == 1) call relax_usage_error('unknown option '//option)
-          call relax_usage_error('value '//itoa(count)//' ("'//option//'") is not a finite number')
+          if (index(option, '-') == 1) call usage_error('unknown option '//option, relax=.true.)
+          call usage_error('value '//itoa(count)//' ("'//option//'") is not a finite number', relax=.true.)
         end if
       end if
       position = position + 1
     end do
-    if (.not. have_poisson) call relax_usage_error("missing --nu NU (Poisson's ratio at t = 0)")
-    if (count == 0) call relax_usage_error('no terms: give pairs E ALPHA (Pa, 1/s)')
+    if (.not. have_poisson) call usage_error("missing --nu NU (Poisson's ratio at t = 0)", relax=.true.)
+    if (count == 0) call usage_error('no terms: give pairs E ALPHA (Pa, 1/s)', relax=.true.)
     if (mod(count, 2) /= 0) &
-      call relax_usage_error('an odd number of values ('//itoa(count)//'): expected pairs E ALPHA')
+      call usage_error('an odd number of values ('//itoa(count)//'): expected pairs E ALPHA', relax=.true.)
 
     call uniaxial_to_shear(values(1:count:2), values(2:count:2), poisson, bulk, shear, beta, message)
     if (len(message) > 0) then
@@ -176,14 +186,6 @@ contains
     write(buffer, '(es19.11e3)') value
     text = trim(adjustl(buffer))
   end function scientific
-
-  subroutine relax_usage_error(message)
-    character(*), intent(in) :: message
-    write(0, '(a)') 'visco2d relax: '//message
-    write(0, '(a)') 'usage: visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]   (Pa, 1/s; see visco2d --help)'
-    flush(0)
-    call c_exit(2_c_int)
-  end subroutine relax_usage_error
 
   subroutine print_help()
     print '(a)', 'visco2d - axisymmetric / plane-strain viscoelastic finite elements (fruit impact)'
