@@ -261,6 +261,14 @@ check check_nodes_match_run "check says nodes '$(sed -n 's/^ *nodes *//p' check.
   test -n "$nnode" -a "$(sed -n 's/^ *nodes *//p' check.out)" = "$nnode"
 check check_writes_nothing "check created: $(ls -A | grep -v '^check\.' | tr '\n' ' ')" \
   test -z "$(ls -A | grep -v '^check\.')"
+# A quasi-static viscoelastic deck: check names its time axis and its effect.
+"$exe" check "$root/inputs/relaxation_step.inp" > checkvisco.out 2> checkvisco.err
+check_rc check_quasistatic_exit_0 0 $?
+check check_quasistatic_time_steps "stdout: $(first_lines checkvisco.out)" \
+  grep -q "^ *time steps *100 in 11 stage(s) to t = " checkvisco.out
+check check_quasistatic_effects "stdout: $(first_lines checkvisco.out)" \
+  grep -q "^ *effects *viscoelastic$" checkvisco.out
+rm -f checkvisco.out checkvisco.err
 "$exe" check ../decks/bad.inp > checkbad.out 2> checkbad.err
 check_rc check_bad_deck_exit_1 1 $?
 check check_bad_deck_located_error "stderr: $(first_lines checkbad.err)" \
