@@ -177,7 +177,6 @@ contains
     stop
   end subroutine run_relax
 
-
   !> A real with 12 significant digits, no blanks (es format, 3-digit exponent).
   function scientific(value) result(text)
     real(dp), intent(in) :: value

@@ -9,7 +9,7 @@ program test_bad_decks
   use visco2d_deck, only: deck_t, read_deck, analysis_static
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
   use visco2d_strings, only: itoa
   implicit none
 
@@ -340,17 +340,6 @@ contains
     character(:), allocatable :: path
     path = folder//'/'//name//'.inp'
   end function deck_path
-
-  subroutine write_deck(path, deck_lines)
-    character(*), intent(in) :: path
-    character(*), intent(in) :: deck_lines(:)
-    integer :: unit, i
-    open(newunit=unit, file=path, status='replace', action='write')
-    do i = 1, size(deck_lines)
-      write(unit, '(a)') trim(deck_lines(i))
-    end do
-    close(unit)
-  end subroutine write_deck
 
   !> read_deck must fail with `path:line[:column]: CARD: ...fragment...`.
   !> column = 0: the error must still carry the line, any column is accepted.

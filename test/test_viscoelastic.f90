@@ -27,7 +27,7 @@ program test_viscoelastic
   use visco2d_driver, only: summary_value
   use visco2d_analytic, only: shear_relaxation, shear_ramp_response, uniaxial_creep_compliance_one_term, &
                               cylinder_bore_displacement
-  use visco2d_testing, only: check, check_close, test_summary
+  use visco2d_testing, only: check, check_close, test_summary, write_deck
   implicit none
 
   integer, parameter :: qp = selected_real_kind(30)
@@ -430,16 +430,6 @@ contains
       call check(name//'_runs', .false., error_text(error))
     end if
   end function run
-
-  subroutine write_deck(path, lines)
-    character(*), intent(in) :: path, lines(:)
-    integer :: unit, i
-    open(newunit=unit, file=path, status='replace', action='write')
-    do i = 1, size(lines)
-      write(unit, '(a)') trim(lines(i))
-    end do
-    close(unit)
-  end subroutine write_deck
 
   !> A history column by name (empty if absent).
   function column(record, name) result(values)

@@ -5,7 +5,7 @@ module visco2d_testing
   implicit none
   private
 
-  public :: check, check_close, check_text_contains, test_summary, failures
+  public :: check, check_close, check_text_contains, test_summary, failures, write_deck
 
   integer, save :: passes = 0, failures = 0
 
@@ -55,4 +55,16 @@ contains
     print '(a, ": ", i0, " passed, ", i0, " failed")', program_name, passes, failures
     if (failures > 0) error stop 1, quiet=.true.
   end subroutine test_summary
+
+  !> Write the lines of a test deck to a file (trailing blanks trimmed).
+  subroutine write_deck(path, deck_lines)
+    character(*), intent(in) :: path
+    character(*), intent(in) :: deck_lines(:)
+    integer :: unit, i
+    open(newunit=unit, file=path, status='replace', action='write')
+    do i = 1, size(deck_lines)
+      write(unit, '(a)') trim(deck_lines(i))
+    end do
+    close(unit)
+  end subroutine write_deck
 end module visco2d_testing
