@@ -15,7 +15,7 @@ module visco2d_assembly
   private
 
   public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask, prescribed_displacement
-  public :: lumped_mass, internal_force, nodal_average, gather, scatter_add
+  public :: lumped_mass, gravity_load, internal_force, nodal_average, gather, scatter_add
 
 contains
 
@@ -67,7 +67,8 @@ contains
     call band_create(matrix, 2*mesh%nnode, mesh%half_bandwidth)
     do e = 1, mesh%nelem
       call band_add_element(matrix, element_dofs(mesh, e), &
-        element_stiffness(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), elastic_matrix(shear(e), bulk(e))))
+        element_stiffness(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), elastic_matrix(shear(e), bulk(e)), &
+                          deck%formulation))
     end do
     end associate
   end subroutine assemble_stiffness
@@ -171,6 +172,19 @@ contains
     end associate
   end function lumped_mass
 
+  !> Body force of gravity, rho g in -z (GRAVITY card): the consistent load
+  !> integral N_i rho g dV, which equals the lumped mass times g because the
+  !> shape functions sum to one. Zero without gravity.
+  function gravity_load(deck) result(load)
+    type(deck_t), intent(in) :: deck
+    real(dp) :: load(2*deck%mesh%nnode)
+    load = 0.0_dp
+    if (deck%gravity == 0.0_dp) return
+    load = lumped_mass(deck)
+    load(1::2) = 0.0_dp
+    load(2::2) = -deck%gravity*load(2::2)
+  end function gravity_load
+
   !> Internal force vector sum_e B^T sigma from Gauss-point stresses (4, 4, nelem).
   function internal_force(deck, stress) result(force)
     type(deck_t), intent(in) :: deck
@@ -180,7 +194,7 @@ contains
     force = 0.0_dp
     do e = 1, deck%mesh%nelem
       call scatter_add(deck%mesh, e, element_internal_force(deck%geometry, &
-        deck%mesh%xy(:, deck%mesh%connectivity(:, e)), stress(:, :, e)), force)
+        deck%mesh%xy(:, deck%mesh%connectivity(:, e)), stress(:, :, e), deck%formulation), force)
     end do
   end function internal_force
 

@@ -3,7 +3,7 @@
 !> time stages, probes), with every reference checked. Errors name the
 !> file, line, column and card.
 module visco2d_deck
-  use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain
+  use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain, formulation_standard, formulation_bbar
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, short_real, to_lower
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
@@ -13,17 +13,27 @@ module visco2d_deck
   use visco2d_material_cards, only: read_material, read_prony, finish_material
   use visco2d_curve, only: curve_t, read_curve
   use visco2d_time, only: time_stage_t, read_time
+  use visco2d_dynamic_cards, only: dynamics_t, output_request_t, read_wilson, read_initial, read_drop, &
+                                   read_gravity, read_output, read_formulation, standard_gravity, theta_unconditional
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &
                           build_mesh, node_set, node_index, edge_set_code, edge_set_name, &
                           edge_set_none, edge_set_axis
   implicit none
   private
 
-  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, time_stage_t, read_deck
-  public :: analysis_static, analysis_quasistatic, analysis_name, geometry_name, total_steps
+  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, time_stage_t, warning_t, read_deck
+  public :: dynamics_t, output_request_t
+  public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
+  public :: formulation_name, initial_velocity
 
   integer, parameter :: analysis_static = 1       !< S U = R once
   integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
+  integer, parameter :: analysis_dynamic = 3      !< incremental in time with inertia (Wilson-theta, the extension)
+
+  !> A warning about a deck that still runs (file:line: CARD: text).
+  type :: warning_t
+    character(:), allocatable :: text
+  end type warning_t
 
   !> A support: components prescribed at a set of nodes, u = value * curve(t)
   !> (value 0, no curve: a fixed support).
@@ -79,7 +89,13 @@ module visco2d_deck
     type(probe_t), allocatable :: probes(:)
     type(expect_t), allocatable :: expects(:)
     type(curve_t), allocatable :: curves(:)
-    type(time_stage_t), allocatable :: stages(:)  !< TIME cards, in order (QUASISTATIC)
+    type(time_stage_t), allocatable :: stages(:)  !< TIME cards, in order (QUASISTATIC, DYNAMIC)
+    type(dynamics_t) :: dynamics                  !< WILSON, INITIAL, DROP (DYNAMIC)
+    real(dp) :: gravity = 0.0_dp                  !< GRAVITY G=, m/s^2 in -z; 0: no gravity
+    integer :: gravity_line = 0
+    type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
+    integer :: formulation = formulation_standard !< FORMULATION STANDARD | BBAR
+    type(warning_t), allocatable :: warnings(:)
   end type deck_t
 
   !> A target of FIX or FORCE or PROBE, kept until the mesh exists.
@@ -100,9 +116,31 @@ contains
     select case (code)
     case (analysis_static); name = 'STATIC'
     case (analysis_quasistatic); name = 'QUASISTATIC'
+    case (analysis_dynamic); name = 'DYNAMIC'
     case default; name = 'NONE'
     end select
   end function analysis_name
+
+  pure function formulation_name(code) result(name)
+    integer, intent(in) :: code
+    character(:), allocatable :: name
+    name = merge('BBAR    ', 'STANDARD', code == formulation_bbar)
+    name = trim(name)
+  end function formulation_name
+
+  !> Initial (v_r, v_z) of the free nodes, m/s: INITIAL VR=/VZ=, or VZ = -sqrt(2 g h) of DROP HEIGHT=h
+  !> (g of the GRAVITY card, 9.8 m/s^2 without one).
+  pure function initial_velocity(deck) result(velocity)
+    type(deck_t), intent(in) :: deck
+    real(dp) :: velocity(2)
+    real(dp) :: g
+    velocity = deck%dynamics%velocity
+    if (deck%dynamics%drop_line > 0) then
+      g = standard_gravity
+      if (deck%gravity_line > 0) g = deck%gravity
+      velocity(2) = -sqrt(2.0_dp*g*deck%dynamics%drop_height)
+    end if
+  end function initial_velocity
 
   pure function geometry_name(code) result(name)
     integer, intent(in) :: code
@@ -127,14 +165,16 @@ contains
     type(pending_t), allocatable :: fixes(:), forces(:), probes(:)
     character(len=32), allocatable :: pressure_curves(:)
     integer, allocatable :: pressure_cards(:)
-    integer :: i, title_line, analysis_line, geometry_line, material_card
+    integer :: i, title_line, analysis_line, geometry_line, material_card, formulation_line
     character(:), allocatable :: word
 
     call read_cards(file, deck%cards, error)
     if (allocated(error)) return
     deck%title = ''
     allocate(deck%materials(0), deck%pressures(0), deck%expects(0), fixes(0), forces(0), probes(0))
-    allocate(deck%curves(0), deck%stages(0), pressure_curves(0), pressure_cards(0))
+    allocate(deck%curves(0), deck%stages(0), pressure_curves(0), pressure_cards(0), deck%warnings(0))
+    allocate(deck%output%field_times(0))
+    formulation_line = 0
     title_line = 0
     analysis_line = 0
     geometry_line = 0
@@ -155,20 +195,20 @@ contains
           call duplicate_card(analysis_line); return
         end if
         analysis_line = card%line
-        call positional_word(cards, card, 1, 'analysis kind (STATIC or QUASISTATIC)', word, error)
+        call positional_word(cards, card, 1, 'analysis kind (STATIC, QUASISTATIC or DYNAMIC)', word, error)
         if (allocated(error)) return
-        call check_fields_used(cards, card, error, 'ANALYSIS STATIC | QUASISTATIC'); if (allocated(error)) return
+        call check_fields_used(cards, card, error, 'ANALYSIS STATIC | QUASISTATIC | DYNAMIC')
+        if (allocated(error)) return
         select case (word)
         case ('STATIC')
           deck%analysis = analysis_static
         case ('QUASISTATIC')
           deck%analysis = analysis_quasistatic
         case ('DYNAMIC')
-          call card_error(error, cards, card, word//' analysis is not available in this version '// &
-                          '(STATIC or QUASISTATIC)')
-          return
+          deck%analysis = analysis_dynamic
         case default
-          call card_error(error, cards, card, 'analysis kind must be STATIC or QUASISTATIC, got "'//word//'"')
+          call card_error(error, cards, card, 'analysis kind must be STATIC, QUASISTATIC or DYNAMIC, got "'// &
+                          word//'"', field_column(card, '1'))
           return
         end select
       case ('GEOMETRY')
@@ -202,6 +242,41 @@ contains
         call read_curve(cards, card, deck%curves, error); if (allocated(error)) return
       case ('TIME')
         call read_time(cards, card, deck%stages, error); if (allocated(error)) return
+      case ('WILSON')
+        if (deck%dynamics%wilson_line > 0) then
+          call duplicate_card(deck%dynamics%wilson_line); return
+        end if
+        call read_wilson(cards, card, deck%dynamics, error); if (allocated(error)) return
+        if (deck%dynamics%theta < theta_unconditional) call add_warning(deck, card%line, 'WILSON', &
+          'THETA = '//short_real(deck%dynamics%theta)//' < 1.37: Wilson-theta is then only conditionally stable;'// &
+          ' a large DT may blow up (1.4 is the usual value)')
+      case ('INITIAL')
+        if (deck%dynamics%initial_line > 0) then
+          call duplicate_card(deck%dynamics%initial_line); return
+        end if
+        call read_initial(cards, card, deck%dynamics, error); if (allocated(error)) return
+      case ('DROP')
+        if (deck%dynamics%drop_line > 0) then
+          call duplicate_card(deck%dynamics%drop_line); return
+        end if
+        call read_drop(cards, card, deck%dynamics, error); if (allocated(error)) return
+      case ('GRAVITY')
+        if (deck%gravity_line > 0) then
+          call duplicate_card(deck%gravity_line); return
+        end if
+        call read_gravity(cards, card, deck%gravity, error); if (allocated(error)) return
+        deck%gravity_line = card%line
+      case ('OUTPUT')
+        if (deck%output%line > 0) then
+          call duplicate_card(deck%output%line); return
+        end if
+        call read_output(cards, card, deck%output, error); if (allocated(error)) return
+      case ('FORMULATION')
+        if (formulation_line > 0) then
+          call duplicate_card(formulation_line); return
+        end if
+        call read_formulation(cards, card, deck%formulation, error); if (allocated(error)) return
+        formulation_line = card%line
       case ('NODE')
         call read_node_card(mesh_input, cards, card, error); if (allocated(error)) return
       case ('ELEMENT')
@@ -224,7 +299,8 @@ contains
         call check_fields_used(cards, card, error, 'END'); if (allocated(error)) return
       case default
         call card_error(error, cards, card, 'unknown card "'//card%keyword//'" (known: TITLE ANALYSIS '// &
-          'GEOMETRY MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE CURVE TIME PROBE EXPECT END)')
+          'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
+          'WILSON INITIAL DROP OUTPUT PROBE EXPECT END)')
         return
       end select
       end associate
@@ -237,7 +313,7 @@ contains
       call set_error(error, 'missing END card (is the deck truncated?)', file=file); return
     end if
     if (analysis_line == 0) then
-      call set_error(error, 'missing ANALYSIS card (ANALYSIS STATIC or ANALYSIS QUASISTATIC)', file=file); return
+      call set_error(error, 'missing ANALYSIS card (ANALYSIS STATIC, QUASISTATIC or DYNAMIC)', file=file); return
     end if
     if (size(deck%materials) == 0) then
       call set_error(error, 'missing MATERIAL card', file=file); return
@@ -246,6 +322,7 @@ contains
       call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
     end do
     call check_time_stages(deck, analysis_line, error); if (allocated(error)) return
+    call check_dynamic_cards(deck, error); if (allocated(error)) return
 
     call build_mesh(mesh_input, cards, deck%geometry, deck%mesh, error); if (allocated(error)) return
     call resolve_materials(deck, error); if (allocated(error)) return
@@ -258,6 +335,8 @@ contains
       if (allocated(error)) return
     end do
     call check_memory_needs_time(deck, analysis_line, error); if (allocated(error)) return
+    call check_mass(deck, error); if (allocated(error)) return
+    call check_locking(deck)
     end associate
 
   contains
@@ -545,7 +624,8 @@ contains
     associate (the_card => deck%cards%cards(card))
     if (deck%analysis == analysis_static) then
       call card_error(error, deck%cards, the_card, 'CURVE= needs a time axis: use ANALYSIS QUASISTATIC '// &
-                      'with TIME cards (STATIC applies every load once, in full)', field_column(the_card, 'CURVE'))
+                      'or DYNAMIC with TIME cards (STATIC applies every load once, in full)', &
+                      field_column(the_card, 'CURVE'))
       return
     end if
     do k = 1, size(deck%curves)
@@ -556,19 +636,104 @@ contains
     end associate
   end function curve_index
 
-  !> TIME belongs to QUASISTATIC (required there), not to STATIC.
+  !> TIME belongs to QUASISTATIC and DYNAMIC (required there), not to STATIC.
   subroutine check_time_stages(deck, analysis_line, error)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: analysis_line
     type(error_t), allocatable, intent(inout) :: error
-    if (deck%analysis == analysis_quasistatic .and. size(deck%stages) == 0) then
-      call set_error(error, 'QUASISTATIC analysis needs a TIME DT=.. TEND=.. card', file=deck%cards%file, &
-                     line=analysis_line, card='ANALYSIS')
+    if (deck%analysis /= analysis_static .and. size(deck%stages) == 0) then
+      call set_error(error, analysis_name(deck%analysis)//' analysis needs a TIME DT=.. TEND=.. card', &
+                     file=deck%cards%file, line=analysis_line, card='ANALYSIS')
     else if (deck%analysis == analysis_static .and. size(deck%stages) > 0) then
-      call set_error(error, 'TIME cards need ANALYSIS QUASISTATIC (STATIC has no time axis)', &
+      call set_error(error, 'TIME cards need ANALYSIS QUASISTATIC or DYNAMIC (STATIC has no time axis)', &
                      file=deck%cards%file, line=deck%stages(1)%line, card='TIME')
     end if
   end subroutine check_time_stages
+
+  !> WILSON, INITIAL and DROP belong to DYNAMIC; INITIAL VZ= and DROP exclude
+  !> each other; OUTPUT needs a time axis and its FIELDS times must lie on it.
+  subroutine check_dynamic_cards(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, lines(3)
+    character(len=7), parameter :: names(3) = ['WILSON ', 'INITIAL', 'DROP   ']
+    associate (d => deck%dynamics)
+    lines = [d%wilson_line, d%initial_line, d%drop_line]
+    if (deck%analysis /= analysis_dynamic) then
+      do k = 1, size(lines)
+        if (lines(k) == 0) cycle
+        call set_error(error, trim(names(k))//' needs ANALYSIS DYNAMIC (this deck is '// &
+                       analysis_name(deck%analysis)//')', file=deck%cards%file, line=lines(k), card=trim(names(k)))
+        return
+      end do
+    end if
+    if (d%drop_line > 0 .and. d%initial_line > 0) then
+      if (d%velocity(2) /= 0.0_dp) then
+        call set_error(error, 'DROP sets the initial VZ = -sqrt(2 g h); the INITIAL card on line '// &
+                       itoa(d%initial_line)//' sets VZ too: give one of them', file=deck%cards%file, &
+                       line=d%drop_line, card='DROP')
+        return
+      end if
+    end if
+    end associate
+    if (deck%output%line > 0) then
+      if (deck%analysis == analysis_static) then
+        call set_error(error, 'OUTPUT needs a time axis (ANALYSIS QUASISTATIC or DYNAMIC with TIME cards)', &
+                       file=deck%cards%file, line=deck%output%line, card='OUTPUT')
+        return
+      end if
+      if (size(deck%output%field_times) > 0 .and. size(deck%stages) > 0) then
+        if (deck%output%field_times(size(deck%output%field_times)) > deck%stages(size(deck%stages))%end_time) then
+          call set_error(error, 'FIELDS time '//short_real(deck%output%field_times(size(deck%output%field_times)))// &
+            ' s is after the end of the run (TEND = '//short_real(deck%stages(size(deck%stages))%end_time)//' s)', &
+            file=deck%cards%file, line=deck%output%line, card='OUTPUT')
+          return
+        end if
+      end if
+    end if
+  end subroutine check_dynamic_cards
+
+  !> Inertia and gravity need mass: every material in use needs RHO > 0.
+  subroutine check_mass(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (deck%analysis /= analysis_dynamic .and. deck%gravity_line == 0) return
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%density > 0.0_dp) cycle
+      if (.not. any(deck%mesh%element_material == k)) cycle
+      call set_error(error, 'material '//deck%materials(k)%id//' has no density: '// &
+        trim(merge('ANALYSIS DYNAMIC', 'GRAVITY         ', deck%analysis == analysis_dynamic))// &
+        ' needs RHO= > 0 (kg/m^3)', file=deck%cards%file, line=deck%materials(k)%line, card='MATERIAL')
+      return
+    end do
+  end subroutine check_mass
+
+  !> A warning for a nearly incompressible material (K/G > 1000, nu > 0.4995)
+  !> in the standard element, which locks: FORMULATION BBAR does not.
+  subroutine check_locking(deck)
+    type(deck_t), intent(inout) :: deck
+    integer :: k
+    real(dp) :: ratio
+    if (deck%formulation /= formulation_standard) return
+    do k = 1, size(deck%materials)
+      if (.not. any(deck%mesh%element_material == k)) cycle
+      ratio = deck%materials(k)%bulk/max(deck%materials(k)%shear, tiny(1.0_dp))   ! instantaneous G(0)
+      if (ratio > 1000.0_dp) call add_warning(deck, deck%materials(k)%line, 'MATERIAL', 'material '// &
+        deck%materials(k)%id//' is nearly incompressible (K/G = '//short_real(ratio)//'): the standard '// &
+        'element locks (too stiff); FORMULATION BBAR avoids that')
+    end do
+  end subroutine check_locking
+
+  !> Add a located warning to the deck.
+  subroutine add_warning(deck, line, card, message)
+    type(deck_t), intent(inout) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: card, message
+    type(warning_t) :: warning
+    warning%text = deck%cards%file//':'//itoa(line)//': '//card//': '//message
+    deck%warnings = [deck%warnings, warning]
+  end subroutine add_warning
 
   !> A material with memory needs time: STATIC cannot say which modulus to use.
   subroutine check_memory_needs_time(deck, analysis_line, error)
@@ -581,7 +746,8 @@ contains
       if (.not. has_memory(deck%materials(k))) cycle
       if (.not. any(deck%mesh%element_material == k)) cycle
       call set_error(error, 'material '//deck%materials(k)%id//' relaxes in time (PRONY terms with BETA > 0): '// &
-        'use ANALYSIS QUASISTATIC with TIME cards', file=deck%cards%file, line=analysis_line, card='ANALYSIS')
+        'use ANALYSIS QUASISTATIC or DYNAMIC with TIME cards', file=deck%cards%file, line=analysis_line, &
+        card='ANALYSIS')
       return
     end do
   end subroutine check_memory_needs_time

@@ -2,13 +2,17 @@
 !> or plane strain (unit thickness), with 2x2 Gauss integration.
 !> Strain vector: (e_r, e_z, e_theta = u_r/r, gamma_rz); nodal dofs (u_r, u_z).
 !> All kernels are pure: they see one element's coordinates and nothing else.
+!> The optional `formulation` selects the legacy element (default) or B-bar:
+!> the volumetric row sum of B replaced, at every Gauss point, by its
+!> r-weighted element mean (mean dilatation), which removes volumetric
+!> locking for nearly incompressible materials (Hughes 1980).
 module visco2d_element
-  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_bbar
   implicit none
   private
 
   public :: gauss_count, gauss_xi, gauss_eta
-  public :: shape_functions, strain_displacement, element_stiffness, element_lumped_mass
+  public :: shape_functions, strain_displacement, element_b_matrices, element_stiffness, element_lumped_mass
   public :: element_strains, element_internal_force, edge_pressure_load
   public :: element_gauss_points, element_min_jacobian, gauss_to_node_extrapolation
 
@@ -68,17 +72,47 @@ contains
     end if
   end subroutine strain_displacement
 
+  !> B at the four Gauss points and their integration factors |J| r. With
+  !> formulation = formulation_bbar, B-bar: B + (1/3) m (bvol_mean - bvol),
+  !> m = (1, 1, 1, 0), bvol = rows 1 + 2 + 3 of B, bvol_mean its mean weighted
+  !> by |J| r, so the volumetric strain is constant in the element.
+  pure subroutine element_b_matrices(geometry, xy, b, factor, formulation)
+    integer, intent(in) :: geometry
+    real(dp), intent(in) :: xy(2, 4)
+    real(dp), intent(out) :: b(4, 8, gauss_count), factor(gauss_count)
+    integer, intent(in), optional :: formulation
+    real(dp) :: detj, radius, volumetric(8, gauss_count), mean(8)
+    integer :: gp, row
+    do gp = 1, gauss_count
+      call strain_displacement(geometry, xy, gauss_xi(gp), gauss_eta(gp), b(:, :, gp), detj, radius, factor(gp))
+    end do
+    if (.not. present(formulation)) return
+    if (formulation /= formulation_bbar .or. sum(factor) <= 0.0_dp) return
+    mean = 0.0_dp
+    do gp = 1, gauss_count
+      volumetric(:, gp) = b(1, :, gp) + b(2, :, gp) + b(3, :, gp)
+      mean = mean + factor(gp)*volumetric(:, gp)
+    end do
+    mean = mean/sum(factor)
+    do gp = 1, gauss_count
+      do row = 1, 3
+        b(row, :, gp) = b(row, :, gp) + (mean - volumetric(:, gp))/3.0_dp
+      end do
+    end do
+  end subroutine element_b_matrices
+
   !> Element stiffness k = sum_gp B^T D B |J| r for a constant D.
-  pure function element_stiffness(geometry, xy, d) result(k)
+  pure function element_stiffness(geometry, xy, d, formulation) result(k)
     integer, intent(in) :: geometry
     real(dp), intent(in) :: xy(2, 4), d(4, 4)
+    integer, intent(in), optional :: formulation
     real(dp) :: k(8, 8)
-    real(dp) :: b(4, 8), detj, radius, factor
+    real(dp) :: b(4, 8, gauss_count), factor(gauss_count)
     integer :: gp
+    call element_b_matrices(geometry, xy, b, factor, formulation)
     k = 0.0_dp
     do gp = 1, gauss_count
-      call strain_displacement(geometry, xy, gauss_xi(gp), gauss_eta(gp), b, detj, radius, factor)
-      k = k + factor*matmul(transpose(b), matmul(d, b))
+      k = k + factor(gp)*matmul(transpose(b(:, :, gp)), matmul(d, b(:, :, gp)))
     end do
   end function element_stiffness
 
@@ -99,29 +133,31 @@ contains
   end function element_lumped_mass
 
   !> Strains at the four Gauss points from the element displacements (u_r1, u_z1, ...).
-  pure function element_strains(geometry, xy, displacement) result(strain)
+  pure function element_strains(geometry, xy, displacement, formulation) result(strain)
     integer, intent(in) :: geometry
     real(dp), intent(in) :: xy(2, 4), displacement(8)
+    integer, intent(in), optional :: formulation
     real(dp) :: strain(4, gauss_count)
-    real(dp) :: b(4, 8), detj, radius, factor
+    real(dp) :: b(4, 8, gauss_count), factor(gauss_count)
     integer :: gp
+    call element_b_matrices(geometry, xy, b, factor, formulation)
     do gp = 1, gauss_count
-      call strain_displacement(geometry, xy, gauss_xi(gp), gauss_eta(gp), b, detj, radius, factor)
-      strain(:, gp) = matmul(b, displacement)
+      strain(:, gp) = matmul(b(:, :, gp), displacement)
     end do
   end function element_strains
 
   !> Internal nodal forces f = sum_gp B^T sigma |J| r.
-  pure function element_internal_force(geometry, xy, stress) result(f)
+  pure function element_internal_force(geometry, xy, stress, formulation) result(f)
     integer, intent(in) :: geometry
     real(dp), intent(in) :: xy(2, 4), stress(4, gauss_count)
+    integer, intent(in), optional :: formulation
     real(dp) :: f(8)
-    real(dp) :: b(4, 8), detj, radius, factor
+    real(dp) :: b(4, 8, gauss_count), factor(gauss_count)
     integer :: gp
+    call element_b_matrices(geometry, xy, b, factor, formulation)
     f = 0.0_dp
     do gp = 1, gauss_count
-      call strain_displacement(geometry, xy, gauss_xi(gp), gauss_eta(gp), b, detj, radius, factor)
-      f = f + factor*matmul(transpose(b), stress(:, gp))
+      f = f + factor(gp)*matmul(transpose(b(:, :, gp)), stress(:, gp))
     end do
   end function element_internal_force
 

@@ -12,4 +12,8 @@ module visco2d_kinds
 
   !> Geometry codes.
   integer, parameter, public :: geometry_axisymmetric = 1, geometry_plane_strain = 2
+
+  !> Element formulation codes (FORMULATION card): the legacy fully integrated
+  !> element, or B-bar (mean dilatation) against volumetric locking.
+  integer, parameter, public :: formulation_standard = 1, formulation_bbar = 2
 end module visco2d_kinds

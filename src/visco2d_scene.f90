@@ -3,7 +3,7 @@
 !> without viscoelastic materials, no contact search without a plate,
 !> no body force without gravity.
 module visco2d_scene
-  use visco2d_deck, only: deck_t
+  use visco2d_deck, only: deck_t, analysis_dynamic
   use visco2d_material, only: has_memory
   implicit none
   private
@@ -20,13 +20,16 @@ module visco2d_scene
 
 contains
 
-  !> The effects a deck calls for. (The dynamic, contact and gravity cards
-  !> arrive with their extensions.)
+  !> The effects a deck calls for: inertia for ANALYSIS DYNAMIC, memory for a
+  !> material in use with Prony terms (beta > 0), gravity for GRAVITY G > 0.
+  !> (Contact arrives with the PLATE card of the contact extension.)
   function scene_effects(deck) result(effects)
     type(deck_t), intent(in) :: deck
     type(effects_t) :: effects
     integer :: k
     effects = effects_t()
+    effects%inertia = deck%analysis == analysis_dynamic
+    effects%gravity = deck%gravity > 0.0_dp
     do k = 1, size(deck%materials)
       if (has_memory(deck%materials(k)) .and. any(deck%mesh%element_material == k)) effects%viscoelastic = .true.
     end do

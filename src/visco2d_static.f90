@@ -23,7 +23,7 @@ module visco2d_static
   use visco2d_banded, only: band_matrix_t, band_constrain, band_factor, band_solve, band_multiply, &
                             band_constrain_matrix, band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
-                              prescribed_displacement, internal_force, scatter_add
+                              prescribed_displacement, internal_force, scatter_add, gravity_load
   use visco2d_element, only: element_internal_force
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
@@ -62,7 +62,7 @@ contains
     shear = deck%materials(mesh%element_material)%shear
     bulk = deck%materials(mesh%element_material)%bulk
     call assemble_stiffness(deck, shear, bulk, stiffness)
-    load = external_load(deck, 0.0_dp)
+    load = external_load(deck, 0.0_dp) + gravity_load(deck)
     fixed = support_mask(deck)
     zero = prescribed_displacement(deck, 0.0_dp)
     u = load
@@ -89,7 +89,8 @@ contains
 
     allocate(solution%strain(4, 4, mesh%nelem), solution%stress(4, 4, mesh%nelem))
     do e = 1, mesh%nelem
-      solution%strain(:, :, e) = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), gather(mesh, e, u))
+      solution%strain(:, :, e) = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                                                 gather(mesh, e, u), deck%formulation)
       do info = 1, 4
         solution%stress(:, info, e) = stress_from_strain(shear(e), bulk(e), solution%strain(:, info, e))
       end do
@@ -174,7 +175,7 @@ contains
     type(step_coefficients_t), allocatable :: coefficients(:)
     type(viscoelastic_state_t) :: state
     real(dp), allocatable :: u(:), du(:), rhs(:), load(:), internal(:), stress(:, :, :), trial(:, :, :)
-    real(dp), allocatable :: shear(:), bulk(:)
+    real(dp), allocatable :: shear(:), bulk(:), gravity(:)
     logical, allocatable :: fixed(:)
     logical :: memory
     integer :: step, stage, k, e, g, nterm, factorizations, first_step
@@ -189,6 +190,7 @@ contains
     if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
     allocate(coefficients(size(materials)))
     fixed = support_mask(deck)
+    gravity = gravity_load(deck)
     allocate(u(2*mesh%nnode), du(2*mesh%nnode), internal(2*mesh%nnode))
     u = 0.0_dp
     internal = 0.0_dp
@@ -266,11 +268,11 @@ contains
             trial(:, g, e) = trial(:, g, e) + s0
           end do
           call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
-            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e)), rhs)
+            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e), deck%formulation), rhs)
           end associate
         end do
       end if
-      load = external_load(deck, t)
+      load = external_load(deck, t) + gravity
       rhs = rhs + load
       du = prescribed_displacement(deck, t) - u          ! increments of the prescribed values
       call band_constrain_rhs(stiffness, fixed, du, rhs)
@@ -279,7 +281,7 @@ contains
       u = u + du
       do e = 1, deck%mesh%nelem
         increment = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                    gather(deck%mesh, e, du))
+                                    gather(deck%mesh, e, du), deck%formulation)
         nterm = 0
         if (memory) nterm = element_terms(state, e)
         do g = 1, 4

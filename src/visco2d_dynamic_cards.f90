@@ -1,0 +1,173 @@
+!> The cards of the dynamic extension and of the scene around the body:
+!> WILSON, INITIAL, DROP, GRAVITY, OUTPUT and FORMULATION. Each reader checks
+!> its own card; visco2d_deck checks how the cards fit together.
+module visco2d_dynamic_cards
+  use visco2d_kinds, only: dp, formulation_standard, formulation_bbar
+  use visco2d_error, only: error_t
+  use visco2d_strings, only: short_real, itoa
+  use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
+                           positional_word, check_fields_used, has_field, field_column, parse_real
+  implicit none
+  private
+
+  public :: dynamics_t, output_request_t, standard_gravity, theta_unconditional
+  public :: read_wilson, read_initial, read_drop, read_gravity, read_output, read_formulation
+
+  !> g of DROP HEIGHT= when the deck has no GRAVITY card, and the default of GRAVITY G= (the paper's value).
+  real(dp), parameter :: standard_gravity = 9.8_dp
+  !> Wilson-theta is unconditionally stable for theta >= 1.37 (Bathe and Wilson 1973).
+  real(dp), parameter :: theta_unconditional = 1.37_dp
+
+  !> Time integration and initial state of a DYNAMIC analysis.
+  type :: dynamics_t
+    real(dp) :: theta = 1.4_dp             !< Wilson theta, eqs. [34]-[37]
+    integer :: wilson_line = 0
+    real(dp) :: velocity(2) = 0.0_dp       !< initial (v_r, v_z) of every free node, m/s
+    logical :: acceleration_given(2) = .false.
+    real(dp) :: acceleration(2) = 0.0_dp   !< initial (a_r, a_z) if given, m/s^2 (else from equilibrium)
+    integer :: initial_line = 0
+    real(dp) :: drop_height = -1.0_dp      !< m; < 0: no DROP card
+    integer :: drop_line = 0
+  end type dynamics_t
+
+  !> OUTPUT EVERY=k FIELDS=t1,t2,...
+  type :: output_request_t
+    integer :: every = 1                   !< a history row every k steps (and the last step)
+    real(dp), allocatable :: field_times(:)  !< s, increasing: field snapshots at the first step at or after each
+    integer :: line = 0
+  end type output_request_t
+
+contains
+
+  !> WILSON THETA=1.4. Rejects theta < 1 (the method is then not consistent
+  !> with its own linear-acceleration assumption); theta < 1.37 is accepted
+  !> with a warning by the deck reader.
+  subroutine read_wilson(cards, card, dynamics, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(dynamics_t), intent(inout) :: dynamics
+    type(error_t), allocatable, intent(inout) :: error
+    call named_real(cards, card, 'THETA', dynamics%theta, error, default=1.4_dp); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'WILSON THETA=1.4'); if (allocated(error)) return
+    if (dynamics%theta < 1.0_dp) then
+      call card_error(error, cards, card, 'THETA must be >= 1 (1.4 is the usual value; theta >= 1.37 is '// &
+                      'unconditionally stable), got '//short_real(dynamics%theta), field_column(card, 'THETA'))
+      return
+    end if
+    if (dynamics%theta > 10.0_dp) then
+      call card_error(error, cards, card, 'THETA must be <= 10 (1.4 is the usual value), got '// &
+                      short_real(dynamics%theta), field_column(card, 'THETA'))
+      return
+    end if
+    dynamics%wilson_line = card%line
+  end subroutine read_wilson
+
+  !> INITIAL VZ=.. [VR=..] [AZ=..] [AR=..]: uniform initial velocity (m/s) and,
+  !> if given, acceleration (m/s^2) of every node that is not supported.
+  subroutine read_initial(cards, card, dynamics, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(dynamics_t), intent(inout) :: dynamics
+    type(error_t), allocatable, intent(inout) :: error
+    call named_real(cards, card, 'VR', dynamics%velocity(1), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'VZ', dynamics%velocity(2), error, default=0.0_dp); if (allocated(error)) return
+    dynamics%acceleration_given = [has_field(card, 'AR'), has_field(card, 'AZ')]
+    call named_real(cards, card, 'AR', dynamics%acceleration(1), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'AZ', dynamics%acceleration(2), error, default=0.0_dp); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'INITIAL VZ=.. [VR=..] [AZ=..] [AR=..]'); if (allocated(error)) return
+    if (.not. any([has_field(card, 'VR'), has_field(card, 'VZ'), dynamics%acceleration_given])) then
+      call card_error(error, cards, card, 'INITIAL needs at least one of VZ=, VR=, AZ=, AR='); return
+    end if
+    dynamics%initial_line = card%line
+  end subroutine read_initial
+
+  !> DROP HEIGHT=h: the body starts at contact with VZ = -sqrt(2 g h).
+  subroutine read_drop(cards, card, dynamics, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(dynamics_t), intent(inout) :: dynamics
+    type(error_t), allocatable, intent(inout) :: error
+    call named_real(cards, card, 'HEIGHT', dynamics%drop_height, error); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'DROP HEIGHT=..'); if (allocated(error)) return
+    if (dynamics%drop_height < 0.0_dp) then
+      call card_error(error, cards, card, 'HEIGHT must be >= 0 m, got '//short_real(dynamics%drop_height), &
+                      field_column(card, 'HEIGHT')); return
+    end if
+    dynamics%drop_line = card%line
+  end subroutine read_drop
+
+  !> GRAVITY [G=9.8]: body force rho g in -z, m/s^2.
+  subroutine read_gravity(cards, card, gravity, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    real(dp), intent(out) :: gravity
+    type(error_t), allocatable, intent(inout) :: error
+    call named_real(cards, card, 'G', gravity, error, default=standard_gravity); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'GRAVITY [G=9.8]'); if (allocated(error)) return
+    if (gravity < 0.0_dp) then
+      call card_error(error, cards, card, 'G must be >= 0 m/s^2 (gravity acts in -z), got '//short_real(gravity), &
+                      field_column(card, 'G')); return
+    end if
+  end subroutine read_gravity
+
+  !> OUTPUT EVERY=k [FIELDS=t1,t2,...]: history every k steps, fields at those times (s).
+  subroutine read_output(cards, card, output, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(output_request_t), intent(inout) :: output
+    type(error_t), allocatable, intent(inout) :: error
+    character(:), allocatable :: list
+    real(dp) :: value
+    logical :: ok
+    integer :: start, comma
+    call named_integer(cards, card, 'EVERY', output%every, error, default=1); if (allocated(error)) return
+    call named_word(cards, card, 'FIELDS', list, error, default=''); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'OUTPUT EVERY=k [FIELDS=t1,t2,...]'); if (allocated(error)) return
+    if (output%every < 1) then
+      call card_error(error, cards, card, 'EVERY must be >= 1, got '//itoa(output%every), field_column(card, 'EVERY')); return
+    end if
+    allocate(output%field_times(0))
+    start = 1
+    do while (start <= len(list))
+      comma = index(list(start:), ',')
+      if (comma == 0) comma = len(list) - start + 2
+      call parse_real(list(start:start + comma - 2), value, ok)
+      if (.not. ok .or. value < 0.0_dp) then
+        call card_error(error, cards, card, 'FIELDS must be a comma-separated list of times >= 0 s, got "'// &
+                        list(start:start + comma - 2)//'"', field_column(card, 'FIELDS')); return
+      end if
+      if (size(output%field_times) > 0) then
+        if (value <= output%field_times(size(output%field_times))) then
+          call card_error(error, cards, card, 'FIELDS times must increase, got '//short_real(value)// &
+                          ' after '//short_real(output%field_times(size(output%field_times))), &
+                          field_column(card, 'FIELDS')); return
+        end if
+      end if
+      output%field_times = [output%field_times, value]
+      start = start + comma
+    end do
+    output%line = card%line
+  end subroutine read_output
+
+  !> FORMULATION STANDARD | BBAR: the element's strain-displacement matrix,
+  !> full 2x2 integration (the legacy element) or B-bar (mean dilatation).
+  subroutine read_formulation(cards, card, formulation, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    integer, intent(out) :: formulation
+    type(error_t), allocatable, intent(inout) :: error
+    character(:), allocatable :: word
+    call positional_word(cards, card, 1, 'element formulation (STANDARD or BBAR)', word, error)
+    if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'FORMULATION STANDARD | BBAR'); if (allocated(error)) return
+    select case (word)
+    case ('STANDARD')
+      formulation = formulation_standard
+    case ('BBAR')
+      formulation = formulation_bbar
+    case default
+      call card_error(error, cards, card, 'formulation must be STANDARD or BBAR, got "'//word//'"', &
+                      field_column(card, '1'))
+    end select
+  end subroutine read_formulation
+end module visco2d_dynamic_cards
