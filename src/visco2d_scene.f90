@@ -3,6 +3,7 @@
 !> without viscoelastic materials, no contact search without a plate,
 !> no body force without gravity.
 module visco2d_scene
+  use visco2d_kinds, only: dp
   use visco2d_deck, only: deck_t, analysis_dynamic
   use visco2d_material, only: has_memory
   implicit none
