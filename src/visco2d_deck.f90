@@ -677,9 +677,9 @@ contains
     end if
     end associate
     if (deck%output%line > 0) then
-      if (deck%analysis == analysis_static) then
-        call set_error(error, 'OUTPUT needs a time axis (ANALYSIS QUASISTATIC or DYNAMIC with TIME cards)', &
-                       file=deck%cards%file, line=deck%output%line, card='OUTPUT')
+      if (deck%analysis /= analysis_dynamic) then
+        call set_error(error, 'OUTPUT applies to ANALYSIS DYNAMIC (this deck is '//analysis_name(deck%analysis)// &
+                       '; QUASISTATIC records every step)', file=deck%cards%file, line=deck%output%line, card='OUTPUT')
         return
       end if
       if (size(deck%output%field_times) > 0 .and. size(deck%stages) > 0) then

@@ -5,10 +5,11 @@ module visco2d_driver
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
   use visco2d_strings, only: itoa, rtoa, to_upper, to_lower
-  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_name, &
-                          geometry_name, total_steps
+  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
+                          analysis_name, geometry_name, total_steps, formulation_name, initial_velocity
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
+  use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
@@ -38,11 +39,20 @@ contains
     type(deck_t) :: deck
     call read_deck(path, deck, error)
     if (allocated(error)) return
+    call print_warnings(deck)
     print '(a)', path//': ok'
     print '(a)', '  title           '//deck%title
     print '(a)', '  analysis        '//analysis_name(deck%analysis)
-    if (deck%analysis == analysis_quasistatic) print '(a)', '  time steps      '//itoa(total_steps(deck))// &
+    if (deck%analysis /= analysis_static) print '(a)', '  time steps      '//itoa(total_steps(deck))// &
       ' in '//itoa(size(deck%stages))//' stage(s) to t = '//rtoa(deck%stages(size(deck%stages))%end_time)//' s'
+    if (deck%analysis == analysis_dynamic) then
+      print '(a)', '  Wilson theta    '//rtoa(deck%dynamics%theta)
+      associate (velocity => initial_velocity(deck))
+      print '(a)', '  initial v       ('//rtoa(velocity(1))//', '//rtoa(velocity(2))//') m/s'
+      end associate
+    end if
+    if (deck%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%gravity)//' m/s^2 in -z'
+    print '(a)', '  formulation     '//formulation_name(deck%formulation)
     print '(a)', '  geometry        '//geometry_name(deck%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
     print '(a)', '  materials       '//itoa(size(deck%materials))
@@ -68,12 +78,14 @@ contains
     case_name = case_name_of(path)
     call read_deck(path, deck, error)
     if (allocated(error)) return
+    call print_warnings(deck)
     effects = scene_effects(deck)
 
     call record_put(record, 'case', case_name)
     call record_put(record, 'title', deck%title)
     call record_put(record, 'analysis', analysis_name(deck%analysis))
     call record_put(record, 'geometry', geometry_name(deck%geometry))
+    call record_put(record, 'formulation', formulation_name(deck%formulation))
     call record_put(record, 'effects', effects_text(effects))
     call record_put_integer(record, 'nodes', deck%mesh%nnode)
     call record_put_integer(record, 'elements', deck%mesh%nelem)
@@ -94,12 +106,19 @@ contains
       call record_put_real(record, 'dt_s', deck%stages(1)%dt)
       call solve_quasistatic(deck, record, error)
       if (allocated(error)) return
+    case (analysis_dynamic)
+      call record_put_integer(record, 'steps', total_steps(deck))
+      call record_put_integer(record, 'time_stages', size(deck%stages))
+      call record_put_real(record, 'dt_s', deck%stages(1)%dt)
+      call solve_dynamic(deck, record, error)
+      if (allocated(error)) return
     case default
       call set_error(error, 'no analysis to run', file=path)
       return
     end select
     call check_expectations(deck, record, error)
     if (allocated(error)) return
+    call record_put_integer(record, 'warnings', size(deck%warnings))
     call cpu_time(cpu_end)
     call record_put(record, 'cpu_s', rtoa(real(cpu_end - cpu_start, dp)))
 
@@ -154,6 +173,15 @@ contains
       end if
     end subroutine write_all
   end subroutine run_deck
+
+  !> Print the deck's warnings on stderr (`visco2d: warning: file:line: CARD: text`).
+  subroutine print_warnings(deck)
+    type(deck_t), intent(in) :: deck
+    integer :: k
+    do k = 1, size(deck%warnings)
+      write(0, '(a)') 'visco2d: warning: '//deck%warnings(k)%text
+    end do
+  end subroutine print_warnings
 
   !> Remove a temporary case folder (it holds only files this program wrote).
   subroutine discard(folder)

@@ -126,6 +126,7 @@ contains
     if (output%every < 1) then
       call card_error(error, cards, card, 'EVERY must be >= 1, got '//itoa(output%every), field_column(card, 'EVERY')); return
     end if
+    if (allocated(output%field_times)) deallocate(output%field_times)
     allocate(output%field_times(0))
     start = 1
     do while (start <= len(list))

@@ -5,7 +5,8 @@ module visco2d_output
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, gtoa
-  use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps
+  use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps, analysis_dynamic, formulation_name, &
+                          initial_velocity
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
   use visco2d_mesh, only: edge_set_name
   use visco2d_record, only: record_t
@@ -30,6 +31,16 @@ contains
     last = index(trim(name), '_', back=.true.)
     unit = '1'
     if (last == 0) return
+    if (len_trim(name) > 5) then
+      if (name(len_trim(name) - 4:len_trim(name)) == '_m_s2') then
+        unit = 'm/s^2'; return
+      end if
+    end if
+    if (len_trim(name) > 4) then
+      if (name(len_trim(name) - 3:len_trim(name)) == '_m_s') then
+        unit = 'm/s'; return
+      end if
+    end if
     select case (trim(name(last + 1:)))
     case ('s', 'ms', 'm', 'mm', 'Pa', 'MPa', 'N', 'J', 'g')
       unit = trim(name(last + 1:))
@@ -101,6 +112,26 @@ contains
     write(unit, '(a)') '   analysis          '//analysis_name(deck%analysis)
     write(unit, '(a)') '   geometry          '//geometry_name(deck%geometry)
     write(unit, '(a)') '   effects           '//effects
+    write(unit, '(a)') '   formulation       '//formulation_name(deck%formulation)
+    if (deck%analysis == analysis_dynamic) then
+      write(unit, '(a)') '   Wilson theta      '//gtoa(deck%dynamics%theta)
+      associate (velocity => initial_velocity(deck))
+      write(unit, '(a)') '   initial velocity  ('//gtoa(velocity(1))//', '//gtoa(velocity(2))//') m/s'
+      end associate
+      if (any(deck%dynamics%acceleration_given)) write(unit, '(a)') '   initial accel.    ('// &
+        gtoa(deck%dynamics%acceleration(1))//', '//gtoa(deck%dynamics%acceleration(2))//') m/s^2 (as given)'
+      if (.not. all(deck%dynamics%acceleration_given)) write(unit, '(a)') &
+        '   initial accel.    from equilibrium M a = R(0) + gravity (components not given)'
+      write(unit, '(a)') '   output            history every '//itoa(deck%output%every)//' step(s), '// &
+        itoa(size(deck%output%field_times))//' requested field time(s)'
+    end if
+    if (deck%gravity > 0.0_dp) write(unit, '(a)') '   gravity           '//gtoa(deck%gravity)//' m/s^2 in -z'
+    if (size(deck%warnings) > 0) then
+      write(unit, '(/, a)') ' WARNINGS'
+      do k = 1, size(deck%warnings)
+        write(unit, '(3x, a)') deck%warnings(k)%text
+      end do
+    end if
     write(unit, '(/, a)') ' MESH'
     write(unit, '(a)') '   source            '//mesh%source
     write(unit, '(a)') '   nodes             '//itoa(mesh%nnode)

@@ -34,6 +34,7 @@ module visco2d_static
   private
 
   public :: static_solution_t, solve_static, static_record, singular_message, solve_quasistatic
+  public :: node_stress, put_field_summary, put_probe_summary
 
   !> Fields of a static solution.
   type :: static_solution_t

@@ -1,0 +1,433 @@
+!> The dynamic extension: M U'' + S U = R (eq. [25]) stepped in time by the
+!> Wilson-theta method (Bathe and Wilson 1976), eqs. [26]-[42], with the
+!> lumped mass of eq. [32] and the incremental viscoelastic law of
+!> visco2d_viscoelastic. The static base does not use this module.
+!>
+!> One step from t to t + dt, tau = theta dt (the printed typos corrected as
+!> in DESIGN.md: [26] is M dU'' + S dU = dR, [37]'s left side is dU'',
+!> [38] is dU' = U''_t dt + (dt/2) dU''):
+!>   S~ = S(mu_tau) + 6/tau^2 M                                        eq. [35]
+!>   S~ dU_tau = R_tau - F(sigma_t + s0_tau) + M (6/tau U'_t + 2 U''_t)  eqs. [34], [36]
+!>   dU''  = (6/tau^2 dU_tau - 6/tau U'_t - 3 U''_t)/theta                eq. [37]
+!>   dU'   = U''_t dt + dt/2 dU''                                         eq. [38]
+!>   dU    = U'_t dt + dt^2/2 U''_t + dt^2/6 dU''                         eq. [39]
+!>   U, U', U'' += dU, dU', dU''                                          eqs. [40]-[42]
+!> with R_tau = R_t + theta (R_{t+dt} - R_t) and the history stress s0 of
+!> eq. [23] (over tau) as a pseudo-load. The right side of eq. [36] is
+!> written in residual form: it equals theta dR + M (6/tau U'_t + 3 U''_t)
+!> plus the out-of-balance force R_t - F_t - M U''_t, which eq. [36] drops.
+!> Wilson-theta does not enforce equilibrium at t + dt, so that term is not
+!> zero; keeping it makes the step exactly Bathe and Wilson's method (their
+!> total form) and keeps round-off from drifting. Stresses and history are
+!> then advanced over dt (eqs. [13], [14], [23], [24]).
+!>
+!> S~ depends on dt (and on the supports) only: it is factored once per
+!> TIME stage. An energy balance is kept every step; the run stops with an
+!> error if a value is not finite or the energy grows far beyond the work
+!> done on the body (an unstable integration), so no NaN reaches the results.
+module visco2d_wilson
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, set_error
+  use visco2d_strings, only: itoa, gtoa, short_real
+  use visco2d_deck, only: deck_t, total_steps, initial_velocity
+  use visco2d_dynamic_cards, only: theta_unconditional
+  use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
+  use visco2d_element, only: element_strains, element_internal_force, element_b_matrices, gauss_count
+  use visco2d_banded, only: band_matrix_t, band_factor, band_solve, band_constrain_matrix, band_constrain_rhs
+  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
+                              prescribed_displacement, internal_force, scatter_add, lumped_mass, gravity_load
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
+                                  viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
+                                  update_history
+  use visco2d_static, only: singular_message, node_stress, put_field_summary, put_probe_summary
+  use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, history_define, &
+                            history_append, record_add_snapshot
+  implicit none
+  private
+
+  public :: solve_dynamic, energy_growth_limit
+
+  !> The run stops as unstable when kinetic + internal energy exceeds this
+  !> multiple of the energy put into the body (initial kinetic energy plus the
+  !> gross work of loads, gravity and supports).
+  real(dp), parameter :: energy_growth_limit = 100.0_dp
+
+contains
+
+  !> The dynamic analysis of a deck (ANALYSIS DYNAMIC): fills the record with
+  !> the summary, one history row every OUTPUT EVERY= steps (step 0 and the
+  !> last step always) and snapshots at t = 0, at the FIELDS= times and at the end.
+  subroutine solve_dynamic(deck, record, error)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: error
+    type(band_matrix_t) :: effective, factor
+    type(step_coefficients_t), allocatable :: over_tau(:), over_dt(:)
+    type(viscoelastic_state_t) :: state
+    real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), prescribed(:)
+    real(dp), allocatable :: mass(:), gravity(:), load(:), load_next(:), internal(:), internal_next(:)
+    real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:)
+    real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), shear_dt(:), bulk_dt(:)
+    logical, allocatable :: fixed(:)
+    logical :: memory
+    integer :: step, stage, k, factorizations, step_count, next_field, width
+    real(dp) :: t, dt, tau, theta, stage_start, body_mass
+    real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, gross_input
+    real(dp) :: stored, balance, balance_max, input_max
+
+    associate (mesh => deck%mesh, materials => deck%materials)
+    theta = deck%dynamics%theta
+    memory = .false.
+    do k = 1, size(materials)
+      if (has_memory(materials(k)) .and. any(mesh%element_material == k)) memory = .true.
+    end do
+    if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
+    allocate(over_tau(size(materials)), over_dt(size(materials)))
+    fixed = support_mask(deck)
+    mass = lumped_mass(deck)                                   ! eq. [32], row sums
+    body_mass = sum(mass(2::2))
+    gravity = gravity_load(deck)
+    allocate(du(2*mesh%nnode), dv(2*mesh%nnode), da(2*mesh%nnode), prescribed(2*mesh%nnode))
+    allocate(stress(4, gauss_count, mesh%nelem), strain(4, gauss_count, mesh%nelem), &
+             trial(4, gauss_count, mesh%nelem), shear_dt(mesh%nelem), bulk_dt(mesh%nelem))
+    stress = 0.0_dp
+    strain = 0.0_dp
+    factorizations = 0
+    step_count = 0
+    width = max(6, len(itoa(total_steps(deck))))
+
+    ! Initial state: u = 0, the INITIAL / DROP velocity on the free equations,
+    ! and the acceleration from equilibrium M a = R(0) + G - F(0) unless INITIAL gives it.
+    allocate(u(2*mesh%nnode), v(2*mesh%nnode), a(2*mesh%nnode))
+    u = 0.0_dp
+    associate (velocity => initial_velocity(deck))
+    v(1::2) = velocity(1)
+    v(2::2) = velocity(2)
+    end associate
+    v = merge(0.0_dp, v, fixed)
+    internal = internal_force(deck, stress)
+    load = external_load(deck, 0.0_dp)
+    a = (load + gravity - internal)/mass
+    do k = 1, 2
+      if (deck%dynamics%acceleration_given(k)) a(k::2) = deck%dynamics%acceleration(k)
+    end do
+    a = merge(0.0_dp, a, fixed)
+    target_now = prescribed_displacement(deck, 0.0_dp)
+    reaction = merge(mass*a + internal - load - gravity, 0.0_dp, fixed)
+
+    kinetic0 = 0.5_dp*dot_product(mass, v**2)
+    kinetic = kinetic0
+    internal_work = 0.0_dp
+    load_work = 0.0_dp
+    support_work = 0.0_dp
+    gravity_work = 0.0_dp
+    gross_input = kinetic0
+    balance_max = 0.0_dp
+    input_max = kinetic0
+    stored = 0.0_dp
+    balance = 0.0_dp
+    next_field = 1
+
+    call define_history()
+    t = 0.0_dp
+    call append_row()
+    call keep_snapshot('initial')
+    call skip_field_times(0.0_dp)
+
+    stage_start = 0.0_dp
+    do stage = 1, size(deck%stages)
+      dt = deck%stages(stage)%dt
+      tau = theta*dt
+      call factor_for(dt)
+      if (allocated(error)) return
+      do step = 1, deck%stages(stage)%steps
+        t = stage_start + step*dt
+        if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
+        call advance(t)
+        if (allocated(error)) return
+        step_count = step_count + 1
+        if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck)) call append_row()
+        if (next_field <= size(deck%output%field_times)) then
+          if (t >= deck%output%field_times(next_field)*(1.0_dp - 1.0e-12_dp)) then
+            call keep_snapshot('t = '//short_real(deck%output%field_times(next_field))//' s requested')
+            call skip_field_times(t)
+          end if
+        end if
+      end do
+      stage_start = deck%stages(stage)%end_time
+    end do
+    call keep_snapshot('final')
+
+    stored = stored_energy()
+    call record_put_real(record, 'theta', theta)
+    call record_put_integer(record, 'factorizations', factorizations)
+    call record_put_real(record, 'time_end_s', t)
+    call record_put_real(record, 'mass_kg', body_mass)
+    call record_put_real(record, 'uz_cm_m', centre_of_mass(u))
+    call record_put_real(record, 'vz_cm_m_s', centre_of_mass(v))
+    call record_put_real(record, 'az_cm_m_s2', centre_of_mass(a))
+    call record_put_real(record, 'kinetic_J', kinetic)
+    call record_put_real(record, 'strain_energy_J', stored)
+    call record_put_real(record, 'dissipated_J', internal_work - stored)
+    call record_put_real(record, 'external_work_J', load_work + support_work)
+    call record_put_real(record, 'gravity_work_J', gravity_work)
+    call record_put_real(record, 'initial_kinetic_J', kinetic0)
+    call record_put_real(record, 'balance_error_J', balance)
+    call record_put_real(record, 'balance_error_max_J', balance_max)
+    call record_put_real(record, 'balance_error_max_rel', balance_max/max(input_max, tiny(1.0_dp)))
+    call put_field_summary(field_of(u), stress, record)
+    call put_probe_summary(deck, field_of(u), stress, record)
+    end associate
+
+  contains
+
+    !> S~ = S(mu over tau) + 6/tau^2 M (eq. [35]), constrained and factored;
+    !> the step constants over tau (the solve) and over dt (the stress update).
+    subroutine factor_for(dt)
+      real(dp), intent(in) :: dt
+      integer :: info, m
+      do m = 1, size(deck%materials)
+        over_tau(m) = step_coefficients(deck%materials(m), theta*dt)
+        over_dt(m) = step_coefficients(deck%materials(m), dt)
+      end do
+      shear_dt = over_dt(deck%mesh%element_material)%shear
+      bulk_dt = over_dt(deck%mesh%element_material)%bulk
+      call assemble_stiffness(deck, over_tau(deck%mesh%element_material)%shear, &
+                              over_tau(deck%mesh%element_material)%bulk, effective)
+      effective%ab(1, :) = effective%ab(1, :) + 6.0_dp/(theta*dt)**2*mass
+      factor = effective
+      call band_constrain_matrix(factor, fixed)
+      call band_factor(factor, info)
+      factorizations = factorizations + 1
+      if (info > 0) call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive '// &
+        'definite: '//singular_message(deck, info), file=deck%cards%file)
+    end subroutine factor_for
+
+    !> One Wilson-theta step to time t_next = t + dt.
+    subroutine advance(t_next)
+      real(dp), intent(in) :: t_next
+      integer :: e, g, nterm, slot
+      real(dp) :: increment(4, gauss_count), deviatoric(4), volumetric, energy
+      ! Loads and prescribed values at t + tau, linear in time (eq. [36]'s theta dR).
+      load_next = external_load(deck, t_next)
+      target_next = prescribed_displacement(deck, t_next)
+      ! Right side of eqs. [34], [36] in residual form: R_tau - F(sigma_t + s0_tau) + M (6/tau v + 2 a).
+      rhs = load + theta*(load_next - load) + gravity - internal + mass*(6.0_dp/tau*v + 2.0_dp*a)
+      if (memory) then
+        do e = 1, deck%mesh%nelem
+          nterm = element_terms(state, e)
+          if (nterm == 0) cycle
+          associate (material => deck%materials(deck%mesh%element_material(e)), &
+                     c => over_tau(deck%mesh%element_material(e)))
+          do g = 1, gauss_count
+            slot = state%first(e) + (g - 1)*nterm
+            trial(:, g, e) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
+          end do
+          call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
+            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e), deck%formulation), rhs)
+          end associate
+        end do
+      end if
+      prescribed = target_now + theta*(target_next - target_now) - u
+      call band_constrain_rhs(effective, fixed, prescribed, rhs)
+      call band_solve(factor, rhs)                                  ! rhs <- dU_tau, eq. [34]
+      da = (6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 3.0_dp*a)/theta        ! eq. [37]
+      dv = a*dt + 0.5_dp*dt*da                                        ! eq. [38]
+      du = v*dt + 0.5_dp*dt**2*a + dt**2/6.0_dp*da                    ! eq. [39]
+      if (.not. all(ieee_is_finite(da)) .or. .not. all(ieee_is_finite(du))) then
+        call unstable('a displacement or acceleration is not finite (NaN or Inf)'); return
+      end if
+
+      ! Stresses and history over dt: eqs. [13], [14], [23], [24].
+      do e = 1, deck%mesh%nelem
+        increment = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                    gather(deck%mesh, e, du), deck%formulation)
+        strain(:, :, e) = strain(:, :, e) + increment
+        nterm = 0
+        if (memory) nterm = element_terms(state, e)
+        do g = 1, gauss_count
+          stress(:, g, e) = stress(:, g, e) + stress_from_strain(shear_dt(e), bulk_dt(e), increment(:, g))
+          if (nterm > 0) then
+            slot = state%first(e) + (g - 1)*nterm
+            associate (material => deck%materials(deck%mesh%element_material(e)), &
+                       c => over_dt(deck%mesh%element_material(e)))
+            stress(:, g, e) = stress(:, g, e) + history_stress(material, c, state%history(:, slot:slot + nterm - 1))
+            call deviatoric_part(increment(:, g), deviatoric, volumetric)
+            call update_history(c, deviatoric, state%history(:, slot:slot + nterm - 1))
+            end associate
+          end if
+        end do
+      end do
+      internal_next = internal_force(deck, stress)
+      a = a + da                                                      ! eqs. [40]-[42]
+      v = v + dv
+      u = u + du
+      reaction_next = merge(mass*a + internal_next - load_next - gravity, 0.0_dp, fixed)
+
+      ! Energy balance: trapezoidal work of every force over du (exact for
+      ! forces linear in u, as the elastic internal force is).
+      internal_work = internal_work + 0.5_dp*dot_product(internal + internal_next, du)
+      associate (load_increment => 0.5_dp*dot_product(load + load_next, du), &
+                 support_increment => 0.5_dp*dot_product(reaction + reaction_next, du), &
+                 gravity_increment => dot_product(gravity, du))
+      load_work = load_work + load_increment
+      support_work = support_work + support_increment
+      gravity_work = gravity_work + gravity_increment
+      gross_input = gross_input + abs(load_increment) + abs(support_increment) + abs(gravity_increment)
+      end associate
+      kinetic = 0.5_dp*dot_product(mass, v**2)
+      balance = kinetic + internal_work - (kinetic0 + load_work + support_work + gravity_work)
+      input_max = max(input_max, kinetic0 + abs(load_work + support_work + gravity_work))
+      balance_max = max(balance_max, abs(balance))
+      energy = kinetic + internal_work
+      if (.not. ieee_is_finite(energy) .or. .not. all(ieee_is_finite(stress))) then
+        call unstable('the energy or a stress is not finite (NaN or Inf)'); return
+      end if
+      if (energy > energy_growth_limit*gross_input .and. energy > 0.0_dp) then
+        call unstable('the kinetic + internal energy ('//gtoa(energy)//' J) has grown past '// &
+          itoa(nint(energy_growth_limit))//' times the energy put into the body ('//gtoa(gross_input)//' J)')
+        return
+      end if
+      load = load_next
+      internal = internal_next
+      reaction = reaction_next
+      target_now = target_next
+      t = t_next
+    end subroutine advance
+
+    !> Stop the run: the integration has become unstable at time t + dt.
+    subroutine unstable(what)
+      character(*), intent(in) :: what
+      character(:), allocatable :: advice
+      if (theta < theta_unconditional) then
+        advice = 'WILSON THETA = '//short_real(theta)//' is only conditionally stable: use THETA >= 1.37 '// &
+          '(1.4 is usual) or a DT well below the shortest period of the mesh'
+      else
+        advice = 'check the material constants, the loads and DT'
+      end if
+      call set_error(error, 'the time integration is unstable at step '//itoa(step_count + 1)//' (t = '// &
+        short_real(t + dt)//' s, DT = '//short_real(dt)//' s): '//what//'; '//advice//'. No results were written.', &
+        file=deck%cards%file, line=deck%stages(stage)%line, card='TIME')
+    end subroutine unstable
+
+    !> Strain energy stored in the springs: per Gauss point
+    !> K theta^2/2 + G_inf e:e + sum_m G_m C_m:C_m (C_m = the history of term m,
+    !> whose spring carries s_m = 2 G_m C_m), times |J| r.
+    real(dp) function stored_energy() result(energy)
+      real(dp) :: b(4, 8, gauss_count), weight(gauss_count), deviatoric(4), volumetric, density
+      integer :: e, g, m, nterm, slot
+      energy = 0.0_dp
+      do e = 1, deck%mesh%nelem
+        call element_b_matrices(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), b, weight, &
+                                deck%formulation)
+        associate (material => deck%materials(deck%mesh%element_material(e)))
+        nterm = 0
+        if (memory) nterm = element_terms(state, e)
+        do g = 1, gauss_count
+          call deviatoric_part(strain(:, g, e), deviatoric, volumetric)
+          density = 0.5_dp*material%bulk*volumetric**2 + material%long_term_shear*contracted(deviatoric)
+          do m = 1, nterm
+            slot = state%first(e) + (g - 1)*nterm + m - 1
+            density = density + material%prony_shear(m)*contracted(state%history(:, slot))
+          end do
+          energy = energy + weight(g)*density
+        end do
+        end associate
+      end do
+    end function stored_energy
+
+    !> e:e of a deviatoric strain in engineering form (gamma_rz = 2 e_rz).
+    pure real(dp) function contracted(e)
+      real(dp), intent(in) :: e(4)
+      contracted = e(1)**2 + e(2)**2 + e(3)**2 + 0.5_dp*e(4)**2
+    end function contracted
+
+    !> Mass-weighted mean of the z components of a nodal vector (the centre of mass).
+    real(dp) function centre_of_mass(vector)
+      real(dp), intent(in) :: vector(:)
+      centre_of_mass = dot_product(mass(2::2), vector(2::2))/body_mass
+    end function centre_of_mass
+
+    subroutine define_history()
+      character(len=48), allocatable :: columns(:)
+      integer :: p
+      character(len=8), parameter :: probe_columns(10) = ['ur_m    ', 'uz_m    ', 'vr_m_s  ', 'vz_m_s  ', &
+        'ar_m_s2 ', 'az_m_s2 ', 'sr_Pa   ', 'sz_Pa   ', 'st_Pa   ', 'trz_Pa  ']
+      columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'uz_cm_m', 'vz_cm_m_s', &
+                 'az_cm_m_s2', 'kinetic_J', 'strain_J', 'dissipated_J', 'external_work_J', 'gravity_work_J', &
+                 'balance_error_J', 'reaction_r_N', 'reaction_z_N']
+      do p = 1, size(deck%probes)
+        do k = 1, size(probe_columns)
+          columns = [character(len=48) :: columns, deck%probes(p)%name//'_'//trim(probe_columns(k))]
+        end do
+      end do
+      call history_define(record, columns, total_steps(deck)/deck%output%every + 2)
+    end subroutine define_history
+
+    subroutine append_row()
+      real(dp), allocatable :: row(:)
+      integer :: p, node
+      stored = stored_energy()
+      row = [real(step_count, dp), t, maxval(norm2(field_of(u), dim=1)), centre_of_mass(u), centre_of_mass(v), &
+             centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
+             balance, sum(reaction(1::2)), sum(reaction(2::2))]
+      do p = 1, size(deck%probes)
+        node = deck%probes(p)%node
+        associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
+        row = [row, u(r), u(z), v(r), v(z), a(r), a(z), node_stress(deck%mesh, stress, node)]
+        end associate
+      end do
+      call history_append(record, row)
+    end subroutine append_row
+
+    !> Advance next_field past every requested time at or before `time`.
+    subroutine skip_field_times(time)
+      real(dp), intent(in) :: time
+      do while (next_field <= size(deck%output%field_times))
+        if (deck%output%field_times(next_field)*(1.0_dp - 1.0e-12_dp) > time) exit
+        next_field = next_field + 1
+      end do
+    end subroutine skip_field_times
+
+    subroutine keep_snapshot(label)
+      character(*), intent(in) :: label
+      type(snapshot_t) :: snapshot
+      character(len=16) :: digits
+      if (allocated(record%snapshots)) then
+        if (size(record%snapshots) > 0) then
+          associate (last => record%snapshots(size(record%snapshots)))
+          if (last%time == t) then                                     ! already kept at this step
+            last%label = last%label//'; '//label
+            return
+          end if
+          end associate
+        end if
+      end if
+      write(digits, '(i0.'//itoa(width)//')') step_count
+      snapshot%name = 'step_'//trim(digits)
+      snapshot%label = label
+      snapshot%time = t
+      snapshot%displacement = field_of(u)
+      snapshot%velocity = field_of(v)
+      snapshot%acceleration = field_of(a)
+      snapshot%stress_gauss = stress
+      snapshot%stress = nodal_average(deck%mesh, stress)
+      snapshot%max_shear = max_shear(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
+                                     snapshot%stress(4, :))
+      snapshot%von_mises = von_mises(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
+                                     snapshot%stress(4, :))
+      call record_add_snapshot(record, snapshot)
+    end subroutine keep_snapshot
+
+    !> A vector in band order as (2, nnode) in node order.
+    function field_of(vector) result(field)
+      real(dp), intent(in) :: vector(:)
+      real(dp) :: field(2, deck%mesh%nnode)
+      integer :: node
+      do node = 1, deck%mesh%nnode
+        field(:, node) = vector(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2))
+      end do
+    end function field_of
+  end subroutine solve_dynamic
+end module visco2d_wilson
