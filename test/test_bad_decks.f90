@@ -4,9 +4,9 @@
 !> written loosely (lower case, extra spaces, `NAME = value`, tabs, comments)
 !> must parse to the intended model.
 program test_bad_decks
-  use visco2d_kinds, only: dp, geometry_plane_strain
+  use visco2d_kinds, only: dp, geometry_plane_strain, formulation_bbar
   use visco2d_error, only: error_t, error_text
-  use visco2d_deck, only: deck_t, read_deck, analysis_static
+  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_dynamic, initial_velocity
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
@@ -292,9 +292,93 @@ program test_bad_decks
   lines(8) = 'FIX TOP RZ UR=1e-4'
   call expect_read_error('fix_ur_on_axis', lines, 8, 1, 'FIX', 'is on the axis, where u_r = 0 always')
 
+  ! ------------------------------------------------------- dynamic and scene cards
   lines = creep()
-  lines(2) = 'ANALYSIS DYNAMIC'
-  call expect_read_error('analysis_dynamic', lines, 2, 1, 'ANALYSIS', 'not available in this version')
+  lines(2) = 'ANALYSIS EXPLICIT'
+  call expect_read_error('analysis_unknown', lines, 2, 10, 'ANALYSIS', 'STATIC, QUASISTATIC or DYNAMIC, got "EXPLICIT"')
+
+  lines = dynamic()
+  call expect_read_error('dynamic_without_time', [lines(1:8), lines(10:11)], 2, 0, 'ANALYSIS', &
+                         'DYNAMIC analysis needs a TIME DT=.. TEND=.. card')
+
+  lines = dynamic()
+  lines(4) = 'MATERIAL flesh ELASTIC E=1e6 NU=0.3'
+  call expect_read_error('dynamic_without_density', lines, 4, 0, 'MATERIAL', &
+                         'material FLESH has no density: ANALYSIS DYNAMIC needs RHO= > 0')
+
+  lines = square()
+  call expect_read_error('gravity_without_density', [lines(1:10), 'GRAVITY', lines(11:)], 4, 0, 'MATERIAL', &
+                         'GRAVITY needs RHO= > 0')
+
+  lines = dynamic()
+  lines(7) = 'WILSON THETA=0.9'
+  call expect_read_error('theta_below_one', lines, 7, 8, 'WILSON', 'THETA must be >= 1')
+
+  lines = dynamic()
+  lines(7) = 'WILSON THETA=12'
+  call expect_read_error('theta_above_ten', lines, 7, 8, 'WILSON', 'THETA must be <= 10')
+
+  lines = dynamic()
+  call expect_read_error('wilson_twice', [lines(1:7), lines(7:11)], 8, 0, 'WILSON', &
+                         'only one WILSON card is allowed (first on line 7)')
+
+  lines = creep()
+  call expect_read_error('wilson_in_quasistatic', [lines(1:10), 'WILSON THETA=1.4', lines(11:)], 11, 0, 'WILSON', &
+                         'WILSON needs ANALYSIS DYNAMIC (this deck is QUASISTATIC)')
+
+  lines = square()
+  call expect_read_error('initial_in_static', [lines(1:10), 'INITIAL VZ=-1', lines(11:)], 11, 0, 'INITIAL', &
+                         'INITIAL needs ANALYSIS DYNAMIC (this deck is STATIC)')
+
+  lines = dynamic()
+  lines(6) = 'INITIAL'
+  call expect_read_error('initial_empty', lines, 6, 0, 'INITIAL', 'INITIAL needs at least one of VZ=')
+
+  lines = dynamic()
+  lines(6) = 'INITIAL VZ=fast'
+  call expect_read_error('initial_not_a_number', lines, 6, 9, 'INITIAL', 'VZ must be a number, got "fast"')
+
+  lines = dynamic()
+  call expect_read_error('drop_and_initial', [lines(1:6), 'DROP HEIGHT=0.05', lines(7:11)], 7, 0, 'DROP', &
+                         'the INITIAL card on line 6 sets VZ too: give one of them')
+
+  lines = dynamic()
+  lines(6) = 'DROP HEIGHT=-0.05'
+  call expect_read_error('drop_negative', lines, 6, 6, 'DROP', 'HEIGHT must be >= 0 m')
+
+  lines = dynamic()
+  lines(8) = 'GRAVITY G=-9.8'
+  call expect_read_error('gravity_negative', lines, 8, 9, 'GRAVITY', 'G must be >= 0 m/s^2')
+
+  lines = dynamic()
+  lines(10) = 'OUTPUT EVERY=0'
+  call expect_read_error('output_every_zero', lines, 10, 8, 'OUTPUT', 'EVERY must be >= 1, got 0')
+
+  lines = dynamic()
+  lines(10) = 'OUTPUT FIELDS=1e-4,abc'
+  call expect_read_error('output_fields_not_a_number', lines, 10, 8, 'OUTPUT', &
+                         'FIELDS must be a comma-separated list of times >= 0 s, got "ABC"')
+
+  lines = dynamic()
+  lines(10) = 'OUTPUT FIELDS=5e-4,1e-4'
+  call expect_read_error('output_fields_decreasing', lines, 10, 8, 'OUTPUT', 'FIELDS times must increase')
+
+  lines = dynamic()
+  lines(10) = 'OUTPUT FIELDS=2e-3'
+  call expect_read_error('output_fields_after_end', lines, 10, 0, 'OUTPUT', &
+                         'FIELDS time 0.2E-2 s is after the end of the run (TEND = 0.1E-2 s)')
+
+  lines = creep()
+  call expect_read_error('output_in_quasistatic', [lines(1:10), 'OUTPUT EVERY=2', lines(11:)], 11, 0, 'OUTPUT', &
+                         'OUTPUT applies to ANALYSIS DYNAMIC')
+
+  lines = dynamic()
+  call expect_read_error('formulation_unknown', [lines(1:3), 'FORMULATION QUAD8', lines(4:11)], 4, 13, &
+                         'FORMULATION', 'formulation must be STANDARD or BBAR, got "QUAD8"')
+
+  ! The dynamic deck itself is valid; THETA < 1.37 and a nearly incompressible
+  ! material in the standard element are warnings, not errors.
+  call expect_valid_dynamic()
 
   call test_summary('test_bad_decks')
 
@@ -334,6 +418,72 @@ contains
       'TIME DT=0.1 TEND=1', &                             ! 10
       'END']                                              ! 11
   end function creep
+
+  !> A valid dynamic deck (an axisymmetric block in free flight); line k is lines(k).
+  function dynamic() result(deck_lines)
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = [character(len=100) :: &
+      'TITLE flying block', &                             ! 1
+      'ANALYSIS DYNAMIC', &                               ! 2
+      'GEOMETRY AXISYMMETRIC', &                          ! 3
+      'MATERIAL flesh ELASTIC E=1e6 NU=0.3 RHO=800', &    ! 4
+      'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', &  ! 5
+      'INITIAL VZ=-1', &                                  ! 6
+      'WILSON THETA=1.4', &                               ! 7
+      'GRAVITY G=9.8', &                                  ! 8
+      'TIME DT=1e-5 TEND=1e-3', &                         ! 9
+      'OUTPUT EVERY=10 FIELDS=1e-4,5e-4', &               ! 10
+      'END']                                              ! 11
+  end function dynamic
+
+  !> The dynamic deck parses to the intended settings; warnings for theta < 1.37
+  !> and for nu = 0.4999 in the standard element (not in B-bar); DROP gives -sqrt(2 g h).
+  subroutine expect_valid_dynamic()
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = dynamic()
+    call write_deck(deck_path('dynamic_valid'), deck_lines)
+    call read_deck(deck_path('dynamic_valid'), deck, error)
+    call check('dynamic_valid_reads', .not. allocated(error))
+    if (allocated(error)) return
+    call check('dynamic_valid_analysis', deck%analysis == analysis_dynamic)
+    call check_close('dynamic_valid_theta', deck%dynamics%theta, 1.4_dp, 0.0_dp)
+    call check_close('dynamic_valid_gravity', deck%gravity, 9.8_dp, 0.0_dp)
+    call check('dynamic_valid_velocity', all(initial_velocity(deck) == [0.0_dp, -1.0_dp]))
+    call check('dynamic_valid_every', deck%output%every == 10)
+    call check('dynamic_valid_fields', size(deck%output%field_times) == 2)
+    call check('dynamic_valid_no_warning', size(deck%warnings) == 0)
+
+    deck_lines(6) = 'DROP HEIGHT=0.05'
+    deck_lines(7) = 'WILSON THETA=1.2'
+    call write_deck(deck_path('dynamic_drop'), deck_lines)
+    call read_deck(deck_path('dynamic_drop'), deck, error)
+    call check('dynamic_drop_reads', .not. allocated(error))
+    if (allocated(error)) return
+    associate (velocity => initial_velocity(deck))
+    call check_close('dynamic_drop_vz', velocity(2), -sqrt(2.0_dp*9.8_dp*0.05_dp), 1.0e-15_dp)
+    end associate
+    call check('dynamic_theta_warning', size(deck%warnings) == 1)
+    if (size(deck%warnings) == 1) call check_text_contains('dynamic_theta_warning_text', deck%warnings(1)%text, &
+      deck_path('dynamic_drop')//':7: WILSON: THETA = 1.2 < 1.37')
+
+    deck_lines = dynamic()
+    deck_lines(4) = 'MATERIAL flesh ELASTIC E=1e6 NU=0.4999 RHO=800'
+    call write_deck(deck_path('dynamic_locking'), deck_lines)
+    call read_deck(deck_path('dynamic_locking'), deck, error)
+    call check('dynamic_locking_reads', .not. allocated(error))
+    if (allocated(error)) return
+    call check('dynamic_locking_warning', size(deck%warnings) == 1)
+    if (size(deck%warnings) == 1) call check_text_contains('dynamic_locking_warning_text', deck%warnings(1)%text, &
+      ':4: MATERIAL: material FLESH is nearly incompressible')
+    call write_deck(deck_path('dynamic_bbar'), [deck_lines(1:3), 'FORMULATION BBAR', deck_lines(4:)])
+    call read_deck(deck_path('dynamic_bbar'), deck, error)
+    call check('dynamic_bbar_reads', .not. allocated(error))
+    if (allocated(error)) return
+    call check('dynamic_bbar_no_warning', size(deck%warnings) == 0)
+    call check('dynamic_bbar_formulation', deck%formulation == formulation_bbar)
+  end subroutine expect_valid_dynamic
 
   function deck_path(name) result(path)
     character(*), intent(in) :: name
