@@ -261,6 +261,83 @@ check check_nodes_match_run "check says nodes '$(sed -n 's/^ *nodes *//p' check.
   test -n "$nnode" -a "$(sed -n 's/^ *nodes *//p' check.out)" = "$nnode"
 check check_writes_nothing "check created: $(ls -A | grep -v '^check\.' | tr '\n' ' ')" \
   test -z "$(ls -A | grep -v '^check\.')"
+# ------------------------------------------------------------- dynamic
+# A dynamic deck: check names the analysis, theta, the initial velocity and
+# the effects; a run writes history and fields with velocity and acceleration.
+cd "$work" || exit 0
+cat > decks/flight.inp <<'EOF'
+TITLE flying block
+ANALYSIS DYNAMIC
+GEOMETRY AXISYMMETRIC
+MATERIAL flesh ELASTIC E=1e6 NU=0.3 RHO=800
+MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2
+DROP HEIGHT=0.05
+GRAVITY
+TIME DT=1e-5 TEND=1e-3
+OUTPUT EVERY=10 FIELDS=5e-4
+END
+EOF
+"$exe" check decks/flight.inp > checkflight.out 2> checkflight.err
+check_rc check_dynamic_exit_0 0 $?
+check check_dynamic_analysis "stdout: $(first_lines checkflight.out)" grep -q "^ *analysis *DYNAMIC$" checkflight.out
+check check_dynamic_theta "stdout: $(first_lines checkflight.out)" grep -q "^ *Wilson theta *1.4000E+00$" checkflight.out
+check check_dynamic_drop_velocity "stdout: $(first_lines checkflight.out)" \
+  grep -q "^ *initial v *(0.0000E+00, -9.8995E-01) m/s$" checkflight.out
+check check_dynamic_effects "stdout: $(first_lines checkflight.out)" grep -q "^ *effects *inertia gravity$" checkflight.out
+check check_dynamic_no_warning "stderr: $(first_lines checkflight.err)" test ! -s checkflight.err
+"$exe" -o dynout decks/flight.inp > runflight.out 2> runflight.err
+check_rc run_dynamic_exit_0 0 $?
+check run_dynamic_history_rows "history.csv has $(wc -l < dynout/flight/history.csv 2>/dev/null) lines" \
+  test "$(wc -l < dynout/flight/history.csv)" = 12
+check run_dynamic_energy_columns "header: $(head -1 dynout/flight/history.csv)" \
+  grep -q "kinetic_J,strain_J,dissipated_J,external_work_J,gravity_work_J,balance_error_J" dynout/flight/history.csv
+check run_dynamic_summary_keys "summary: $(first_lines dynout/flight/summary.txt)" \
+  grep -q "^factorizations = 1$" dynout/flight/summary.txt
+if command -v h5dump > /dev/null; then
+  h5dump -n dynout/flight/results.h5 > flight_h5.txt 2>&1
+  check run_dynamic_h5_velocity "h5dump: $(first_lines flight_h5.txt)" grep -q "/fields/step_000050/velocity" flight_h5.txt
+  check run_dynamic_h5_acceleration "h5dump: $(first_lines flight_h5.txt)" \
+    grep -q "/fields/step_000100/acceleration" flight_h5.txt
+fi
+# THETA < 1.37 and nu = 0.4999: warnings on stderr (check and run), the deck still runs.
+sed -e 's/^DROP HEIGHT=0.05$/WILSON THETA=1.2/' -e 's/NU=0.3 /NU=0.4999 /' decks/flight.inp > decks/warned.inp
+"$exe" check decks/warned.inp > checkwarned.out 2> checkwarned.err
+check_rc check_warned_exit_0 0 $?
+check check_warned_theta "stderr: $(first_lines checkwarned.err)" \
+  grep -q "^visco2d: warning: decks/warned.inp:6: WILSON: THETA = 1.2 < 1.37" checkwarned.err
+check check_warned_locking "stderr: $(first_lines checkwarned.err)" \
+  grep -q "^visco2d: warning: decks/warned.inp:4: MATERIAL: material FLESH is nearly incompressible" checkwarned.err
+sed -e 's/^DROP HEIGHT=0.05$/WILSON THETA=1.2/' decks/flight.inp > decks/warned_run.inp
+"$exe" -q -o dynout decks/warned_run.inp > runwarned.out 2> runwarned.err
+check_rc run_warned_exit_0 0 $?
+check run_warned_stderr "stderr: $(first_lines runwarned.err)" grep -q "WILSON: THETA = 1.2" runwarned.err
+check run_warned_summary "summary: $(first_lines dynout/warned_run/summary.txt)" \
+  grep -q "^warnings = 1$" dynout/warned_run/summary.txt
+# An unstable run (THETA = 1 far above its stability limit): exit 1, a clear
+# message, and no case folder (no NaN written as if it were a result).
+cat > decks/unstable.inp <<'EOF'
+TITLE linear acceleration method far above its limit
+ANALYSIS DYNAMIC
+GEOMETRY PLANESTRAIN
+MATERIAL m ELASTIC E=1e7 NU=0.25 RHO=1000
+MESH RECT R0=0.01 R1=0.0125 Z0=0 Z1=0.1 NR=1 NZ=40
+FIX INNER R
+FIX OUTER R
+FIX BOTTOM Z
+PRESSURE TOP P=1e5
+WILSON THETA=1.0
+TIME DT=1e-4 TEND=0.1
+END
+EOF
+"$exe" -o dynout decks/unstable.inp > unstable.out 2> unstable.err
+check_rc run_unstable_exit_1 1 $?
+check run_unstable_message "stderr: $(first_lines unstable.err)" \
+  grep -q "^visco2d: error: decks/unstable.inp:11: TIME: the time integration is unstable at step" unstable.err
+check run_unstable_advice "stderr: $(first_lines unstable.err)" grep -q "THETA >= 1.37" unstable.err
+check run_unstable_no_output "dynout has: $(ls -A dynout | tr '\n' ' ')" test ! -e dynout/unstable
+check run_unstable_no_partial "dynout has: $(ls -A dynout | tr '\n' ' ')" test -z "$(entries_matching dynout unstable)"
+cd "$work/checking" || exit 0
+
 # A quasi-static viscoelastic deck: check names its time axis and its effect.
 "$exe" check "$root/inputs/relaxation_step.inp" > checkvisco.out 2> checkvisco.err
 check_rc check_quasistatic_exit_0 0 $?

@@ -5,7 +5,7 @@
 module visco2d_deck
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain, formulation_standard, formulation_bbar
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, short_real, to_lower
+  use visco2d_strings, only: itoa, rtoa, short_real, to_lower
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
                            named_word, positional_word, positional_real, &
                            check_fields_used, has_field, field_column
@@ -720,7 +720,7 @@ contains
       if (.not. any(deck%mesh%element_material == k)) cycle
       ratio = deck%materials(k)%bulk/max(deck%materials(k)%shear, tiny(1.0_dp))   ! instantaneous G(0)
       if (ratio > 1000.0_dp) call add_warning(deck, deck%materials(k)%line, 'MATERIAL', 'material '// &
-        deck%materials(k)%id//' is nearly incompressible (K/G = '//short_real(ratio)//'): the standard '// &
+        deck%materials(k)%id//' is nearly incompressible (K/G = '//rtoa(ratio)//'): the standard '// &
         'element locks (too stiff); FORMULATION BBAR avoids that')
     end do
   end subroutine check_locking

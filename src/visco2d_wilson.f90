@@ -29,7 +29,7 @@ module visco2d_wilson
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, gtoa, short_real
+  use visco2d_strings, only: itoa, gtoa, rtoa, short_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity
   use visco2d_dynamic_cards, only: theta_unconditional
   use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
@@ -307,7 +307,7 @@ contains
         advice = 'check the material constants, the loads and DT'
       end if
       call set_error(error, 'the time integration is unstable at step '//itoa(step_count + 1)//' (t = '// &
-        short_real(t + dt)//' s, DT = '//short_real(dt)//' s): '//what//'; '//advice//'. No results were written.', &
+        rtoa(t + dt)//' s, DT = '//rtoa(dt)//' s): '//what//'; '//advice//'. No results were written.', &
         file=deck%cards%file, line=deck%stages(stage)%line, card='TIME')
     end subroutine unstable
 
