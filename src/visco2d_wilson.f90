@@ -178,6 +178,14 @@ contains
     call record_put_real(record, 'balance_error_max_rel', balance_max/max(input_max, tiny(1.0_dp)))
     call put_field_summary(field_of(u), stress, record)
     call put_probe_summary(deck, field_of(u), stress, record)
+    do k = 1, size(deck%probes)
+      associate (r => node_dof(mesh, deck%probes(k)%node, 1), z => node_dof(mesh, deck%probes(k)%node, 2))
+      call record_put_real(record, 'probe_'//deck%probes(k)%name//'_vr_m_s', v(r))
+      call record_put_real(record, 'probe_'//deck%probes(k)%name//'_vz_m_s', v(z))
+      call record_put_real(record, 'probe_'//deck%probes(k)%name//'_ar_m_s2', a(r))
+      call record_put_real(record, 'probe_'//deck%probes(k)%name//'_az_m_s2', a(z))
+      end associate
+    end do
     end associate
 
   contains
