@@ -91,6 +91,8 @@ contains
     integer :: rows
     rows = 64
     if (present(capacity)) rows = max(capacity, 1)
+    if (allocated(record%columns)) deallocate(record%columns)
+    if (allocated(record%history)) deallocate(record%history)
     allocate(record%columns(size(columns)))
     record%columns = columns
     allocate(record%history(size(columns), rows))
