@@ -40,7 +40,7 @@ contains
   end function gtoa
 
   !> Shortest text (up to 15 significant digits) that reads back as the value:
-  !> 0.7 -> '0.7', 18.11e6 -> '18110000.', 1e-7 -> '0.1E-06'.
+  !> 0.7 -> '0.7', 18.11e6 -> '18110000.0', 1e-7 -> '0.1E-06'.
   function short_real(value) result(text)
     real(dp), intent(in) :: value
     character(:), allocatable :: text
@@ -54,6 +54,7 @@ contains
       if (ios == 0 .and. back == value) exit
     end do
     text = trim(adjustl(buffer))
+    if (text(len(text):) == '.') text = text//'0'     ! '1.' -> '1.0'
   end function short_real
 
   !> Upper-case copy of a string.

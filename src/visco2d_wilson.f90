@@ -73,7 +73,7 @@ contains
     logical, allocatable :: fixed(:)
     logical :: memory
     integer :: step, stage, k, factorizations, step_count, next_field, width
-    real(dp) :: t, dt, tau, theta, stage_start, body_mass
+    real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
     real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, gross_input
     real(dp) :: stored, balance, balance_max, input_max, growth_limit, omega_max
 
@@ -143,9 +143,9 @@ contains
       call factor_for(dt)
       if (allocated(error)) return
       do step = 1, deck%stages(stage)%steps
-        t = stage_start + step*dt
-        if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
-        call advance(t)
+        t_next = stage_start + step*dt
+        if (step == deck%stages(stage)%steps) t_next = deck%stages(stage)%end_time
+        call advance()
         if (allocated(error)) return
         step_count = step_count + 1
         if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck)) call append_row()
@@ -228,9 +228,8 @@ contains
         'definite: '//singular_message(deck, info), file=deck%cards%file)
     end subroutine factor_for
 
-    !> One Wilson-theta step to time t_next = t + dt.
-    subroutine advance(t_next)
-      real(dp), intent(in) :: t_next
+    !> One Wilson-theta step from t to t_next = t + dt.
+    subroutine advance()
       integer :: e, g, nterm, slot
       real(dp) :: increment(4, gauss_count), deviatoric(4), volumetric, energy
       ! Loads and prescribed values at t + tau, linear in time (eq. [36]'s theta dR).

@@ -48,9 +48,10 @@
 !> Hughes 1978). On the column the energy ratio after step 1 is measured as
 !> ~3.4e-2 (DT/dt_crit)^2 (3.4 at DT = 10 dt_crit: checked to be transient
 !> below); it decays by the spectral radius (0.778 per step at omega dt ->
-!> infinity), but visco2d_wilson's guard (100 x the input energy) stops such
-!> runs as "unstable" at step 1 for DT > ~55 dt_crit, so at 1000 dt_crit the
-!> default start is only checked to end cleanly. (Ramping the load over the
+!> infinity). visco2d_wilson's instability guard therefore widens its limit
+!> (100 x the input energy) by 2 ((1 - 1/theta^2) omega_max dt)^2, with
+!> omega_max from a Gershgorin bound; the default start at 1000 dt_crit must
+!> run, and its overshoot must die out. (Ramping the load over the
 !> first step was measured too: Wilson-theta extrapolates the load to
 !> R_tau = theta p in that step and the energy ratio reaches 1.084.)
 program test_stability
@@ -146,22 +147,29 @@ contains
       ', bound ', tolerance
 
     ! The default start (a_0 from equilibrium, a sudden load): Wilson-theta's
-    ! first-step overshoot (header). Whatever the guard decides, no NaN or
-    ! Inf may reach a record: either the run ends with finite values or it
-    ! stops with an error at the TIME card.
+    ! first-step overshoot (header) is not an instability: the run must go
+    ! on, stay finite, and the overshoot must die out (0.78^40 = 5e-5 over
+    ! the first half, as below).
     call write_deck(folder//'/case1_default.inp', column_deck('DYNAMIC', material, 40, pressure, 1.4_dp, dt, &
                     nsteps*dt, 1, from_rest=.false.))
     call read_deck(folder//'/case1_default.inp', deck, error)
     if (.not. allocated(error)) call solve_dynamic(deck, default_record, error)
+    call check('case 1: the default (equilibrium a_0) start at DT = 1000 dt_crit is not stopped as unstable', &
+               .not. allocated(error))
     if (allocated(error)) then
-      call check_text_contains('case 1: the default (equilibrium a_0) start stops cleanly at the TIME card', &
-                               error_text(error), 'TIME:')
-      print '(a)', '  NOTE case 1 default start (sudden load, a_0 from equilibrium): '//error_text(error)
-      outcome = 'stopped as "unstable" by the 100 x energy guard'
+      print '(a)', '  case 1 default start (sudden load, a_0 from equilibrium): '//error_text(error)
+      outcome = 'stopped as "unstable"'
     else
       call check('case 1: the default (equilibrium a_0) start ends with finite values', &
                  all(ieee_is_finite(default_record%history(:, 1:default_record%nrow))))
-      outcome = 'ran to the end'
+      stored = series(default_record, 'kinetic_J') + series(default_record, 'strain_J')
+      input = series(default_record, 'external_work_J')
+      print '(a, es11.3, a, es11.3)', '  case 1 default start, DT = 1000 dt_crit: E/W after step 1 ', &
+        stored(2)/input(2), ', max over the second half ', maxval(stored(nsteps/2 + 1:)/input(nsteps/2 + 1:))
+      call check('case 1: default start at DT = 1000 dt_crit, the overshoot is transient (E/W <= 1 + 1e-3 '// &
+                 'over the second half)', maxval(stored(nsteps/2 + 1:)/input(nsteps/2 + 1:)) <= 1.0_dp + 1.0e-3_dp)
+      outcome = 'ran; E/W '//num3(stored(2)/input(2))//' after step 1, '// &
+                num3(maxval(stored(nsteps/2 + 1:)/input(nsteps/2 + 1:)))//' late'
     end if
 
     ! The same default start at DT = 10 dt_crit, where the overshoot stays
