@@ -171,7 +171,11 @@ contains
         write(unit, '(i9, i9, 2(1x, es16.8))') deck%stages(k)%line, deck%stages(k)%steps, deck%stages(k)%dt, &
           deck%stages(k)%end_time
       end do
-      write(unit, '(a)') '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0'
+      if (deck%analysis == analysis_dynamic) then
+        write(unit, '(a)') '   '//itoa(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0'
+      else
+        write(unit, '(a)') '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0'
+      end if
     end if
     if (size(deck%curves) > 0) then
       write(unit, '(/, a)') ' CURVES  (name: time (s) -> factor; constant outside the points)'
