@@ -34,7 +34,7 @@ module visco2d_static
   private
 
   public :: static_solution_t, solve_static, static_record, singular_message, solve_quasistatic
-  public :: node_stress, put_field_summary, put_probe_summary
+  public :: node_stress, put_field_summary, put_probe_summary, set_snapshot_stress
 
   !> Fields of a static solution.
   type :: static_solution_t
@@ -156,12 +156,7 @@ contains
     snapshot%label = 'static'
     snapshot%time = 0.0_dp
     snapshot%displacement = solution%displacement
-    snapshot%stress = solution%nodal_stress
-    snapshot%stress_gauss = solution%stress
-    snapshot%max_shear = max_shear(solution%nodal_stress(1, :), solution%nodal_stress(2, :), &
-                                   solution%nodal_stress(3, :), solution%nodal_stress(4, :))
-    snapshot%von_mises = von_mises(solution%nodal_stress(1, :), solution%nodal_stress(2, :), &
-                                   solution%nodal_stress(3, :), solution%nodal_stress(4, :))
+    call set_snapshot_stress(mesh, solution%stress, snapshot)
     call record_add_snapshot(record, snapshot)
     end associate
   end subroutine static_record
@@ -335,12 +330,7 @@ contains
       snapshot%label = label
       snapshot%time = time
       snapshot%displacement = displacement_field()
-      snapshot%stress_gauss = stress
-      snapshot%stress = nodal_average(deck%mesh, stress)
-      snapshot%max_shear = max_shear(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
-                                     snapshot%stress(4, :))
-      snapshot%von_mises = von_mises(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
-                                     snapshot%stress(4, :))
+      call set_snapshot_stress(deck%mesh, stress, snapshot)
       call record_add_snapshot(record, snapshot)
     end subroutine keep_snapshot
     !> u as (2, nnode) in node order.
@@ -374,6 +364,20 @@ contains
     end do
     value = value/max(count, 1)
   end function node_stress
+
+  !> The stress fields of a snapshot from Gauss-point stresses: the Gauss
+  !> values, their nodal averages, and the nodal maximum shear and von Mises stress.
+  subroutine set_snapshot_stress(mesh, stress, snapshot)
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: stress(:, :, :)
+    type(snapshot_t), intent(inout) :: snapshot
+    snapshot%stress_gauss = stress
+    snapshot%stress = nodal_average(mesh, stress)
+    snapshot%max_shear = max_shear(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
+                                   snapshot%stress(4, :))
+    snapshot%von_mises = von_mises(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
+                                   snapshot%stress(4, :))
+  end subroutine set_snapshot_stress
 
   !> Summary of a state: largest displacement, extreme stresses over the Gauss points.
   subroutine put_field_summary(displacement, stress, record)

@@ -32,7 +32,7 @@ module visco2d_wilson
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity
   use visco2d_dynamic_cards, only: theta_unconditional
-  use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
+  use visco2d_material, only: stress_from_strain, has_memory
   use visco2d_element, only: element_strains, element_internal_force, element_b_matrices, gauss_count
   use visco2d_banded, only: band_matrix_t, band_factor, band_solve, band_constrain_matrix, band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
@@ -40,7 +40,7 @@ module visco2d_wilson
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
-  use visco2d_static, only: singular_message, node_stress, put_field_summary, put_probe_summary
+  use visco2d_static, only: singular_message, node_stress, put_field_summary, put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
@@ -434,12 +434,7 @@ contains
       snapshot%displacement = field_of(u)
       snapshot%velocity = field_of(v)
       snapshot%acceleration = field_of(a)
-      snapshot%stress_gauss = stress
-      snapshot%stress = nodal_average(deck%mesh, stress)
-      snapshot%max_shear = max_shear(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
-                                     snapshot%stress(4, :))
-      snapshot%von_mises = von_mises(snapshot%stress(1, :), snapshot%stress(2, :), snapshot%stress(3, :), &
-                                     snapshot%stress(4, :))
+      call set_snapshot_stress(deck%mesh, stress, snapshot)
       call record_add_snapshot(record, snapshot)
     end subroutine keep_snapshot
 
