@@ -15,7 +15,7 @@ module visco2d_assembly
   private
 
   public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask, prescribed_displacement
-  public :: lumped_mass, gravity_load, internal_force, nodal_average, gather, scatter_add
+  public :: lumped_mass, gravity_load, internal_force, nodal_average, gather, scatter_add, nodal_field
 
 contains
 
@@ -46,6 +46,17 @@ contains
     real(dp) :: local(8)
     local = vector(element_dofs(mesh, e))
   end function gather
+
+  !> A global vector in band order as (2, nnode) in node order: (u_r, u_z) per node.
+  pure function nodal_field(mesh, vector) result(field)
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: vector(:)
+    real(dp) :: field(2, mesh%nnode)
+    integer :: node
+    do node = 1, mesh%nnode
+      field(:, node) = vector(node_dof(mesh, node, 1):node_dof(mesh, node, 2))
+    end do
+  end function nodal_field
 
   pure subroutine scatter_add(mesh, e, local, vector)
     type(mesh_t), intent(in) :: mesh

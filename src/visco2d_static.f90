@@ -23,7 +23,7 @@ module visco2d_static
   use visco2d_banded, only: band_matrix_t, band_constrain, band_factor, band_solve, band_multiply, &
                             band_constrain_matrix, band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
-                              prescribed_displacement, internal_force, scatter_add, gravity_load
+                              prescribed_displacement, internal_force, scatter_add, gravity_load, nodal_field
   use visco2d_element, only: element_internal_force
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
@@ -57,7 +57,7 @@ contains
     type(band_matrix_t) :: stiffness, constrained
     real(dp), allocatable :: shear(:), bulk(:), load(:), u(:), zero(:)
     logical, allocatable :: fixed(:)
-    integer :: e, info, node
+    integer :: e, info
 
     associate (mesh => deck%mesh)
     shear = deck%materials(mesh%element_material)%shear
@@ -76,14 +76,9 @@ contains
     end if
     call band_solve(constrained, u)
 
-    allocate(solution%displacement(2, mesh%nnode), solution%reaction(2, mesh%nnode))
-    do node = 1, mesh%nnode
-      solution%displacement(:, node) = u(node_dof(mesh, node, 1):node_dof(mesh, node, 2))
-    end do
+    solution%displacement = nodal_field(mesh, u)
     associate (residual => band_multiply(stiffness, u) - load)
-    do node = 1, mesh%nnode
-      solution%reaction(:, node) = residual(node_dof(mesh, node, 1):node_dof(mesh, node, 2))
-    end do
+    solution%reaction = nodal_field(mesh, residual)
     solution%strain_energy = 0.5_dp*dot_product(u, residual + load)
     end associate
     solution%external_work = 0.5_dp*dot_product(load, u)
@@ -222,8 +217,8 @@ contains
     call record_put_integer(record, 'factorizations', factorizations)
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
-    call put_field_summary(displacement_field(), stress, record)
-    call put_probe_summary(deck, displacement_field(), stress, record)
+    call put_field_summary(nodal_field(deck%mesh, u), stress, record)
+    call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     end associate
 
   contains
@@ -325,22 +320,13 @@ contains
       character(*), intent(in) :: name, label
       real(dp), intent(in) :: time
       type(snapshot_t) :: snapshot
-      integer :: node
       snapshot%name = name
       snapshot%label = label
       snapshot%time = time
-      snapshot%displacement = displacement_field()
+      snapshot%displacement = nodal_field(deck%mesh, u)
       call set_snapshot_stress(deck%mesh, stress, snapshot)
       call record_add_snapshot(record, snapshot)
     end subroutine keep_snapshot
-    !> u as (2, nnode) in node order.
-    function displacement_field() result(field)
-      real(dp) :: field(2, deck%mesh%nnode)
-      integer :: node
-      do node = 1, deck%mesh%nnode
-        field(:, node) = u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2))
-      end do
-    end function displacement_field
   end subroutine solve_quasistatic
 
   !> Nodal stress at one node: Gauss values extrapolated in each element that

@@ -36,7 +36,7 @@ module visco2d_wilson
   use visco2d_element, only: element_strains, element_internal_force, element_b_matrices, gauss_count
   use visco2d_banded, only: band_matrix_t, band_factor, band_solve, band_constrain_matrix, band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
-                              prescribed_displacement, internal_force, scatter_add, lumped_mass, gravity_load
+                              prescribed_displacement, internal_force, scatter_add, lumped_mass, gravity_load, nodal_field
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
@@ -177,8 +177,8 @@ contains
     call record_put_real(record, 'balance_error_J', balance)
     call record_put_real(record, 'balance_error_max_J', balance_max)
     call record_put_real(record, 'balance_error_max_rel', balance_max/max(input_max, tiny(1.0_dp)))
-    call put_field_summary(field_of(u), stress, record)
-    call put_probe_summary(deck, field_of(u), stress, record)
+    call put_field_summary(nodal_field(deck%mesh, u), stress, record)
+    call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     do k = 1, size(deck%probes)
       associate (r => node_dof(mesh, deck%probes(k)%node, 1), z => node_dof(mesh, deck%probes(k)%node, 2))
       call record_put_real(record, 'probe_'//deck%probes(k)%name//'_vr_m_s', v(r))
@@ -392,7 +392,7 @@ contains
       real(dp), allocatable :: row(:)
       integer :: p, node
       stored = stored_energy()
-      row = [real(step_count, dp), t, maxval(norm2(field_of(u), dim=1)), centre_of_mass(u), centre_of_mass(v), &
+      row = [real(step_count, dp), t, maxval(norm2(nodal_field(deck%mesh, u), dim=1)), centre_of_mass(u), centre_of_mass(v), &
              centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
              balance, sum(reaction(1::2)), sum(reaction(2::2))]
       do p = 1, size(deck%probes)
@@ -431,21 +431,11 @@ contains
       snapshot%name = 'step_'//trim(digits)
       snapshot%label = label
       snapshot%time = t
-      snapshot%displacement = field_of(u)
-      snapshot%velocity = field_of(v)
-      snapshot%acceleration = field_of(a)
+      snapshot%displacement = nodal_field(deck%mesh, u)
+      snapshot%velocity = nodal_field(deck%mesh, v)
+      snapshot%acceleration = nodal_field(deck%mesh, a)
       call set_snapshot_stress(deck%mesh, stress, snapshot)
       call record_add_snapshot(record, snapshot)
     end subroutine keep_snapshot
-
-    !> A vector in band order as (2, nnode) in node order.
-    function field_of(vector) result(field)
-      real(dp), intent(in) :: vector(:)
-      real(dp) :: field(2, deck%mesh%nnode)
-      integer :: node
-      do node = 1, deck%mesh%nnode
-        field(:, node) = vector(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2))
-      end do
-    end function field_of
   end subroutine solve_dynamic
 end module visco2d_wilson
