@@ -64,7 +64,8 @@ program test_stability
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
   use visco2d_system, only: directory_exists
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
+                             history_column, history_last, history_index
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_stability'
@@ -133,7 +134,7 @@ contains
                      deck, record, ok)
     if (.not. ok) return
     call check_bounded('case 1 (theta 1.4, DT = 1000 dt_crit, from rest)', record, 1.0e-3_dp, ratio)
-    u_end = last(record, 'top_uz_m')
+    u_end = history_last(record, 'top_uz_m')
     static_error = abs(u_end - u_static)/abs(u_static)
     ! The error e_n = u_n - u_static is a free vibration, damped by the
     ! spectral radius of each mode (<= 0.7785 for omega dt >= 3; the
@@ -162,8 +163,8 @@ contains
     else
       call check('case 1: the default (equilibrium a_0) start ends with finite values', &
                  all(ieee_is_finite(default_record%history(:, 1:default_record%nrow))))
-      stored = series(default_record, 'kinetic_J') + series(default_record, 'strain_J')
-      input = series(default_record, 'external_work_J')
+      stored = history_column(default_record, 'kinetic_J') + history_column(default_record, 'strain_J')
+      input = history_column(default_record, 'external_work_J')
       print '(a, es11.3, a, es11.3)', '  case 1 default start, DT = 1000 dt_crit: E/W after step 1 ', &
         stored(2)/input(2), ', max over the second half ', maxval(stored(nsteps/2 + 1:)/input(nsteps/2 + 1:))
       call check('case 1: default start at DT = 1000 dt_crit, the overshoot is transient (E/W <= 1 + 1e-3 '// &
@@ -180,8 +181,8 @@ contains
     call run_dynamic('case1_default_10', column_deck('DYNAMIC', material, 40, pressure, 1.4_dp, 10.0_dp*dt_crit, &
                      nsteps*10.0_dp*dt_crit, 1, from_rest=.false.), deck, default_record, ok)
     if (ok) then
-      stored = series(default_record, 'kinetic_J') + series(default_record, 'strain_J')
-      input = series(default_record, 'external_work_J')
+      stored = history_column(default_record, 'kinetic_J') + history_column(default_record, 'strain_J')
+      input = history_column(default_record, 'external_work_J')
       overshoot = stored(2)/input(2)
       late_ratio = maxval(stored(nsteps/2 + 1:)/input(nsteps/2 + 1:))
       print '(a, es11.3, a, es11.3)', '  case 1 default start, DT = 10 dt_crit: E/W after step 1 ', overshoot, &
@@ -377,7 +378,7 @@ contains
       if (.not. ok) return
       call check_bounded('case 2b ('//trim(formulations(k))//', nu = 0.4999, dynamic ring)', record, 1.0e-3_dp, &
                          ratio(k))
-      bore = series(record, 'bore_ur_m')
+      bore = history_column(record, 'bore_ur_m')
       mean(k) = sum(bore(2:))/(size(bore) - 1)
       peak(k) = maxval(bore)
     end do
@@ -435,11 +436,11 @@ contains
     call run_dynamic('case3_elastic_g0', column_deck('DYNAMIC', [shear_line(g0, bulk)], 40, pressure, 1.4_dp, dt, &
                      nsteps*dt, 1), deck, record, ok)
     if (.not. ok) return
-    u_g0 = series(record, 'top_uz_m')
+    u_g0 = history_column(record, 'top_uz_m')
     call run_dynamic('case3_elastic_ginf', column_deck('DYNAMIC', [shear_line(g_inf, bulk)], 40, pressure, 1.4_dp, &
                      dt, nsteps*dt, 1), deck, record, ok)
     if (.not. ok) return
-    u_inf = series(record, 'top_uz_m')
+    u_inf = history_column(record, 'top_uz_m')
 
     worst_ratio = 0.0_dp
     min_dissipated = huge(1.0_dp)
@@ -450,9 +451,9 @@ contains
       if (.not. ok) return
       call check_bounded('case 3 (beta DT = '//num3(x(k))//')', record, 1.0e-3_dp, ratio)
       worst_ratio = max(worst_ratio, ratio)
-      min_dissipated = min(min_dissipated, minval(series(record, 'dissipated_J'))/ &
-                                           maxval(abs(series(record, 'external_work_J'))))
-      u = series(record, 'top_uz_m')
+      min_dissipated = min(min_dissipated, minval(history_column(record, 'dissipated_J'))/ &
+                                           maxval(abs(history_column(record, 'external_work_J'))))
+      u = history_column(record, 'top_uz_m')
       if (k == 1) then
         scale = maxval(abs(u_g0))
         diff_slow = maxval(abs(u - u_g0))/scale
@@ -489,7 +490,7 @@ contains
       else if (abs(x(k) - 1.0_dp) < 0.5_dp) then
         ! beta DT = 1: relaxation during the run dissipates energy (the dashpot works).
         call check('case 3: beta DT = 1 dissipates (dissipated_J > 1 % of the work at the end)', &
-                   last(record, 'dissipated_J') > 1.0e-2_dp*last(record, 'external_work_J'))
+                   history_last(record, 'dissipated_J') > 1.0e-2_dp*history_last(record, 'external_work_J'))
       end if
     end do
     print '(a, 4es11.3)', '  case 3: |u - u_G0| (x = 1e-12), |u - u_Ginf| (x = 1e6), first step, G0-Ginf at step 1:', &
@@ -526,9 +527,9 @@ contains
     call run_dynamic('case4_long', column_deck('DYNAMIC', material, 10, pressure, 1.4_dp, dt, nsteps*dt, every), &
                      deck, record, ok)
     if (.not. ok) return
-    call check('case 4: the run made 1e5 steps', nint(last(record, 'step')) == nsteps)
+    call check('case 4: the run made 1e5 steps', nint(history_last(record, 'step')) == nsteps)
     call check_bounded('case 4 (1e5 steps)', record, 1.0e-3_dp, ratio)
-    u = series(record, 'top_uz_m')
+    u = history_column(record, 'top_uz_m')
     n = size(u)
     ! Two windows of 25,000 steps (500 T1 each): steps 50,000..75,000 and 75,000..100,000.
     window = 25000*dt
@@ -549,8 +550,8 @@ contains
     ! Balance error = kinetic + internal work - input: <= 0 (the integrator
     ! only removes energy; round-off 1e-9 of the input as for dissipated_J)
     ! and bounded by the input (it cannot remove more than was put in).
-    balance = series(record, 'balance_error_J')
-    input_max = maxval(abs(series(record, 'external_work_J')))
+    balance = history_column(record, 'balance_error_J')
+    input_max = maxval(abs(history_column(record, 'external_work_J')))
     balance_max = maxval(balance)
     call check('case 4: balance error <= round-off at every row (non-positive)', balance_max <= 1.0e-9_dp*input_max)
     call check('case 4: |balance error| <= the input energy at every row (bounded)', &
@@ -593,12 +594,12 @@ contains
     call run_dynamic('case5_stiff', column_deck('DYNAMIC', [elastic_line(young1, poisson1, density1)], 40, pressure, &
                      1.4_dp, dt, nsteps*dt, 1), deck, record, ok)
     if (.not. ok) return
-    u_stiff = series(record, 'top_uz_m')
+    u_stiff = history_column(record, 'top_uz_m')
     call run_dynamic('case5_soft', column_deck('DYNAMIC', [elastic_line(soft, poisson1, density1)], 40, pressure, &
                      1.4_dp, dt*sqrt(factor), nsteps*dt*sqrt(factor), 1), deck, record, ok)
     if (.not. ok) return
     call check_bounded('case 5 (E = 100 Pa, p = 1e5 Pa)', record, 1.0e-3_dp, ratio)
-    u_soft = series(record, 'top_uz_m')
+    u_soft = history_column(record, 'top_uz_m')
     ! M u'' + S u = R with S -> S/f and dt -> dt sqrt(f) is solved by u -> f u:
     ! every Wilson-theta operation scales exactly (S~ = S + 6 M/(theta dt)^2 -> S~/f,
     ! the right side is unchanged), so the runs agree to round-off, ~1e-13 of
@@ -862,32 +863,6 @@ contains
     top_displacement = solution%displacement(2, nearest_node(deck, [0.01_dp, column_length]))
   end function top_displacement
 
-  !> Index of a history column (0 if absent).
-  integer function column(record, name)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    integer :: k
-    column = 0
-    do k = 1, size(record%columns)
-      if (trim(record%columns(k)) == name) column = k
-    end do
-  end function column
-
-  !> A history column over the rows.
-  function series(record, name) result(values)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    real(dp), allocatable :: values(:)
-    values = record%history(column(record, name), 1:record%nrow)
-  end function series
-
-  !> The last row's value of a history column.
-  real(dp) function last(record, name)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    last = record%history(column(record, name), record%nrow)
-  end function last
-
   !> Every history value and snapshot field is finite; kinetic + strain <=
   !> (work on the body + initial kinetic) (1 + tolerance) at every row
   !> (+ 1e-12 of the input for round-off at the rows where both are ~0);
@@ -911,10 +886,10 @@ contains
       end associate
     end do
     call check(name//': every history value and snapshot field is finite', finite .and. size(record%snapshots) >= 2)
-    stored = series(record, 'kinetic_J') + series(record, 'strain_J')
-    input = series(record, 'external_work_J') + series(record, 'gravity_work_J') + &
-            record%history(column(record, 'kinetic_J'), 1)
-    dissipated = series(record, 'dissipated_J')
+    stored = history_column(record, 'kinetic_J') + history_column(record, 'strain_J')
+    input = history_column(record, 'external_work_J') + history_column(record, 'gravity_work_J') + &
+            record%history(history_index(record, 'kinetic_J'), 1)
+    dissipated = history_column(record, 'dissipated_J')
     ratio = maxval(stored/max(input, tiny(1.0_dp)), mask=input > 1.0e-12_dp*maxval(abs(input)))
     print '(a, es12.4, a, es12.4)', '  '//name//': max (kinetic + strain)/input = ', ratio, &
       ', min dissipated/max input = ', minval(dissipated)/maxval(abs(input))

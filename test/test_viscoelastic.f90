@@ -27,7 +27,7 @@ program test_viscoelastic
   use visco2d_driver, only: summary_value
   use visco2d_analytic, only: shear_relaxation, shear_ramp_response, uniaxial_creep_compliance_one_term, &
                               cylinder_bore_displacement
-  use visco2d_testing, only: check, check_close, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column
   implicit none
 
   integer, parameter :: qp = selected_real_kind(30)
@@ -107,10 +107,10 @@ contains
     lines = [character(len=100) :: lines, 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', 'FIX BOTTOM Z', &
              'FIX OUTER R', 'FIX TOP Z UZ=-1e-4', decades, 'PROBE c R=0.005 Z=0.005', 'END']
     if (.not. run(name, lines, record)) return
-    t = column(record, 't_s')
-    sr = column(record, 'c_sr_Pa')
-    sz = column(record, 'c_sz_Pa')
-    st = column(record, 'c_st_Pa')
+    t = history_column(record, 't_s')
+    sr = history_column(record, 'c_sr_Pa')
+    sz = history_column(record, 'c_sz_Pa')
+    st = history_column(record, 'c_st_Pa')
     call check(name//'_rows', size(t) == 101, 'rows '//itoa(size(t)))   ! step 0, 10 + 10 x 9 steps
     call check(name//'_time_span', t(2) == 1.0e-7_dp .and. t(size(t)) == 1.0e4_dp)
     worst_deviatoric = 0.0_dp
@@ -160,9 +160,9 @@ contains
              'FIX OUTER R', 'FIX TOP Z UZ=-1e-4 CURVE=ramp', 'CURVE ramp 0 0 10 1', &
              'TIME DT=1e-3 TEND=0.1', 'TIME DT=0.01 TEND=1', 'TIME DT=0.1 TEND=10', 'PROBE c R=0.005 Z=0.005', 'END']
     if (.not. run('constant_strain_rate', lines, record)) return
-    t = column(record, 't_s')
-    sr = column(record, 'c_sr_Pa')
-    sz = column(record, 'c_sz_Pa')
+    t = history_column(record, 't_s')
+    sr = history_column(record, 'c_sr_Pa')
+    sz = history_column(record, 'c_sz_Pa')
     worst = 0.0_dp
     do row = 2, size(t)
       exact = shear_ramp_response(shear, rate, strain_rate, t(row))
@@ -189,9 +189,9 @@ contains
              'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.02 NR=3 NZ=4', 'FIX BOTTOM Z', 'PRESSURE TOP P=1e4', &
              'TIME DT=0.01 TEND=1', 'TIME DT=0.5 TEND=50', 'PROBE corner R=0.01 Z=0.02', 'END']
     if (.not. run('creep', lines, record)) return
-    t = column(record, 't_s')
-    uz = column(record, 'corner_uz_m')
-    ur = column(record, 'corner_ur_m')
+    t = history_column(record, 't_s')
+    uz = history_column(record, 'corner_uz_m')
+    ur = history_column(record, 'corner_ur_m')
     worst_axial = 0.0_dp
     worst_radial = 0.0_dp
     do row = 1, size(t)
@@ -239,7 +239,7 @@ contains
     call check('elastic_quasistatic_effects', effects_text(scene_effects(deck)) == 'none', &
                effects_text(scene_effects(deck)))
     call read_deck(folder//'/elastic_static.inp', deck, error)
-    t = column(record, 't_s')
+    t = history_column(record, 't_s')
     worst = 0.0_dp
     scale = maxval(abs(solution%displacement))
     do row = 1, size(t)
@@ -248,9 +248,9 @@ contains
       else
         factor = 1.0_dp - 0.75_dp*min(t(row) - 1.0_dp, 2.0_dp)/2.0_dp
       end if
-      ur = column(record, 'side_ur_m')
-      uz = column(record, 'pole_uz_m')
-      sz = column(record, 'pole_sz_Pa')
+      ur = history_column(record, 'side_ur_m')
+      uz = history_column(record, 'pole_uz_m')
+      sz = history_column(record, 'pole_sz_Pa')
       node = deck%probes(1)%node
       worst = max(worst, abs(ur(row) - factor*solution%displacement(1, node))/scale)
       node = deck%probes(2)%node
@@ -281,8 +281,8 @@ contains
     call solve_quasistatic(deck, record, error)
     call check('cylinder_solves', .not. allocated(error))
     if (allocated(error)) return
-    t = column(record, 't_s')
-    bore = column(record, 'bore_ur_m')
+    t = history_column(record, 't_s')
+    bore = history_column(record, 'bore_ur_m')
     allocate(exact(size(t)))
     call cylinder_bore_displacement([0.2e6_dp, 1.0e6_dp, 0.5e6_dp], [0.0_dp, 10.0_dp, 0.1_dp], 5.0e6_dp, &
                                     0.01_dp, 0.02_dp, 1.0e4_dp, t, exact)
@@ -403,8 +403,8 @@ contains
     lines = [character(len=100) :: lines, 'END']
     worst = huge(1.0_dp)
     if (.not. run('uniaxial_relaxation_'//itoa(per_decade), lines, record)) return
-    t = column(record, 't_s')
-    sz = column(record, 'c_sz_Pa')
+    t = history_column(record, 't_s')
+    sz = history_column(record, 'c_sz_Pa')
     worst = 0.0_dp
     do row = 1, size(t)
       worst = max(worst, abs(sz(row)/(-0.01_dp*sum(young*exp(-rate*t(row)))) - 1.0_dp))
@@ -430,18 +430,5 @@ contains
       call check(name//'_runs', .false., error_text(error))
     end if
   end function run
-
-  !> A history column by name (empty if absent).
-  function column(record, name) result(values)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    real(dp), allocatable :: values(:)
-    integer :: k
-    allocate(values(0))
-    do k = 1, size(record%columns)
-      if (trim(record%columns(k)) == name) values = record%history(k, 1:record%nrow)
-    end do
-    if (size(values) == 0) call check('column_'//name, .false., 'no history column '//name)
-  end function column
 
 end program test_viscoelastic

@@ -20,7 +20,7 @@ program test_wave
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t
-  use visco2d_testing, only: check, check_close, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column, history_last
   implicit none
 
   character(*), parameter :: deck_file = 'inputs/halfspace_wave.inp'
@@ -139,8 +139,8 @@ contains
                  'relative error '//gtoa(run%velocity_error(p)))
     end do
     ! The 1-D state: sigma_r = nu/(1 - nu) sigma_z = -p0/3 behind the front (same window, same 1 %).
-    t = column(record, 't_s')
-    sr = column(record, 'd025_sr_Pa')
+    t = history_column(record, 't_s')
+    sr = history_column(record, 'd025_sr_Pa')
     call check_close('wave_plateau_lateral_stress_d025', window_mean(t, sr, depths(1)/speed + 1.0e-3_dp), &
                      -p0/3.0_dp, 1.0e-2_dp)
 
@@ -149,7 +149,7 @@ contains
     ! speed, losing v dz/(4c), and the first step cannot follow the jump in
     ! velocity (at most v dt); afterwards momentum conservation makes it
     ! catch up. Bound over the whole history: v (dz/(4c) + dt).
-    top = column(record, 'top_uz_m')
+    top = history_column(record, 'top_uz_m')
     worst = maxval(abs(top + velocity*t))
     tolerance = velocity*(dz/(4.0_dp*speed) + dt)
     print '(a, es10.3, a, es10.3, a)', '# top displacement: worst |u + v t| = ', worst, ' m (bound ', tolerance, ' m)'
@@ -161,8 +161,8 @@ contains
     ! reaction ahead of the front is < 1e-10 of the load); Wilson-theta keeps
     ! sum M a = sum R exactly (eqs. [37]-[42] interpolate the stage
     ! equilibrium linearly). Round-off: 1e-9.
-    vcm = column(record, 'vz_cm_m_s')
-    ucm = column(record, 'uz_cm_m')
+    vcm = history_column(record, 'vz_cm_m_s')
+    ucm = history_column(record, 'uz_cm_m')
     worst = maxval(abs(vcm + p0*t/(rho*height)))/(p0*t_end/(rho*height))
     call check('wave_momentum_velocity', worst <= 1.0e-9_dp, 'worst relative error '//gtoa(worst))
     worst = maxval(abs(ucm + 0.5_dp*p0*t**2/(rho*height)))/(0.5_dp*p0*t_end**2/(rho*height))
@@ -172,8 +172,8 @@ contains
     ! top's), kinetic = strain = W/2 less half of the numerical dissipation.
     associate (exact_work => p0*width*velocity*t_end)
     call check_close('wave_work', run%work, exact_work, dt/t_end)
-    kinetic = column_last(record, 'kinetic_J')
-    strain = column_last(record, 'strain_J')
+    kinetic = history_last(record, 'kinetic_J')
+    strain = history_last(record, 'strain_J')
     print '(a, 3es13.5, a, es10.3, a)', '# energy: work, kinetic, strain ', run%work, kinetic, strain, &
       ' J/m; Wilson-theta dissipated ', -run%balance/run%work, ' of the work'
     ! Wilson-theta's numerical damping is the (negative) balance error; it
@@ -186,7 +186,7 @@ contains
     call check_close('wave_kinetic_is_half_the_work', kinetic, 0.5_dp*exact_work, 3.0e-3_dp)
     call check_close('wave_strain_is_half_the_work', strain, 0.5_dp*exact_work, 3.0e-3_dp)
     ! Elastic: the stored energy is all the internal work (round-off).
-    call check_close('wave_elastic_stores_all', column_last(record, 'dissipated_J'), 0.0_dp, 0.0_dp, &
+    call check_close('wave_elastic_stores_all', history_last(record, 'dissipated_J'), 0.0_dp, 0.0_dp, &
                      1.0e-9_dp*exact_work)
     end associate
   end subroutine test_deck
@@ -425,16 +425,16 @@ contains
     real(dp), allocatable :: t(:), sz(:), vz(:)
     integer :: p
     run%dt = deck%stages(1)%dt
-    t = column(record, 't_s')
+    t = history_column(record, 't_s')
     do p = 1, 3
-      sz = column(record, probe_names(p)//'_sz_Pa')
-      vz = column(record, probe_names(p)//'_vz_m_s')
+      sz = history_column(record, probe_names(p)//'_sz_Pa')
+      vz = history_column(record, probe_names(p)//'_vz_m_s')
       run%front(p) = measure_front(t, -sz/p0)
       run%stress_error(p) = window_mean(t, -sz/p0, depths(p)/speed + delay) - 1.0_dp
       run%velocity_error(p) = window_mean(t, -vz/velocity, depths(p)/speed + delay) - 1.0_dp
     end do
-    run%work = column_last(record, 'external_work_J')
-    run%balance = column_last(record, 'balance_error_J')
+    run%work = history_last(record, 'external_work_J')
+    run%balance = history_last(record, 'balance_error_J')
     run%ok = .true.
   end subroutine measure_run
 
@@ -574,26 +574,4 @@ contains
     close(unit)
   end function read_lines
 
-  !> A history column by name (empty, and a failed check, if absent).
-  function column(record, name) result(values)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    real(dp), allocatable :: values(:)
-    integer :: k
-    allocate(values(0))
-    do k = 1, size(record%columns)
-      if (trim(record%columns(k)) == name) values = record%history(k, 1:record%nrow)
-    end do
-    if (size(values) == 0) call check('column_'//name, .false., 'no history column '//name)
-  end function column
-
-  !> The last row of a history column.
-  real(dp) function column_last(record, name)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    real(dp), allocatable :: values(:)
-    values = column(record, name)
-    column_last = huge(1.0_dp)
-    if (size(values) > 0) column_last = values(size(values))
-  end function column_last
 end program test_wave

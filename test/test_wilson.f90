@@ -30,7 +30,7 @@ program test_wilson
   use visco2d_record, only: record_t
   use visco2d_driver, only: summary_value, run_deck
   use visco2d_strings, only: itoa
-  use visco2d_testing, only: check, check_close, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, history_index
   implicit none
 
   integer, parameter :: qp = selected_real_kind(30)
@@ -384,25 +384,14 @@ contains
     type(record_t), intent(in) :: record
     real(dp), allocatable :: u(:)
     integer :: right, left
-    right = column(record, 'top_uz_m')
-    left = column(record, 'top_left_uz_m')
+    right = history_index(record, 'top_uz_m')
+    left = history_index(record, 'top_left_uz_m')
     if (right == 0 .or. left == 0) then
       allocate(u(0))
       return
     end if
     u = 0.5_dp*(record%history(right, 1:record%nrow) + record%history(left, 1:record%nrow))
   end function sdof_displacement
-
-  !> Index of a history column (0 if absent).
-  integer function column(record, name)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: name
-    integer :: j
-    column = 0
-    do j = 1, size(record%columns)
-      if (trim(record%columns(j)) == name) column = j
-    end do
-  end function column
 
   !> The SDOF at one step ratio: run the program, compare the displacement
   !> history with e1^T A^n x0, measure PE/AD (or the dominant real root) from
@@ -477,13 +466,13 @@ contains
       return
     end if
     row%ran = .true.
-    col_u = column(record, 'top_left_uz_m')
-    col_k = column(record, 'kinetic_J')
-    col_s = column(record, 'strain_J')
-    col_b = column(record, 'balance_error_J')
-    col_d = column(record, 'dissipated_J')
-    col_x = column(record, 'external_work_J')
-    col_g = column(record, 'gravity_work_J')
+    col_u = history_index(record, 'top_left_uz_m')
+    col_k = history_index(record, 'kinetic_J')
+    col_s = history_index(record, 'strain_J')
+    col_b = history_index(record, 'balance_error_J')
+    col_d = history_index(record, 'dissipated_J')
+    col_x = history_index(record, 'external_work_J')
+    col_g = history_index(record, 'gravity_work_J')
     call check(name//': history has every step', record%nrow == steps + 1 .and. &
                all([col_u, col_k, col_s, col_b, col_d, col_x, col_g] > 0))
     if (record%nrow /= steps + 1) return
@@ -500,7 +489,7 @@ contains
     row%history_error = real(worst, dp)
     tolerance = 20.0_dp*steps*eps
     call check(name//': the tilt mode stays at round-off: |u3 - u4| <= 20 n eps max|u|', &
-      maxval(abs(record%history(col_u, 1:steps + 1) - record%history(column(record, 'top_uz_m'), 1:steps + 1))) &
+      maxval(abs(record%history(col_u, 1:steps + 1) - record%history(history_index(record, 'top_uz_m'), 1:steps + 1))) &
       <= tolerance*real(scale, dp))
     call check(name//': u_n = e1^T A^n x0 (rel. to max|u|) within 20 n eps = '//trim(qtoa(real(tolerance, qp))), &
                worst <= tolerance, 'error '//trim(qtoa(worst)))
@@ -880,15 +869,15 @@ contains
     tau = deck%dynamics%theta*minval(deck%stages%dt)
     masses = lumped_mass(deck)
     mass = sum(masses(2::2))
-    col_t = column(record, 't_s')
-    col_u = column(record, 'uz_cm_m')
-    col_v = column(record, 'vz_cm_m_s')
-    col_a = column(record, 'az_cm_m_s2')
-    col_k = column(record, 'kinetic_J')
-    col_s = column(record, 'strain_J')
-    col_b = column(record, 'balance_error_J')
-    col_g = column(record, 'gravity_work_J')
-    col_x = column(record, 'external_work_J')
+    col_t = history_index(record, 't_s')
+    col_u = history_index(record, 'uz_cm_m')
+    col_v = history_index(record, 'vz_cm_m_s')
+    col_a = history_index(record, 'az_cm_m_s2')
+    col_k = history_index(record, 'kinetic_J')
+    col_s = history_index(record, 'strain_J')
+    col_b = history_index(record, 'balance_error_J')
+    col_g = history_index(record, 'gravity_work_J')
+    col_x = history_index(record, 'external_work_J')
     t_end = deck%stages(size(deck%stages))%end_time
     u_end = abs(v0*t_end - 0.5_dp*g*t_end**2)
     speed_max = abs(v0) + g*t_end

@@ -2,10 +2,12 @@
 !> one line, `PASS name` or `FAIL name: detail`; the test runner counts them.
 module visco2d_testing
   use visco2d_kinds, only: dp
+  use visco2d_record, only: record_t
   implicit none
   private
 
   public :: check, check_close, check_text_contains, test_summary, failures, write_deck
+  public :: history_index, history_column, history_last
 
   integer, save :: passes = 0, failures = 0
 
@@ -67,4 +69,40 @@ contains
     end do
     close(unit)
   end subroutine write_deck
+
+  !> Index of a history column of a record (0 if absent).
+  integer function history_index(record, name) result(index)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: name
+    integer :: k
+    index = 0
+    do k = 1, size(record%columns)
+      if (trim(record%columns(k)) == name) index = k
+    end do
+  end function history_index
+
+  !> A history column over the rows (empty, and a failed check, if absent).
+  function history_column(record, name) result(values)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: name
+    real(dp), allocatable :: values(:)
+    integer :: k
+    k = history_index(record, name)
+    if (k == 0) then
+      allocate(values(0))
+      call check('column_'//name, .false., 'no history column '//name)
+    else
+      values = record%history(k, 1:record%nrow)
+    end if
+  end function history_column
+
+  !> The last row of a history column (huge, and a failed check, if absent).
+  real(dp) function history_last(record, name) result(value)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: name
+    real(dp), allocatable :: values(:)
+    values = history_column(record, name)
+    value = huge(1.0_dp)
+    if (size(values) > 0) value = values(size(values))
+  end function history_last
 end module visco2d_testing
