@@ -304,128 +304,74 @@ contains
   end function nearest_free_node
 
   !> The contact pressure p (Pa, per node; 0 off contact) recovered from the z
-  !> reactions R (per radian) of the contact nodes by a consistent projection:
-  !> p is linear along the boundary edges and solves  M p = R  with the
-  !> boundary mass M_ij = int N_i N_j r ds (r = 1 in plane strain) over the
-  !> deformed edges whose two nodes are in contact. A contact node with no
-  !> such edge (an isolated node, e.g. the pole alone) takes its edges to
-  !> its free neighbours, with p = 0 at those. With r-weighted shape
-  !> functions a uniform p puts p h^2/6 per radian on the axis node of an
-  !> edge of length h (not the naive tributary p h^2/8): this projection
-  !> returns that p exactly. q = p at the pole.
+  !> reactions R (per radian) of the contact nodes by a boundary-mass
+  !> projection, lumped by rows: p_i = R_i / A_i with
+  !>   A_i = sum_j M_ij = int N_i r ds    (r = 1 in plane strain)
+  !> over the deformed edges whose two nodes are in contact (a contact node
+  !> with no such edge, e.g. the pole alone, takes all its boundary edges).
+  !> A uniform pressure is recovered exactly: on the axis node of an edge of
+  !> length h, A = h^2/6 per radian (the naive tributary disc r < h/2 gives
+  !> h^2/8 and overstates q by 4/3). The consistent (unlumped) projection
+  !> M p = R is not used: when the true contact edge lies between the last
+  !> contact node and the next free one, it oscillates (on the level-2
+  !> sphere of Table 1 the pole pressure even turns negative). q = p at the pole.
   subroutine contact_pressure(deck, contact, u, reaction, pressure, q)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(in) :: contact
     real(dp), intent(in) :: u(:), reaction(:)
     real(dp), intent(out) :: pressure(:)
     real(dp), intent(out) :: q
-    integer, allocatable :: nodes(:), position(:)
-    real(dp), allocatable :: matrix(:, :), rhs(:)
+    real(dp), allocatable :: area(:)
     logical, allocatable :: has_edge(:)
-    integer :: n, k, a, b, i
-    real(dp) :: ra, rb, length, m_aa, m_ab, m_bb
+    integer :: k, a, b, i, node
+    real(dp) :: ra, rb, length, share_a, share_b
     pressure = 0.0_dp
     q = 0.0_dp
     associate (mesh => deck%mesh)
-    nodes = pack(contact%candidates, contact%active(contact%candidates))
-    n = size(nodes)
-    if (n == 0) return
-    allocate(position(mesh%nnode), matrix(n, n), rhs(n), has_edge(n))
-    position = 0
-    position(nodes) = [(i, i = 1, n)]
-    matrix = 0.0_dp
+    if (.not. any(contact%active)) return
+    allocate(area(mesh%nnode), has_edge(mesh%nnode))
+    area = 0.0_dp
     has_edge = .false.
     do k = 1, size(contact%edges, 2)
-      a = position(contact%edges(1, k))
-      b = position(contact%edges(2, k))
-      if (a > 0 .and. b > 0) then
+      a = contact%edges(1, k)
+      b = contact%edges(2, k)
+      if (contact%active(a) .and. contact%active(b)) then
         has_edge(a) = .true.
         has_edge(b) = .true.
       end if
     end do
     do k = 1, size(contact%edges, 2)
-      a = position(contact%edges(1, k))
-      b = position(contact%edges(2, k))
-      if (a == 0 .and. b == 0) cycle
-      if (a > 0 .and. b > 0) then
-        continue
-      else if (a > 0) then
-        if (has_edge(a)) cycle
+      a = contact%edges(1, k)
+      b = contact%edges(2, k)
+      if (.not. (contact%active(a) .or. contact%active(b))) cycle
+      ra = abs(mesh%xy(1, a) + u(node_dof(mesh, a, 1)))
+      rb = abs(mesh%xy(1, b) + u(node_dof(mesh, b, 1)))
+      length = norm2(mesh%xy(:, a) + [u(node_dof(mesh, a, 1)), u(node_dof(mesh, a, 2))] - &
+                     mesh%xy(:, b) - [u(node_dof(mesh, b, 1)), u(node_dof(mesh, b, 2))])
+      if (deck%geometry == geometry_axisymmetric) then     ! int N_a r ds, int N_b r ds
+        share_a = length*(2.0_dp*ra + rb)/6.0_dp
+        share_b = length*(ra + 2.0_dp*rb)/6.0_dp
       else
-        if (has_edge(b)) cycle
+        share_a = 0.5_dp*length
+        share_b = 0.5_dp*length
       end if
-      associate (p => contact%edges(1, k), s => contact%edges(2, k))
-      ra = mesh%xy(1, p) + u(node_dof(mesh, p, 1))
-      rb = mesh%xy(1, s) + u(node_dof(mesh, s, 1))
-      length = norm2(mesh%xy(:, p) + [u(node_dof(mesh, p, 1)), u(node_dof(mesh, p, 2))] - &
-                     mesh%xy(:, s) - [u(node_dof(mesh, s, 1)), u(node_dof(mesh, s, 2))])
-      end associate
-      if (deck%geometry == geometry_axisymmetric) then
-        m_aa = length*(3.0_dp*abs(ra) + abs(rb))/12.0_dp
-        m_ab = length*(abs(ra) + abs(rb))/12.0_dp
-        m_bb = length*(abs(ra) + 3.0_dp*abs(rb))/12.0_dp
-      else
-        m_aa = length/3.0_dp
-        m_ab = length/6.0_dp
-        m_bb = length/3.0_dp
-      end if
-      if (a > 0) matrix(a, a) = matrix(a, a) + m_aa
-      if (b > 0) matrix(b, b) = matrix(b, b) + m_bb
-      if (a > 0 .and. b > 0) then
-        matrix(a, b) = matrix(a, b) + m_ab
-        matrix(b, a) = matrix(b, a) + m_ab
+      if (contact%active(a) .and. contact%active(b)) then
+        area(a) = area(a) + share_a
+        area(b) = area(b) + share_b
+      else if (contact%active(a) .and. .not. has_edge(a)) then
+        area(a) = area(a) + share_a
+      else if (contact%active(b) .and. .not. has_edge(b)) then
+        area(b) = area(b) + share_b
       end if
     end do
-    do i = 1, n
-      rhs(i) = reaction(node_dof(mesh, nodes(i), 2))
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node) .and. area(node) > 0.0_dp) &
+        pressure(node) = reaction(node_dof(mesh, node, 2))/area(node)
     end do
-    call solve_dense(matrix, rhs)
-    pressure(nodes) = rhs
     q = pressure(contact%pole)
     end associate
   end subroutine contact_pressure
-
-  !> Solve the small symmetric system A x = b in place (Gauss elimination with
-  !> partial pivoting); an equation with no mass (a degenerate edge) gets x = 0.
-  pure subroutine solve_dense(matrix, rhs)
-    real(dp), intent(inout) :: matrix(:, :), rhs(:)
-    integer :: n, k, i, pivot
-    real(dp) :: factor, scale
-    real(dp), allocatable :: row(:)
-    n = size(rhs)
-    scale = maxval(abs(matrix))
-    if (scale == 0.0_dp) then
-      rhs = 0.0_dp
-      return
-    end if
-    do k = 1, n
-      pivot = k - 1 + maxloc(abs(matrix(k:n, k)), dim=1)
-      if (abs(matrix(pivot, k)) <= 1.0e-14_dp*scale) then
-        matrix(k, :) = 0.0_dp
-        matrix(:, k) = 0.0_dp
-        matrix(k, k) = 1.0_dp
-        rhs(k) = 0.0_dp
-        cycle
-      end if
-      if (pivot /= k) then
-        row = matrix(k, :)
-        matrix(k, :) = matrix(pivot, :)
-        matrix(pivot, :) = row
-        factor = rhs(k)
-        rhs(k) = rhs(pivot)
-        rhs(pivot) = factor
-      end if
-      do i = k + 1, n
-        factor = matrix(i, k)/matrix(k, k)
-        if (factor == 0.0_dp) cycle
-        matrix(i, k:n) = matrix(i, k:n) - factor*matrix(k, k:n)
-        rhs(i) = rhs(i) - factor*rhs(k)
-      end do
-    end do
-    do k = n, 1, -1
-      rhs(k) = (rhs(k) - dot_product(matrix(k, k + 1:n), rhs(k + 1:n)))/matrix(k, k)
-    end do
-  end subroutine solve_dense
 
   !> Volume row sums int N_i dV per equation (per radian in axisymmetry):
   !> the weights of a volume (or, times rho, mass) average of a nodal field.
