@@ -97,7 +97,7 @@ contains
     real(dp) :: stored, balance, balance_max, input_max, growth_limit, omega_max
     real(dp) :: t_contact, u_cm_contact, v_cm_contact, touch_fraction, t_paper, t_separation, v_separation
     real(dp) :: alpha, alpha_max, t_alpha_max, q, q_max, t_q_max, q_surface, q_surface_max, t_q_surface_max
-    real(dp) :: force, force_max, t_force_max, radius, radius_max, accel_centre, accel_max, t_accel_max
+    real(dp) :: force, force_max, t_force_max, radius, radius_max, accel_centre, accel_max, t_accel_max, accel_cm_max
     character(:), allocatable :: stop_reason
 
     associate (mesh => deck%mesh, materials => deck%materials)
@@ -471,6 +471,7 @@ contains
       radius_max = 0.0_dp
       accel_centre = a(node_dof(deck%mesh, centre_node, 2))
       accel_max = -huge(1.0_dp)
+      accel_cm_max = -huge(1.0_dp)
       t_accel_max = 0.0_dp
     end subroutine start_contact
 
@@ -521,6 +522,7 @@ contains
         t_force_max = since
       end if
       radius_max = max(radius_max, radius)
+      accel_cm_max = max(accel_cm_max, centre_of_mass(a))
       if (accel_centre > accel_max) then
         accel_max = accel_centre
         t_accel_max = since
@@ -584,6 +586,7 @@ contains
         call record_put_real(record, 'contact_radius_max_mm', 1.0e3_dp*radius_max)
         call record_put_real(record, 'accel_center_max_g', accel_max/g_unit)
         call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*t_accel_max)
+        call record_put_real(record, 'accel_cm_max_g', accel_cm_max/g_unit)
         if (t_separation >= 0.0_dp) then
           call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*t_separation)
           call record_put_real(record, 'rebound_velocity_m_s', v_separation)
