@@ -222,6 +222,11 @@ contains
     end do
     call keep_snapshot('step_'//zero_padded(total_steps(deck)), 'final', t)
     call record_put_integer(record, 'factorizations', factorizations)
+    if (memory) then
+      call record_put_integer(record, 'history_values', size(state%history))
+    else
+      call record_put_integer(record, 'history_values', 0)     ! an elastic body allocates no history
+    end if
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
