@@ -438,8 +438,10 @@ contains
       allocate(held(2*deck%mesh%nnode), pressure(deck%mesh%nnode))
       held = .false.
       pressure = 0.0_dp
-      centre(2) = dot_product(mass(2::2), deck%mesh%xy(2, :))/body_mass
-      centre(1) = dot_product(mass(1::2), deck%mesh%xy(1, :))/max(sum(mass(1::2)), tiny(1.0_dp))
+      associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
+      centre(2) = dot_product(nodal_mass(2, :), deck%mesh%xy(2, :))/body_mass
+      centre(1) = dot_product(nodal_mass(1, :), deck%mesh%xy(1, :))/max(sum(nodal_mass(1, :)), tiny(1.0_dp))
+      end associate
       if (deck%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
       centre_node = 1
       do node = 2, deck%mesh%nnode
