@@ -15,6 +15,8 @@ module visco2d_deck
   use visco2d_time, only: time_stage_t, read_time
   use visco2d_dynamic_cards, only: dynamics_t, output_request_t, read_wilson, read_initial, read_drop, &
                                    read_gravity, read_output, read_formulation, standard_gravity, theta_unconditional
+  use visco2d_contact_cards, only: plate_t, read_plate, read_stop, stop_name, stop_at_tend, &
+                                   stop_at_max_deformation, stop_at_separation
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &
                           build_mesh, node_set, node_index, edge_set_code, edge_set_name, &
                           edge_set_none, edge_set_axis
@@ -25,6 +27,7 @@ module visco2d_deck
   public :: dynamics_t, output_request_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
+  public :: plate_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   integer, parameter :: analysis_static = 1       !< S U = R once
   integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
@@ -95,6 +98,9 @@ module visco2d_deck
     integer :: gravity_line = 0
     type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
     integer :: formulation = formulation_standard !< FORMULATION STANDARD | BBAR
+    type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
+    integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)
+    integer :: stop_line = 0
     type(warning_t), allocatable :: warnings(:)
   end type deck_t
 
@@ -277,6 +283,17 @@ contains
         end if
         call read_formulation(cards, card, deck%formulation, error); if (allocated(error)) return
         formulation_line = card%line
+      case ('PLATE')
+        if (deck%plate%line > 0) then
+          call duplicate_card(deck%plate%line); return
+        end if
+        call read_plate(cards, card, deck%plate, error); if (allocated(error)) return
+      case ('STOP')
+        if (deck%stop_line > 0) then
+          call duplicate_card(deck%stop_line); return
+        end if
+        call read_stop(cards, card, deck%stop_at, error); if (allocated(error)) return
+        deck%stop_line = card%line
       case ('NODE')
         call read_node_card(mesh_input, cards, card, error); if (allocated(error)) return
       case ('ELEMENT')
@@ -300,7 +317,7 @@ contains
       case default
         call card_error(error, cards, card, 'unknown card "'//card%keyword//'" (known: TITLE ANALYSIS '// &
           'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
-          'WILSON INITIAL DROP OUTPUT PROBE EXPECT END)')
+          'WILSON INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT END)')
         return
       end select
       end associate
@@ -323,6 +340,7 @@ contains
     end do
     call check_time_stages(deck, analysis_line, error); if (allocated(error)) return
     call check_dynamic_cards(deck, error); if (allocated(error)) return
+    call check_contact_cards(deck, error); if (allocated(error)) return
 
     call build_mesh(mesh_input, cards, deck%geometry, deck%mesh, error); if (allocated(error)) return
     call resolve_materials(deck, error); if (allocated(error)) return
@@ -336,6 +354,7 @@ contains
     end do
     call check_memory_needs_time(deck, analysis_line, error); if (allocated(error)) return
     call check_mass(deck, error); if (allocated(error)) return
+    call check_plate_position(deck, error); if (allocated(error)) return
     call check_locking(deck)
     end associate
 
@@ -692,6 +711,50 @@ contains
       end if
     end if
   end subroutine check_dynamic_cards
+
+  !> PLATE belongs to STATIC (the body pressed onto the plate) and DYNAMIC
+  !> (impact); STOP to DYNAMIC. MAXDEFORMATION and SEPARATION need a plate,
+  !> SEPARATION one that lets go (RELEASE=YES). A dynamic run with a plate
+  !> stops at maximum deformation unless a STOP card says otherwise.
+  subroutine check_contact_cards(deck, error)
+    type(deck_t), intent(inout) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    if (deck%plate%line > 0 .and. deck%analysis == analysis_quasistatic) then
+      call set_error(error, 'PLATE needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no contact search)', &
+                     file=deck%cards%file, line=deck%plate%line, card='PLATE'); return
+    end if
+    if (deck%stop_line == 0) then
+      if (deck%plate%line > 0 .and. deck%analysis == analysis_dynamic) deck%stop_at = stop_at_max_deformation
+      return
+    end if
+    if (deck%analysis /= analysis_dynamic) then
+      call set_error(error, 'STOP needs ANALYSIS DYNAMIC (this deck is '//analysis_name(deck%analysis)//')', &
+                     file=deck%cards%file, line=deck%stop_line, card='STOP'); return
+    end if
+    if (deck%stop_at /= stop_at_tend .and. deck%plate%line == 0) then
+      call set_error(error, 'STOP AT='//stop_name(deck%stop_at)//' needs a PLATE card (or use STOP AT=TEND)', &
+                     file=deck%cards%file, line=deck%stop_line, card='STOP'); return
+    end if
+    if (deck%stop_at == stop_at_separation .and. .not. deck%plate%release) then
+      call set_error(error, 'STOP AT=SEPARATION needs PLATE ... RELEASE=YES (line '//itoa(deck%plate%line)// &
+                     '): without it contact nodes are held for good and the body never leaves the plate', &
+                     file=deck%cards%file, line=deck%stop_line, card='STOP'); return
+    end if
+  end subroutine check_contact_cards
+
+  !> The body starts on or above the plate: no node below z = Z.
+  subroutine check_plate_position(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: lowest
+    if (deck%plate%line == 0) return
+    lowest = minloc(deck%mesh%xy(2, :), dim=1)
+    if (deck%mesh%xy(2, lowest) < deck%plate%z - 1.0e-9_dp*deck%mesh%size) then
+      call set_error(error, 'node '//itoa(deck%mesh%node_id(lowest))//' (r = '//rtoa(deck%mesh%xy(1, lowest))// &
+        ', z = '//rtoa(deck%mesh%xy(2, lowest))//') lies below the plate z = '//rtoa(deck%plate%z)// &
+        ': the body must start on or above the plate', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+    end if
+  end subroutine check_plate_position
 
   !> Inertia and gravity need mass: every material in use needs RHO > 0.
   subroutine check_mass(deck, error)

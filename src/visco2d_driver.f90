@@ -6,10 +6,11 @@ module visco2d_driver
   use visco2d_error, only: error_t, set_error, error_text
   use visco2d_strings, only: itoa, rtoa, to_upper, to_lower
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
-                          analysis_name, geometry_name, total_steps, formulation_name, initial_velocity
+                          analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
   use visco2d_wilson, only: solve_dynamic
+  use visco2d_contact, only: solve_static_contact
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
@@ -52,6 +53,11 @@ contains
       end associate
     end if
     if (deck%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%gravity)//' m/s^2 in -z'
+    if (deck%plate%line > 0) then
+      print '(a)', '  plate           z = '//rtoa(deck%plate%z)//' m, '// &
+        trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
+      if (deck%analysis == analysis_dynamic) print '(a)', '  stop at         '//stop_name(deck%stop_at)
+    end if
     print '(a)', '  formulation     '//formulation_name(deck%formulation)
     print '(a)', '  geometry        '//geometry_name(deck%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
@@ -96,10 +102,15 @@ contains
     select case (deck%analysis)
     case (analysis_static)
       call record_put_integer(record, 'steps', 1)
-      call solve_static(deck, static_solution, error)
-      if (allocated(error)) return
-      call static_record(deck, static_solution, record)
-      call record_put_integer(record, 'factorizations', 1)
+      if (effects%contact) then
+        call solve_static_contact(deck, record, error)
+        if (allocated(error)) return
+      else
+        call solve_static(deck, static_solution, error)
+        if (allocated(error)) return
+        call static_record(deck, static_solution, record)
+        call record_put_integer(record, 'factorizations', 1)
+      end if
     case (analysis_quasistatic)
       call record_put_integer(record, 'steps', total_steps(deck))
       call record_put_integer(record, 'time_stages', size(deck%stages))

@@ -6,7 +6,7 @@ module visco2d_output
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, gtoa
   use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps, analysis_dynamic, formulation_name, &
-                          initial_velocity
+                          initial_velocity, stop_name
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
   use visco2d_mesh, only: edge_set_name
   use visco2d_record, only: record_t
@@ -126,6 +126,12 @@ contains
         itoa(size(deck%output%field_times))//' requested field time(s)'
     end if
     if (deck%gravity > 0.0_dp) write(unit, '(a)') '   gravity           '//gtoa(deck%gravity)//' m/s^2 in -z'
+    if (deck%plate%line > 0) then
+      write(unit, '(a)') '   plate             z = '//gtoa(deck%plate%z)//' m, '// &
+        trim(merge('STICK (u_r, u_z held)', 'SLIP (u_z held)      ', deck%plate%stick))//', RELEASE='// &
+        trim(merge('YES', 'NO ', deck%plate%release))
+      if (deck%analysis == analysis_dynamic) write(unit, '(a)') '   stop at           '//stop_name(deck%stop_at)
+    end if
     if (size(deck%warnings) > 0) then
       write(unit, '(/, a)') ' WARNINGS'
       do k = 1, size(deck%warnings)

@@ -9,7 +9,7 @@ module visco2d_record
 
   public :: record_t, snapshot_t, summary_item_t
   public :: record_put, record_put_real, record_put_integer
-  public :: history_define, history_append, record_add_snapshot
+  public :: history_define, history_append, record_add_snapshot, record_insert_snapshot
 
   integer, parameter :: key_length = 48
 
@@ -120,4 +120,25 @@ contains
     if (.not. allocated(record%snapshots)) allocate(record%snapshots(0))
     record%snapshots = [record%snapshots, snapshot]
   end subroutine record_add_snapshot
+
+  !> Keep a snapshot in time order; one taken at the time of a kept snapshot
+  !> adds its label to that one ('final; maximum deformation').
+  subroutine record_insert_snapshot(record, snapshot)
+    type(record_t), intent(inout) :: record
+    type(snapshot_t), intent(in) :: snapshot
+    integer :: k, position
+    if (.not. allocated(record%snapshots)) allocate(record%snapshots(0))
+    position = size(record%snapshots) + 1
+    do k = 1, size(record%snapshots)
+      if (record%snapshots(k)%time == snapshot%time) then
+        record%snapshots(k)%label = record%snapshots(k)%label//'; '//snapshot%label
+        return
+      end if
+      if (record%snapshots(k)%time > snapshot%time) then
+        position = k
+        exit
+      end if
+    end do
+    record%snapshots = [record%snapshots(1:position - 1), snapshot, record%snapshots(position:)]
+  end subroutine record_insert_snapshot
 end module visco2d_record

@@ -22,8 +22,8 @@ module visco2d_scene
 contains
 
   !> The effects a deck calls for: inertia for ANALYSIS DYNAMIC, memory for a
-  !> material in use with Prony terms (beta > 0), gravity for GRAVITY G > 0.
-  !> (Contact arrives with the PLATE card of the contact extension.)
+  !> material in use with Prony terms (beta > 0), contact for a PLATE card,
+  !> gravity for GRAVITY G > 0.
   function scene_effects(deck) result(effects)
     type(deck_t), intent(in) :: deck
     type(effects_t) :: effects
@@ -31,6 +31,7 @@ contains
     effects = effects_t()
     effects%inertia = deck%analysis == analysis_dynamic
     effects%gravity = deck%gravity > 0.0_dp
+    effects%contact = deck%plate%line > 0
     do k = 1, size(deck%materials)
       if (has_memory(deck%materials(k)) .and. any(deck%mesh%element_material == k)) effects%viscoelastic = .true.
     end do

@@ -49,11 +49,14 @@ module visco2d_static
 
 contains
 
-  !> Solve the static problem of a deck.
-  subroutine solve_static(deck, solution, error)
+  !> Solve the static problem of a deck. `extra_fixed` / `extra_values`
+  !> prescribe further displacements (the contact extension's plate nodes).
+  subroutine solve_static(deck, solution, error, extra_fixed, extra_values)
     type(deck_t), intent(in) :: deck
     type(static_solution_t), intent(out) :: solution
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: extra_fixed(:)
+    real(dp), intent(in), optional :: extra_values(:)
     type(band_matrix_t) :: stiffness, constrained
     real(dp), allocatable :: shear(:), bulk(:), load(:), u(:), zero(:)
     logical, allocatable :: fixed(:)
@@ -66,6 +69,10 @@ contains
     load = external_load(deck, 0.0_dp) + gravity_load(deck)
     fixed = support_mask(deck)
     zero = prescribed_displacement(deck, 0.0_dp)
+    if (present(extra_fixed) .and. present(extra_values)) then
+      zero = merge(extra_values, zero, extra_fixed)
+      fixed = fixed .or. extra_fixed
+    end if
     u = load
     constrained = stiffness
     call band_constrain(constrained, fixed, zero, u)

@@ -21,13 +21,21 @@
 !> total form) and keeps round-off from drifting. Stresses and history are
 !> then advanced over dt (eqs. [13], [14], [23], [24]).
 !>
-!> S~ depends on dt (and on the supports) only: it is factored once per
-!> TIME stage. An energy balance is kept every step; the run stops with an
+!> S~ depends on dt and on the supports only: it is factored once per TIME
+!> stage, and again only when the contact set changes.
+!>
+!> Contact (a PLATE card, module visco2d_contact): after the solve, a free
+!> boundary node that went through the plate gets an adjusted-displacement
+!> condition (its u_z puts it on the plate at t + dt; theta times that at
+!> t + tau) and the same increment is repeated with S~ refactored; from then
+!> on its held components have U'' = U' = dU = 0. The kinetic energy those
+!> components had is lost in the impact of the node on the plate: it is
+!> reported (contact_loss_J) and kept in the energy balance. An energy balance is kept every step; the run stops with an
 !> error if a value is not finite or the energy grows far beyond the work
 !> done on the body (an unstable integration), so no NaN reaches the results.
 module visco2d_wilson
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity
@@ -41,8 +49,12 @@ module visco2d_wilson
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
   use visco2d_static, only: singular_message, node_stress, put_field_summary, put_probe_summary, set_snapshot_stress
-  use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, history_define, &
-                            history_append, record_add_snapshot
+  use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, &
+                            history_define, history_append, record_add_snapshot, record_insert_snapshot
+  use visco2d_deck, only: stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
+  use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, &
+                             contact_search, contact_count, contact_pressure, contact_force, contact_radius, &
+                             contact_gap, nearest_free_node, put_hertz_summary
   implicit none
   private
 
@@ -53,12 +65,15 @@ module visco2d_wilson
   !> gross work of loads, gravity and supports), widened by Wilson-theta's
   !> transient overshoot (see `factor_for`).
   real(dp), parameter :: energy_growth_limit = 100.0_dp
+  !> One g, m/s^2, the unit of accel_center_g (the standard acceleration of gravity).
+  real(dp), parameter :: g_unit = 9.80665_dp
 
 contains
 
   !> The dynamic analysis of a deck (ANALYSIS DYNAMIC): fills the record with
   !> the summary, one history row every OUTPUT EVERY= steps (step 0 and the
-  !> last step always) and snapshots at t = 0, at the FIELDS= times and at the end.
+  !> last step always) and snapshots at t = 0, at the FIELDS= times and at the
+  !> end (with a plate also at maximum deformation and at maximum pressure).
   subroutine solve_dynamic(deck, record, error)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
@@ -66,16 +81,24 @@ contains
     type(band_matrix_t) :: effective, factor
     type(step_coefficients_t), allocatable :: over_tau(:), over_dt(:)
     type(viscoelastic_state_t) :: state
-    real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), prescribed(:)
+    type(contact_t) :: contact
+    type(snapshot_t) :: at_alpha_max, at_q_max
+    real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:)
     real(dp), allocatable :: mass(:), gravity(:), load(:), load_next(:), internal(:), internal_next(:)
-    real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:)
-    real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), shear_dt(:), bulk_dt(:)
-    logical, allocatable :: fixed(:)
-    logical :: memory
+    real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:), pressure(:)
+    real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :)
+    real(dp), allocatable :: shear_dt(:), bulk_dt(:)
+    logical, allocatable :: fixed(:), supports(:), held(:)
+    logical :: memory, contact_on, stopped, paper_fired, alpha_passed
     integer :: step, stage, k, factorizations, step_count, next_field, width
+    integer :: centre_node, contact_nodes, contact_nodes_max
     real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
-    real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, gross_input
+    real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, gross_input, contact_loss
     real(dp) :: stored, balance, balance_max, input_max, growth_limit, omega_max
+    real(dp) :: t_contact, u_cm_contact, v_cm_contact, touch_fraction, t_paper, t_separation, v_separation
+    real(dp) :: alpha, alpha_max, t_alpha_max, q, q_max, t_q_max, q_surface, q_surface_max, t_q_surface_max
+    real(dp) :: force, force_max, t_force_max, radius, radius_max, accel_centre, accel_max, t_accel_max
+    character(:), allocatable :: stop_reason
 
     associate (mesh => deck%mesh, materials => deck%materials)
     theta = deck%dynamics%theta
@@ -84,19 +107,25 @@ contains
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) memory = .true.
     end do
     if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
+    contact_on = deck%plate%line > 0
     allocate(over_tau(size(materials)), over_dt(size(materials)))
-    fixed = support_mask(deck)
+    supports = support_mask(deck)
+    fixed = supports
     mass = lumped_mass(deck)                                   ! eq. [32], row sums
     body_mass = sum(mass(2::2))
     gravity = gravity_load(deck)
     allocate(du(2*mesh%nnode), dv(2*mesh%nnode), da(2*mesh%nnode), prescribed(2*mesh%nnode))
     allocate(stress(4, gauss_count, mesh%nelem), strain(4, gauss_count, mesh%nelem), &
-             trial(4, gauss_count, mesh%nelem), shear_dt(mesh%nelem), bulk_dt(mesh%nelem))
+             trial(4, gauss_count, mesh%nelem), increments(4, gauss_count, mesh%nelem), &
+             shear_dt(mesh%nelem), bulk_dt(mesh%nelem))
     stress = 0.0_dp
     strain = 0.0_dp
     factorizations = 0
     step_count = 0
     width = max(6, len(itoa(total_steps(deck))))
+    contact_loss = 0.0_dp
+    stopped = .false.
+    stop_reason = 'end of time'
 
     ! Initial state: u = 0, the INITIAL / DROP velocity on the free equations,
     ! and the acceleration from equilibrium M a = R(0) + G - F(0) unless INITIAL gives it.
@@ -116,6 +145,7 @@ contains
     a = merge(0.0_dp, a, fixed)
     target_now = prescribed_displacement(deck, 0.0_dp)
     reaction = merge(mass*a + internal - load - gravity, 0.0_dp, fixed)
+    if (contact_on) call start_contact()
 
     kinetic0 = 0.5_dp*dot_product(mass, v**2)
     kinetic = kinetic0
@@ -148,23 +178,30 @@ contains
         call advance()
         if (allocated(error)) return
         step_count = step_count + 1
-        if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck)) call append_row()
+        if (contact_on) call contact_results()
+        if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck) .or. stopped) &
+          call append_row()
         if (next_field <= size(deck%output%field_times)) then
           if (t >= deck%output%field_times(next_field)*(1.0_dp - 1.0e-12_dp)) then
             call keep_snapshot('t = '//short_real(deck%output%field_times(next_field))//' s requested')
             call skip_field_times(t)
           end if
         end if
+        if (stopped) exit
       end do
+      if (stopped) exit
       stage_start = deck%stages(stage)%end_time
     end do
     call keep_snapshot('final')
 
     stored = stored_energy()
+    call record_put_integer(record, 'steps', step_count)
     call record_put_real(record, 'theta', theta)
     call record_put_integer(record, 'factorizations', factorizations)
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'mass_kg', body_mass)
+    call record_put_real(record, 'body_mass_kg', whole_body_mass())
+    call record_put_integer(record, 'history_values', history_values())
     call record_put_real(record, 'uz_cm_m', centre_of_mass(u))
     call record_put_real(record, 'vz_cm_m_s', centre_of_mass(v))
     call record_put_real(record, 'az_cm_m_s2', centre_of_mass(a))
@@ -174,9 +211,11 @@ contains
     call record_put_real(record, 'external_work_J', load_work + support_work)
     call record_put_real(record, 'gravity_work_J', gravity_work)
     call record_put_real(record, 'initial_kinetic_J', kinetic0)
+    if (contact_on) call record_put_real(record, 'contact_loss_J', contact_loss)
     call record_put_real(record, 'balance_error_J', balance)
     call record_put_real(record, 'balance_error_max_J', balance_max)
     call record_put_real(record, 'balance_error_max_rel', balance_max/max(input_max, tiny(1.0_dp)))
+    if (contact_on) call finish_contact()
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
     call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     do k = 1, size(deck%probes)
@@ -201,7 +240,7 @@ contains
     subroutine factor_for(dt)
       real(dp), intent(in) :: dt
       real(dp) :: row_sum(size(mass))
-      integer :: info, m, i, j
+      integer :: m, i, j
       do m = 1, size(deck%materials)
         over_tau(m) = step_coefficients(deck%materials(m), theta*dt)
         over_dt(m) = step_coefficients(deck%materials(m), dt)
@@ -217,26 +256,34 @@ contains
           if (i /= j) row_sum(i) = row_sum(i) + abs(effective%ab(1 + i - j, j))
         end do
       end do
-      omega_max = sqrt(maxval(merge(row_sum/mass, 0.0_dp, .not. fixed)))
+      omega_max = sqrt(maxval(merge(row_sum/mass, 0.0_dp, .not. supports)))
       growth_limit = energy_growth_limit*max(1.0_dp, 2.0_dp*((1.0_dp - 1.0_dp/theta**2)*omega_max*dt)**2)
       effective%ab(1, :) = effective%ab(1, :) + 6.0_dp/(theta*dt)**2*mass
+      call refactor()
+    end subroutine factor_for
+
+    !> Impose the current supports and contact conditions on S~ and factor it (dpbtrf).
+    subroutine refactor()
+      integer :: info
       factor = effective
       call band_constrain_matrix(factor, fixed)
       call band_factor(factor, info)
       factorizations = factorizations + 1
       if (info > 0) call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive '// &
         'definite: '//singular_message(deck, info), file=deck%cards%file)
-    end subroutine factor_for
+    end subroutine refactor
 
-    !> One Wilson-theta step from t to t_next = t + dt.
+    !> One Wilson-theta step from t to t_next = t + dt; with a plate, repeated
+    !> while the contact set changes.
     subroutine advance()
-      integer :: e, g, nterm, slot
-      real(dp) :: increment(4, gauss_count), deviatoric(4), volumetric, energy
+      integer :: e, g, nterm, slot, node, i
+      real(dp) :: s0(4, gauss_count), deviatoric(4), volumetric, energy, fraction
+      logical :: changed
       ! Loads and prescribed values at t + tau, linear in time (eq. [36]'s theta dR).
       load_next = external_load(deck, t_next)
       target_next = prescribed_displacement(deck, t_next)
       ! Right side of eqs. [34], [36] in residual form: R_tau - F(sigma_t + s0_tau) + M (6/tau v + 2 a).
-      rhs = load + theta*(load_next - load) + gravity - internal + mass*(6.0_dp/tau*v + 2.0_dp*a)
+      base = load + theta*(load_next - load) + gravity - internal + mass*(6.0_dp/tau*v + 2.0_dp*a)
       if (memory) then
         do e = 1, deck%mesh%nelem
           nterm = element_terms(state, e)
@@ -245,48 +292,93 @@ contains
                      c => over_tau(deck%mesh%element_material(e)))
           do g = 1, gauss_count
             slot = state%first(e) + (g - 1)*nterm
-            trial(:, g, e) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
+            s0(:, g) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
           end do
           call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
-            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e), deck%formulation), rhs)
+            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), s0, deck%formulation), base)
           end associate
         end do
       end if
-      prescribed = target_now + theta*(target_next - target_now) - u
-      call band_constrain_rhs(effective, fixed, prescribed, rhs)
-      call band_solve(factor, rhs)                                  ! rhs <- dU_tau, eq. [34]
-      da = (6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 3.0_dp*a)/theta        ! eq. [37]
-      dv = a*dt + 0.5_dp*dt*da                                        ! eq. [38]
-      du = v*dt + 0.5_dp*dt**2*a + dt**2/6.0_dp*da                    ! eq. [39]
-      if (.not. all(ieee_is_finite(da)) .or. .not. all(ieee_is_finite(du))) then
-        call unstable('a displacement or acceleration is not finite (NaN or Inf)'); return
+      if (contact_on) then
+        call contact_begin_increment(contact)
+        touch_fraction = 1.0_dp
       end if
 
-      ! Stresses and history over dt: eqs. [13], [14], [23], [24].
+      do
+        rhs = base
+        prescribed = target_now + theta*(target_next - target_now) - u
+        if (contact_on) call adjusted_displacements(theta)
+        call band_constrain_rhs(effective, fixed, prescribed, rhs)
+        call band_solve(factor, rhs)                                  ! rhs <- dU_tau, eq. [34]
+        da = (6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 3.0_dp*a)/theta        ! eq. [37]
+        dv = a*dt + 0.5_dp*dt*da                                        ! eq. [38]
+        du = v*dt + 0.5_dp*dt**2*a + dt**2/6.0_dp*da                    ! eq. [39]
+        if (contact_on) then                                            ! held on the plate: U'' = U' = 0
+          call adjusted_displacements(1.0_dp)
+          du = merge(prescribed, du, held)
+          dv = merge(-v, dv, held)
+          da = merge(-a, da, held)
+        end if
+        if (.not. all(ieee_is_finite(da)) .or. .not. all(ieee_is_finite(du))) then
+          call unstable('a displacement or acceleration is not finite (NaN or Inf)'); return
+        end if
+
+        ! Trial stresses over dt: eqs. [13], [14], [23] (the history is updated once the increment stands).
+        do e = 1, deck%mesh%nelem
+          increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                                gather(deck%mesh, e, du), deck%formulation)
+          nterm = 0
+          if (memory) nterm = element_terms(state, e)
+          do g = 1, gauss_count
+            trial(:, g, e) = stress(:, g, e) + stress_from_strain(shear_dt(e), bulk_dt(e), increments(:, g, e))
+            if (nterm > 0) then
+              slot = state%first(e) + (g - 1)*nterm
+              associate (material => deck%materials(deck%mesh%element_material(e)), &
+                         c => over_dt(deck%mesh%element_material(e)))
+              trial(:, g, e) = trial(:, g, e) + history_stress(material, c, state%history(:, slot:slot + nterm - 1))
+              end associate
+            end if
+          end do
+        end do
+        internal_next = internal_force(deck, trial)
+        reaction_next = merge(mass*(a + da) + internal_next - load_next - gravity, 0.0_dp, fixed)
+        if (.not. contact_on) exit
+        ! The contact search; a changed set repeats the increment (the paper's iteration).
+        call contact_search(deck, contact, u, du, reaction_next, changed, fraction)
+        if (.not. changed) exit
+        touch_fraction = min(touch_fraction, fraction)
+        fixed = supports .or. contact_held_dofs(deck, contact)
+        call refactor()
+        if (allocated(error)) return
+      end do
+
+      ! The increment stands: strains, stresses and history (eq. [24]).
       do e = 1, deck%mesh%nelem
-        increment = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                    gather(deck%mesh, e, du), deck%formulation)
-        strain(:, :, e) = strain(:, :, e) + increment
-        nterm = 0
-        if (memory) nterm = element_terms(state, e)
+        strain(:, :, e) = strain(:, :, e) + increments(:, :, e)
+        if (.not. memory) cycle
+        nterm = element_terms(state, e)
+        if (nterm == 0) cycle
         do g = 1, gauss_count
-          stress(:, g, e) = stress(:, g, e) + stress_from_strain(shear_dt(e), bulk_dt(e), increment(:, g))
-          if (nterm > 0) then
-            slot = state%first(e) + (g - 1)*nterm
-            associate (material => deck%materials(deck%mesh%element_material(e)), &
-                       c => over_dt(deck%mesh%element_material(e)))
-            stress(:, g, e) = stress(:, g, e) + history_stress(material, c, state%history(:, slot:slot + nterm - 1))
-            call deviatoric_part(increment(:, g), deviatoric, volumetric)
-            call update_history(c, deviatoric, state%history(:, slot:slot + nterm - 1))
-            end associate
-          end if
+          slot = state%first(e) + (g - 1)*nterm
+          call deviatoric_part(increments(:, g, e), deviatoric, volumetric)
+          call update_history(over_dt(deck%mesh%element_material(e)), deviatoric, &
+                              state%history(:, slot:slot + nterm - 1))
         end do
       end do
-      internal_next = internal_force(deck, stress)
+      stress = trial
+      if (contact_on) then                       ! the kinetic energy of the components stopped by the plate
+        do i = 1, size(contact%candidates)
+          node = contact%candidates(i)
+          if (.not. contact%touched(node)) cycle
+          associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
+          contact_loss = contact_loss + 0.5_dp*mass(z)*v(z)**2
+          if (contact%stick) contact_loss = contact_loss + 0.5_dp*mass(r)*v(r)**2
+          end associate
+        end do
+      end if
       a = a + da                                                      ! eqs. [40]-[42]
       v = v + dv
       u = u + du
-      reaction_next = merge(mass*a + internal_next - load_next - gravity, 0.0_dp, fixed)
 
       ! Energy balance: trapezoidal work of every force over du (exact for
       ! forces linear in u, as the elastic internal force is).
@@ -300,7 +392,7 @@ contains
       gross_input = gross_input + abs(load_increment) + abs(support_increment) + abs(gravity_increment)
       end associate
       kinetic = 0.5_dp*dot_product(mass, v**2)
-      balance = kinetic + internal_work - (kinetic0 + load_work + support_work + gravity_work)
+      balance = kinetic + internal_work + contact_loss - (kinetic0 + load_work + support_work + gravity_work)
       input_max = max(input_max, kinetic0 + abs(load_work + support_work + gravity_work))
       balance_max = max(balance_max, abs(balance))
       energy = kinetic + internal_work
@@ -318,6 +410,224 @@ contains
       target_now = target_next
       t = t_next
     end subroutine advance
+
+    !> The adjusted displacements of the contact conditions, into `prescribed`:
+    !> a contact node's u_z goes to the plate over the increment (0 once it is
+    !> there), u_r stays (STICK); `fraction` = theta gives the values at t + tau.
+    !> `held` = the components the plate holds.
+    subroutine adjusted_displacements(fraction)
+      real(dp), intent(in) :: fraction
+      integer :: i, node
+      held = contact_held_dofs(deck, contact)
+      do i = 1, size(contact%candidates)
+        node = contact%candidates(i)
+        if (.not. contact%active(node)) cycle
+        associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
+        prescribed(z) = -fraction*contact_gap(deck, contact, u, node)
+        if (contact%stick) prescribed(r) = 0.0_dp
+        end associate
+      end do
+    end subroutine adjusted_displacements
+
+    !> The contact state at t = 0, the node whose acceleration is the centre's
+    !> (the node nearest the centre of mass), and the running maxima.
+    subroutine start_contact()
+      real(dp) :: centre(2)
+      integer :: node
+      call contact_create(deck, contact)
+      allocate(held(2*deck%mesh%nnode), pressure(deck%mesh%nnode))
+      held = .false.
+      pressure = 0.0_dp
+      centre(2) = dot_product(mass(2::2), deck%mesh%xy(2, :))/body_mass
+      centre(1) = dot_product(mass(1::2), deck%mesh%xy(1, :))/max(sum(mass(1::2)), tiny(1.0_dp))
+      if (deck%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
+      centre_node = 1
+      do node = 2, deck%mesh%nnode
+        if (norm2(deck%mesh%xy(:, node) - centre) < norm2(deck%mesh%xy(:, centre_node) - centre)) centre_node = node
+      end do
+      t_contact = -1.0_dp
+      u_cm_contact = 0.0_dp
+      v_cm_contact = 0.0_dp
+      t_paper = -1.0_dp
+      t_separation = -1.0_dp
+      v_separation = 0.0_dp
+      paper_fired = .false.
+      alpha_passed = .false.
+      contact_nodes = 0
+      contact_nodes_max = 0
+      alpha = 0.0_dp
+      alpha_max = 0.0_dp
+      t_alpha_max = 0.0_dp
+      q = 0.0_dp
+      q_max = 0.0_dp
+      t_q_max = 0.0_dp
+      q_surface = 0.0_dp
+      q_surface_max = 0.0_dp
+      t_q_surface_max = 0.0_dp
+      force = 0.0_dp
+      force_max = 0.0_dp
+      t_force_max = 0.0_dp
+      radius = 0.0_dp
+      radius_max = 0.0_dp
+      accel_centre = a(node_dof(deck%mesh, centre_node, 2))
+      accel_max = -huge(1.0_dp)
+      t_accel_max = 0.0_dp
+    end subroutine start_contact
+
+    !> After a step: first contact (t = 0 of the results, interpolated within
+    !> the step), force, pressure, radius, alpha = approach of the centre of
+    !> mass since first contact, their maxima, and the stop criteria.
+    subroutine contact_results()
+      real(dp) :: s(4), since, u_cm, v_cm
+      integer :: nearest
+      contact_nodes = contact_count(contact)
+      u_cm = centre_of_mass(u)
+      v_cm = centre_of_mass(v)
+      if (t_contact < 0.0_dp .and. contact_nodes > 0) then
+        ! Linear within the step: t, u_cm and v_cm at the crossing of the plate.
+        t_contact = t - dt + touch_fraction*dt
+        u_cm_contact = u_cm - (1.0_dp - touch_fraction)*(u_cm - previous_u_cm())
+        v_cm_contact = v_cm - (1.0_dp - touch_fraction)*(v_cm - centre_of_mass(v - dv))
+      end if
+      force = contact_force(deck, contact, reaction)
+      call contact_pressure(deck, contact, u, reaction, pressure, q)
+      s = node_stress(deck%mesh, stress, contact%pole)
+      q_surface = 0.0_dp
+      if (contact%active(contact%pole)) q_surface = -s(2)
+      radius = contact_radius(deck, contact, u)
+      accel_centre = a(node_dof(deck%mesh, centre_node, 2))
+      if (t_contact < 0.0_dp) return
+      since = t - t_contact
+      contact_nodes_max = max(contact_nodes_max, contact_nodes)
+      alpha = u_cm_contact - u_cm
+      if (alpha > alpha_max) then
+        alpha_max = alpha
+        t_alpha_max = since
+        at_alpha_max = snapshot_now('maximum deformation')
+      else if (alpha_max > 0.0_dp) then
+        alpha_passed = .true.
+      end if
+      if (q > q_max) then
+        q_max = q
+        t_q_max = since
+        at_q_max = snapshot_now('maximum pressure')
+      end if
+      if (q_surface > q_surface_max) then
+        q_surface_max = q_surface
+        t_q_surface_max = since
+      end if
+      if (force > force_max) then
+        force_max = force
+        t_force_max = since
+      end if
+      radius_max = max(radius_max, radius)
+      if (accel_centre > accel_max) then
+        accel_max = accel_centre
+        t_accel_max = since
+      end if
+      ! The paper's criterion: the free node nearest the plate moves up.
+      nearest = nearest_free_node(deck, contact, u)
+      if (.not. paper_fired .and. nearest > 0) then
+        if (v(node_dof(deck%mesh, nearest, 2)) > 0.0_dp) then
+          paper_fired = .true.
+          t_paper = since
+        end if
+      end if
+      select case (deck%stop_at)
+      case (stop_at_max_deformation)
+        if (paper_fired .and. alpha_passed) then
+          stopped = .true.
+          stop_reason = 'maximum deformation'
+        end if
+      case (stop_at_separation)
+        if (contact_nodes == 0 .and. v_cm > 0.0_dp) then
+          stopped = .true.
+          stop_reason = 'separation'
+          t_separation = since
+          v_separation = v_cm
+        end if
+      end select
+    end subroutine contact_results
+
+    !> u_cm at the start of the step just taken.
+    real(dp) function previous_u_cm()
+      previous_u_cm = centre_of_mass(u - du)
+    end function previous_u_cm
+
+    !> The contact summary, the Hertz reference and the snapshots at the maxima.
+    subroutine finish_contact()
+      integer :: row, t_column, alpha_column, uz_column
+      call record_put_real(record, 'plate_z_m', deck%plate%z)
+      call record_put(record, 'plate', trim(merge('STICK', 'SLIP ', deck%plate%stick))// &
+                      trim(merge(' RELEASE=YES', ' RELEASE=NO ', deck%plate%release)))
+      call record_put(record, 'stop_at', stop_name(deck%stop_at))
+      call record_put(record, 'stop_reason', stop_reason)
+      call record_put_integer(record, 'contact_iterations', contact%iterations)
+      call record_put_integer(record, 'contact_nodes_max', contact_nodes_max)
+      if (t_contact < 0.0_dp) then
+        write(0, '(a)') 'visco2d: warning: '//deck%cards%file//': the body never touched the plate (PLATE Z = '// &
+          short_real(deck%plate%z)//' m): no contact results'
+        call record_put(record, 'contact', 'none')
+      else
+        call record_put_real(record, 'time_first_contact_s', t_contact)
+        call record_put_real(record, 'impact_velocity_m_s', -v_cm_contact)
+        call record_put_real(record, 't_stop_ms', 1.0e3_dp*(t - t_contact))
+        if (paper_fired) call record_put_real(record, 't_paper_criterion_ms', 1.0e3_dp*t_paper)
+        call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*alpha_max)
+        call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*t_alpha_max)
+        call record_put_real(record, 'q_max_MPa', 1.0e-6_dp*q_max)
+        call record_put_real(record, 't_q_max_ms', 1.0e3_dp*t_q_max)
+        call record_put_real(record, 'q_surface_max_MPa', 1.0e-6_dp*q_surface_max)
+        call record_put_real(record, 't_q_surface_max_ms', 1.0e3_dp*t_q_surface_max)
+        call record_put_real(record, 'force_max_N', force_max)
+        call record_put_real(record, 't_force_max_ms', 1.0e3_dp*t_force_max)
+        call record_put_real(record, 'contact_radius_max_mm', 1.0e3_dp*radius_max)
+        call record_put_real(record, 'accel_center_max_g', accel_max/g_unit)
+        call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*t_accel_max)
+        if (t_separation >= 0.0_dp) then
+          call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*t_separation)
+          call record_put_real(record, 'rebound_velocity_m_s', v_separation)
+          call record_put_real(record, 'coefficient_of_restitution', v_separation/max(-v_cm_contact, tiny(1.0_dp)))
+          call record_put_real(record, 'energy_absorbed_J', &
+                               0.5_dp*whole_body_mass()*(v_cm_contact**2 - v_separation**2))
+        end if
+        call put_hertz_summary(deck, record, whole_body_mass(), v_cm_contact)
+        if (allocated(at_alpha_max%name)) call record_insert_snapshot(record, at_alpha_max)
+        if (allocated(at_q_max%name)) call record_insert_snapshot(record, at_q_max)
+      end if
+      if (stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) write(0, '(a)') 'visco2d: warning: '// &
+        deck%cards%file//': the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)
+      ! t_ms and alpha_mm from t_s and uz_cm_m, now that first contact is known.
+      t_column = column_of('t_s')
+      uz_column = column_of('uz_cm_m')
+      do row = 1, record%nrow
+        record%history(column_of('t_ms'), row) = 1.0e3_dp*(record%history(t_column, row) - max(t_contact, 0.0_dp))
+        alpha_column = column_of('alpha_mm')
+        record%history(alpha_column, row) = 0.0_dp
+        if (t_contact >= 0.0_dp) record%history(alpha_column, row) = &
+          1.0e3_dp*(u_cm_contact - record%history(uz_column, row))
+      end do
+    end subroutine finish_contact
+
+    integer function column_of(name)
+      character(*), intent(in) :: name
+      do column_of = 1, size(record%columns)
+        if (record%columns(column_of) == name) return
+      end do
+      column_of = 0
+    end function column_of
+
+    !> Mass of the whole body, kg (2 pi times the mass per radian in axisymmetry).
+    real(dp) function whole_body_mass()
+      whole_body_mass = body_mass
+      if (deck%geometry == geometry_axisymmetric) whole_body_mass = 2.0_dp*pi*body_mass
+    end function whole_body_mass
+
+    !> Number of Prony history values allocated (0 without viscoelastic memory).
+    integer function history_values()
+      history_values = 0
+      if (memory) history_values = size(state%history)
+    end function history_values
 
     !> Stop the run: the integration has become unstable at time t + dt.
     subroutine unstable(what)
@@ -380,6 +690,8 @@ contains
       columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'uz_cm_m', 'vz_cm_m_s', &
                  'az_cm_m_s2', 'kinetic_J', 'strain_J', 'dissipated_J', 'external_work_J', 'gravity_work_J', &
                  'balance_error_J', 'reaction_r_N', 'reaction_z_N']
+      if (contact_on) columns = [character(len=48) :: columns, 't_ms', 'alpha_mm', 'force_N', 'q_MPa', &
+                                 'q_surface_MPa', 'contact_radius_mm', 'accel_center_g', 'n_contact', 'contact_loss_J']
       do p = 1, size(deck%probes)
         do k = 1, size(probe_columns)
           columns = [character(len=48) :: columns, deck%probes(p)%name//'_'//trim(probe_columns(k))]
@@ -395,6 +707,9 @@ contains
       row = [real(step_count, dp), t, maxval(norm2(nodal_field(deck%mesh, u), dim=1)), centre_of_mass(u), centre_of_mass(v), &
              centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
              balance, sum(reaction(1::2)), sum(reaction(2::2))]
+      ! t_ms and alpha_mm are filled in by finish_contact, once first contact is known.
+      if (contact_on) row = [row, 0.0_dp, 0.0_dp, force, 1.0e-6_dp*q, 1.0e-6_dp*q_surface, 1.0e3_dp*radius, &
+                             accel_centre/g_unit, real(contact_nodes, dp), contact_loss]
       do p = 1, size(deck%probes)
         node = deck%probes(p)%node
         associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
@@ -415,8 +730,6 @@ contains
 
     subroutine keep_snapshot(label)
       character(*), intent(in) :: label
-      type(snapshot_t) :: snapshot
-      character(len=16) :: digits
       if (allocated(record%snapshots)) then
         if (size(record%snapshots) > 0) then
           associate (last => record%snapshots(size(record%snapshots)))
@@ -427,6 +740,14 @@ contains
           end associate
         end if
       end if
+      call record_add_snapshot(record, snapshot_now(label))
+    end subroutine keep_snapshot
+
+    !> The fields now, as a snapshot named after the step.
+    function snapshot_now(label) result(snapshot)
+      character(*), intent(in) :: label
+      type(snapshot_t) :: snapshot
+      character(len=16) :: digits
       write(digits, '(i0.'//itoa(width)//')') step_count
       snapshot%name = 'step_'//trim(digits)
       snapshot%label = label
@@ -435,7 +756,6 @@ contains
       snapshot%velocity = nodal_field(deck%mesh, v)
       snapshot%acceleration = nodal_field(deck%mesh, a)
       call set_snapshot_stress(deck%mesh, stress, snapshot)
-      call record_add_snapshot(record, snapshot)
-    end subroutine keep_snapshot
+    end function snapshot_now
   end subroutine solve_dynamic
 end module visco2d_wilson

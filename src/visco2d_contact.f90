@@ -1,0 +1,531 @@
+!> The contact extension: a rigid flat plate z = Z that the body may touch
+!> (the paper's "Numerical Procedure"). The plate is fixed. A boundary node
+!> that reaches it gets an adjusted-displacement condition (it is put on the
+!> plate) and the same increment is repeated; from then on it is held:
+!> STICK holds u_r and u_z, SLIP (frictionless) u_z only. With RELEASE=YES a
+!> contact node whose reaction turns tensile is freed again.
+!>
+!> Also here: the contact pressure recovered from the nodal reactions (a
+!> consistent boundary-mass projection), the contact radius and force, the
+!> static indentation solver (STATIC with a PLATE) and the Hertz /
+!> Timoshenko-Goodier impact of a sphere on a rigid plate, eqs. [43]-[45],
+!> built in as the analytic reference.
+module visco2d_contact
+  use, intrinsic :: iso_fortran_env, only: int64
+  use visco2d_kinds, only: dp, pi, geometry_axisymmetric, geometry_tolerance
+  use visco2d_error, only: error_t, set_error
+  use visco2d_strings, only: itoa
+  use visco2d_deck, only: deck_t
+  use visco2d_mesh, only: side_nodes
+  use visco2d_renumber, only: sort_integers
+  use visco2d_element, only: element_lumped_mass
+  use visco2d_assembly, only: node_dof, scatter_add, support_mask
+  use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress
+  use visco2d_record, only: record_t, record_put_real, record_put_integer
+  implicit none
+  private
+
+  public :: contact_t, hertz_t
+  public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
+  public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
+  public :: volume_weights, hertz_impact, solve_static_contact, put_hertz_summary
+  public :: hertz_time_constant, hertz_duration_constant
+
+  !> t_m = 1.4716 alpha_m / V: the exact constant of Hertz impact (the paper prints 1.47).
+  real(dp), parameter :: hertz_time_constant = 1.4716_dp
+  !> Contact duration 2 t_m = 2.9432 alpha_m / V.
+  real(dp), parameter :: hertz_duration_constant = 2.0_dp*hertz_time_constant
+
+  !> The state of contact with the plate.
+  type :: contact_t
+    real(dp) :: z_plate = 0.0_dp
+    logical :: stick = .true.
+    logical :: release = .false.
+    real(dp) :: tolerance = 0.0_dp              !< m: a node closer than this is on the plate
+    integer, allocatable :: candidates(:)       !< boundary nodes (not the axis) that may touch
+    integer, allocatable :: edges(:, :)         !< (2, nedge) boundary edges off the axis
+    logical, allocatable :: active(:)           !< (nnode) held on the plate
+    logical, allocatable :: touched(:)          !< (nnode) put on the plate in this increment
+    logical, allocatable :: let_go(:)           !< (nnode) freed in this increment
+    integer :: pole = 0                         !< lowest boundary node (nearest the axis): q is reported here
+    integer :: iterations = 0                   !< increments repeated because the contact set changed
+  end type contact_t
+
+  !> Hertz impact of an elastic sphere on a rigid plate (Timoshenko and
+  !> Goodier), SI units.
+  type :: hertz_t
+    real(dp) :: alpha_max = 0.0_dp       !< m, eq. [43]
+    real(dp) :: t_alpha_max = 0.0_dp     !< s, eq. [44] with 1.4716
+    real(dp) :: q_max = 0.0_dp           !< Pa, eq. [45]
+    real(dp) :: force_max = 0.0_dp       !< N, (4/3) E/(1 - nu^2) sqrt(R) alpha_m^(3/2)
+    real(dp) :: contact_radius = 0.0_dp  !< m, sqrt(R alpha_m)
+    real(dp) :: duration = 0.0_dp        !< s, 2.9432 alpha_m / V
+  end type hertz_t
+
+contains
+
+  !> Eqs. [43]-[45]: the maxima of a Hertz impact at speed V of a sphere of
+  !> mass M and radius R (E, nu) on a rigid plate.
+  pure function hertz_impact(young, poisson, radius, mass, speed) result(hertz)
+    real(dp), intent(in) :: young, poisson, radius, mass, speed
+    type(hertz_t) :: hertz
+    real(dp) :: modulus
+    modulus = young/(1.0_dp - poisson**2)
+    hertz%alpha_max = (15.0_dp*mass*speed**2/(16.0_dp*modulus*sqrt(radius)))**0.4_dp      ! eq. [43]
+    hertz%t_alpha_max = hertz_time_constant*hertz%alpha_max/abs(speed)                   ! eq. [44]
+    hertz%q_max = 2.0_dp*modulus/pi*sqrt(hertz%alpha_max/radius)                         ! eq. [45]
+    hertz%force_max = 4.0_dp/3.0_dp*modulus*sqrt(radius)*hertz%alpha_max**1.5_dp
+    hertz%contact_radius = sqrt(radius*hertz%alpha_max)
+    hertz%duration = hertz_duration_constant*hertz%alpha_max/abs(speed)
+  end function hertz_impact
+
+  !> The Hertz reference of an impact at `speed` of a body of `mass`, in the
+  !> summary (hertz_* keys), when the body is a generated sphere (MESH SPHERE)
+  !> of one material: E and nu are the material's instantaneous values (its
+  !> elastic constants for an elastic material), R = half the pole-to-pole height.
+  subroutine put_hertz_summary(deck, record, mass, speed)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: mass, speed
+    type(hertz_t) :: hertz
+    real(dp) :: radius
+    if (.not. allocated(deck%mesh%source)) return
+    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1 .or. speed == 0.0_dp) return
+    radius = 0.5_dp*(maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :)))
+    associate (material => deck%materials(1))
+    hertz = hertz_impact(material%young, material%poisson, radius, mass, speed)
+    call record_put_real(record, 'hertz_young_Pa', material%young)
+    call record_put_real(record, 'hertz_poisson', material%poisson)
+    end associate
+    call record_put_real(record, 'hertz_radius_m', radius)
+    call record_put_real(record, 'hertz_mass_kg', mass)
+    call record_put_real(record, 'hertz_speed_m_s', abs(speed))
+    call record_put_real(record, 'hertz_alpha_max_mm', 1.0e3_dp*hertz%alpha_max)
+    call record_put_real(record, 'hertz_t_alpha_max_ms', 1.0e3_dp*hertz%t_alpha_max)
+    call record_put_real(record, 'hertz_q_max_MPa', 1.0e-6_dp*hertz%q_max)
+    call record_put_real(record, 'hertz_force_max_N', hertz%force_max)
+    call record_put_real(record, 'hertz_contact_radius_mm', 1.0e3_dp*hertz%contact_radius)
+    call record_put_real(record, 'hertz_contact_duration_ms', 1.0e3_dp*hertz%duration)
+  end subroutine put_hertz_summary
+
+  !> The candidate nodes and edges (element sides that belong to one element
+  !> only, except those on the axis r = 0 of an axisymmetric body), the plate,
+  !> and the nodes that start on it.
+  subroutine contact_create(deck, contact)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(out) :: contact
+    integer(int64), allocatable :: keys(:)
+    integer, allocatable :: order(:), pairs(:, :)
+    logical, allocatable :: boundary(:)
+    integer :: e, side, a, b, i, count, nedge
+    logical :: unique
+    associate (mesh => deck%mesh)
+    contact%z_plate = deck%plate%z
+    contact%stick = deck%plate%stick
+    contact%release = deck%plate%release
+    contact%tolerance = geometry_tolerance*mesh%size
+    allocate(keys(4*mesh%nelem), pairs(2, 4*mesh%nelem))
+    count = 0
+    do e = 1, mesh%nelem
+      do side = 1, 4
+        call side_nodes(mesh, e, side, a, b)
+        count = count + 1
+        pairs(:, count) = [min(a, b), max(a, b)]
+        keys(count) = int(pairs(1, count), int64)*int(mesh%nnode + 1, int64) + int(pairs(2, count), int64)
+      end do
+    end do
+    call sort_integers(keys, order)
+    allocate(contact%edges(2, count), boundary(mesh%nnode))
+    boundary = .false.
+    nedge = 0
+    do i = 1, count
+      unique = .true.
+      if (i > 1) unique = keys(order(i)) /= keys(order(i - 1))
+      if (i < count) unique = unique .and. keys(order(i)) /= keys(order(i + 1))
+      if (.not. unique) cycle
+      a = pairs(1, order(i))
+      b = pairs(2, order(i))
+      if (deck%geometry == geometry_axisymmetric .and. mesh%xy(1, a) == 0.0_dp .and. mesh%xy(1, b) == 0.0_dp) cycle
+      nedge = nedge + 1
+      contact%edges(:, nedge) = [a, b]
+      boundary(a) = .true.
+      boundary(b) = .true.
+    end do
+    contact%edges = contact%edges(:, 1:nedge)
+    contact%candidates = pack([(i, i = 1, mesh%nnode)], boundary)
+    allocate(contact%active(mesh%nnode), contact%touched(mesh%nnode), contact%let_go(mesh%nnode))
+    contact%active = .false.
+    contact%touched = .false.
+    contact%let_go = .false.
+    ! The pole: the lowest candidate, the one nearest the axis among equals.
+    contact%pole = contact%candidates(1)
+    do i = 2, size(contact%candidates)
+      a = contact%candidates(i)
+      if (mesh%xy(2, a) < mesh%xy(2, contact%pole) - contact%tolerance .or. &
+          (abs(mesh%xy(2, a) - mesh%xy(2, contact%pole)) <= contact%tolerance .and. &
+           abs(mesh%xy(1, a)) < abs(mesh%xy(1, contact%pole)))) contact%pole = a
+    end do
+    end associate
+  end subroutine contact_create
+
+  !> Gap z + u_z - Z of a node (m), u the displacement vector in band order.
+  pure real(dp) function contact_gap(deck, contact, u, node) result(gap)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: u(:)
+    integer, intent(in) :: node
+    gap = deck%mesh%xy(2, node) + u(node_dof(deck%mesh, node, 2)) - contact%z_plate
+  end function contact_gap
+
+  !> The equations held by contact: u_z of every contact node, and u_r too with STICK.
+  function contact_held_dofs(deck, contact) result(held)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    logical :: held(2*deck%mesh%nnode)
+    integer :: i, node
+    held = .false.
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (.not. contact%active(node)) cycle
+      held(node_dof(deck%mesh, node, 2)) = .true.
+      if (contact%stick) held(node_dof(deck%mesh, node, 1)) = .true.
+    end do
+  end function contact_held_dofs
+
+  !> Start a new increment: nothing touched or freed in it yet.
+  pure subroutine contact_begin_increment(contact)
+    type(contact_t), intent(inout) :: contact
+    contact%touched = .false.
+    contact%let_go = .false.
+  end subroutine contact_begin_increment
+
+  !> After a trial increment du from u: put on the plate every free candidate
+  !> that went through it, and (RELEASE=YES, or `always_release`) free every
+  !> contact node whose plate reaction (z, per radian) is tensile. A node
+  !> changes state at most once per increment, so the repetition ends.
+  !> `fraction` is the earliest crossing of the plate within the increment
+  !> (0..1, linear in time), 1 if nothing touched.
+  subroutine contact_search(deck, contact, u, du, reaction, changed, fraction, always_release)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(inout) :: contact
+    real(dp), intent(in) :: u(:), du(:), reaction(:)
+    logical, intent(out) :: changed
+    real(dp), intent(out) :: fraction
+    logical, intent(in), optional :: always_release
+    real(dp) :: start, finish, force_scale
+    integer :: i, node
+    logical :: release
+    changed = .false.
+    fraction = 1.0_dp
+    release = contact%release
+    if (present(always_release)) release = release .or. always_release
+    force_scale = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) force_scale = max(force_scale, abs(reaction(node_dof(deck%mesh, node, 2))))
+    end do
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) then
+        if (.not. release .or. contact%touched(node)) cycle
+        if (reaction(node_dof(deck%mesh, node, 2)) < -1.0e-9_dp*force_scale) then
+          contact%active(node) = .false.
+          contact%let_go(node) = .true.
+          changed = .true.
+        end if
+      else
+        if (contact%let_go(node)) cycle
+        finish = contact_gap(deck, contact, u + du, node)
+        if (finish >= -contact%tolerance) cycle
+        start = max(contact_gap(deck, contact, u, node), 0.0_dp)
+        fraction = min(fraction, start/(start - finish))
+        contact%active(node) = .true.
+        contact%touched(node) = .true.
+        changed = .true.
+      end if
+    end do
+    if (changed) contact%iterations = contact%iterations + 1
+  end subroutine contact_search
+
+  !> Number of contact nodes.
+  pure integer function contact_count(contact) result(number)
+    type(contact_t), intent(in) :: contact
+    number = 0
+    if (allocated(contact%active)) number = count(contact%active)
+  end function contact_count
+
+  !> Total plate force (N; N/m in plane strain): 2 pi times the sum of the
+  !> z reactions per radian of the contact nodes (positive: the plate pushes).
+  pure real(dp) function contact_force(deck, contact, reaction) result(force)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: reaction(:)
+    integer :: i, node
+    force = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) force = force + reaction(node_dof(deck%mesh, node, 2))
+    end do
+    if (deck%geometry == geometry_axisymmetric) force = 2.0_dp*pi*force
+  end function contact_force
+
+  !> Contact radius: the largest deformed |r| of a contact node (0 without contact).
+  pure real(dp) function contact_radius(deck, contact, u) result(radius)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: u(:)
+    integer :: i, node
+    radius = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) radius = max(radius, abs(deck%mesh%xy(1, node) + u(node_dof(deck%mesh, node, 1))))
+    end do
+  end function contact_radius
+
+  !> The free candidate nearest the plate (0 if none): the paper's "non-contact
+  !> node nearest to the contact nodes", whose velocity reversal marks maximum deformation.
+  pure integer function nearest_free_node(deck, contact, u) result(nearest)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: u(:)
+    integer :: i, node
+    real(dp) :: gap, best
+    nearest = 0
+    best = huge(1.0_dp)
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) cycle
+      gap = contact_gap(deck, contact, u, node)
+      if (gap < best) then
+        best = gap
+        nearest = node
+      end if
+    end do
+  end function nearest_free_node
+
+  !> The contact pressure p (Pa, per node; 0 off contact) recovered from the z
+  !> reactions R (per radian) of the contact nodes by a consistent projection:
+  !> p is linear along the boundary edges and solves  M p = R  with the
+  !> boundary mass M_ij = int N_i N_j r ds (r = 1 in plane strain) over the
+  !> deformed edges whose two nodes are in contact. A contact node with no
+  !> such edge (an isolated node, e.g. the pole alone) takes its edges to
+  !> its free neighbours, with p = 0 at those. With r-weighted shape
+  !> functions a uniform p puts p h^2/6 per radian on the axis node of an
+  !> edge of length h (not the naive tributary p h^2/8): this projection
+  !> returns that p exactly. q = p at the pole.
+  subroutine contact_pressure(deck, contact, u, reaction, pressure, q)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: u(:), reaction(:)
+    real(dp), intent(out) :: pressure(:)
+    real(dp), intent(out) :: q
+    integer, allocatable :: nodes(:), position(:)
+    real(dp), allocatable :: matrix(:, :), rhs(:)
+    logical, allocatable :: has_edge(:)
+    integer :: n, k, a, b, i
+    real(dp) :: ra, rb, length, m_aa, m_ab, m_bb
+    pressure = 0.0_dp
+    q = 0.0_dp
+    associate (mesh => deck%mesh)
+    nodes = pack(contact%candidates, contact%active(contact%candidates))
+    n = size(nodes)
+    if (n == 0) return
+    allocate(position(mesh%nnode), matrix(n, n), rhs(n), has_edge(n))
+    position = 0
+    position(nodes) = [(i, i = 1, n)]
+    matrix = 0.0_dp
+    has_edge = .false.
+    do k = 1, size(contact%edges, 2)
+      a = position(contact%edges(1, k))
+      b = position(contact%edges(2, k))
+      if (a > 0 .and. b > 0) then
+        has_edge(a) = .true.
+        has_edge(b) = .true.
+      end if
+    end do
+    do k = 1, size(contact%edges, 2)
+      a = position(contact%edges(1, k))
+      b = position(contact%edges(2, k))
+      if (a == 0 .and. b == 0) cycle
+      if (a > 0 .and. b > 0) then
+        continue
+      else if (a > 0) then
+        if (has_edge(a)) cycle
+      else
+        if (has_edge(b)) cycle
+      end if
+      associate (p => contact%edges(1, k), s => contact%edges(2, k))
+      ra = mesh%xy(1, p) + u(node_dof(mesh, p, 1))
+      rb = mesh%xy(1, s) + u(node_dof(mesh, s, 1))
+      length = norm2(mesh%xy(:, p) + [u(node_dof(mesh, p, 1)), u(node_dof(mesh, p, 2))] - &
+                     mesh%xy(:, s) - [u(node_dof(mesh, s, 1)), u(node_dof(mesh, s, 2))])
+      end associate
+      if (deck%geometry == geometry_axisymmetric) then
+        m_aa = length*(3.0_dp*abs(ra) + abs(rb))/12.0_dp
+        m_ab = length*(abs(ra) + abs(rb))/12.0_dp
+        m_bb = length*(abs(ra) + 3.0_dp*abs(rb))/12.0_dp
+      else
+        m_aa = length/3.0_dp
+        m_ab = length/6.0_dp
+        m_bb = length/3.0_dp
+      end if
+      if (a > 0) matrix(a, a) = matrix(a, a) + m_aa
+      if (b > 0) matrix(b, b) = matrix(b, b) + m_bb
+      if (a > 0 .and. b > 0) then
+        matrix(a, b) = matrix(a, b) + m_ab
+        matrix(b, a) = matrix(b, a) + m_ab
+      end if
+    end do
+    do i = 1, n
+      rhs(i) = reaction(node_dof(mesh, nodes(i), 2))
+    end do
+    call solve_dense(matrix, rhs)
+    pressure(nodes) = rhs
+    q = pressure(contact%pole)
+    end associate
+  end subroutine contact_pressure
+
+  !> Solve the small symmetric system A x = b in place (Gauss elimination with
+  !> partial pivoting); an equation with no mass (a degenerate edge) gets x = 0.
+  pure subroutine solve_dense(matrix, rhs)
+    real(dp), intent(inout) :: matrix(:, :), rhs(:)
+    integer :: n, k, i, pivot
+    real(dp) :: factor, scale
+    real(dp), allocatable :: row(:)
+    n = size(rhs)
+    scale = maxval(abs(matrix))
+    if (scale == 0.0_dp) then
+      rhs = 0.0_dp
+      return
+    end if
+    do k = 1, n
+      pivot = k - 1 + maxloc(abs(matrix(k:n, k)), dim=1)
+      if (abs(matrix(pivot, k)) <= 1.0e-14_dp*scale) then
+        matrix(k, :) = 0.0_dp
+        matrix(:, k) = 0.0_dp
+        matrix(k, k) = 1.0_dp
+        rhs(k) = 0.0_dp
+        cycle
+      end if
+      if (pivot /= k) then
+        row = matrix(k, :)
+        matrix(k, :) = matrix(pivot, :)
+        matrix(pivot, :) = row
+        factor = rhs(k)
+        rhs(k) = rhs(pivot)
+        rhs(pivot) = factor
+      end if
+      do i = k + 1, n
+        factor = matrix(i, k)/matrix(k, k)
+        if (factor == 0.0_dp) cycle
+        matrix(i, k:n) = matrix(i, k:n) - factor*matrix(k, k:n)
+        rhs(i) = rhs(i) - factor*rhs(k)
+      end do
+    end do
+    do k = n, 1, -1
+      rhs(k) = (rhs(k) - dot_product(matrix(k, k + 1:n), rhs(k + 1:n)))/matrix(k, k)
+    end do
+  end subroutine solve_dense
+
+  !> Volume row sums int N_i dV per equation (per radian in axisymmetry):
+  !> the weights of a volume (or, times rho, mass) average of a nodal field.
+  function volume_weights(deck) result(weight)
+    type(deck_t), intent(in) :: deck
+    real(dp) :: weight(2*deck%mesh%nnode)
+    real(dp) :: m(4)
+    integer :: e
+    weight = 0.0_dp
+    do e = 1, deck%mesh%nelem
+      m = element_lumped_mass(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), 1.0_dp)
+      call scatter_add(deck%mesh, e, [m(1), m(1), m(2), m(2), m(3), m(3), m(4), m(4)], weight)
+    end do
+  end function volume_weights
+
+  !> STATIC with a PLATE: the body pressed onto the plate (loads, gravity).
+  !> Active-set iteration: contact nodes sit on the plate (u_z = Z - z; with
+  !> STICK also u_r = 0, a bonded contact); every free node that goes through
+  !> the plate is added and every contact node that pulls is freed (always,
+  !> whatever RELEASE says: a static contact set must push everywhere), until
+  !> the set does not change.
+  subroutine solve_static_contact(deck, record, error)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: error
+    type(contact_t) :: contact
+    type(static_solution_t) :: solution
+    real(dp), allocatable :: u(:), zero(:), reaction(:), values(:), pressure(:), weight(:)
+    logical, allocatable :: held(:)
+    logical :: changed
+    real(dp) :: fraction, q
+    integer :: iteration, i, node, limit
+
+    associate (mesh => deck%mesh)
+    call contact_create(deck, contact)
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      contact%active(node) = mesh%xy(2, node) - contact%z_plate <= contact%tolerance
+    end do
+    allocate(zero(2*mesh%nnode), values(2*mesh%nnode), u(2*mesh%nnode), reaction(2*mesh%nnode))
+    zero = 0.0_dp
+    limit = max(100, 2*size(contact%candidates))
+    do iteration = 1, limit
+      held = contact_held_dofs(deck, contact)
+      values = 0.0_dp
+      do i = 1, size(contact%candidates)
+        node = contact%candidates(i)
+        if (contact%active(node)) values(node_dof(mesh, node, 2)) = contact%z_plate - mesh%xy(2, node)
+      end do
+      call solve_static(deck, solution, error, held, values)
+      if (allocated(error)) then
+        error%message = error%message//' (with '//itoa(count(contact%active))//' node(s) on the plate: '// &
+          'a body that only rests on the plate needs a load that presses it on, and supports that stop it '// &
+          'from turning or sliding)'
+        return
+      end if
+      u = reshape(solution%displacement, [2*mesh%nnode])
+      u = band_order(u)
+      reaction = band_order(reshape(solution%reaction, [2*mesh%nnode]))
+      call contact_begin_increment(contact)
+      call contact_search(deck, contact, zero, u, reaction, changed, fraction, always_release=.true.)
+      if (.not. changed) exit
+      if (iteration == limit) then
+        call set_error(error, 'the contact set did not settle after '//itoa(limit)//' iterations', &
+                       file=deck%cards%file, line=deck%plate%line, card='PLATE')
+        return
+      end if
+    end do
+    call static_record(deck, solution, record)
+    allocate(pressure(mesh%nnode))
+    call contact_pressure(deck, contact, u, reaction, pressure, q)
+    weight = volume_weights(deck)
+    call record_put_integer(record, 'factorizations', iteration)
+    call record_put_integer(record, 'contact_iterations', contact%iterations)
+    call record_put_integer(record, 'contact_nodes', contact_count(contact))
+    call record_put_real(record, 'force_N', contact_force(deck, contact, reaction))
+    call record_put_real(record, 'alpha_mm', -1.0e3_dp*dot_product(weight(2::2), u(2::2))/sum(weight(2::2)))
+    call record_put_real(record, 'q_MPa', 1.0e-6_dp*q)
+    call record_put_real(record, 'q_surface_MPa', -1.0e-6_dp*node_stress_z(contact%pole))
+    call record_put_real(record, 'contact_radius_mm', 1.0e3_dp*contact_radius(deck, contact, u))
+    end associate
+
+  contains
+
+    !> (u_r, u_z) per node in node order -> band order.
+    function band_order(nodal) result(vector)
+      real(dp), intent(in) :: nodal(:)
+      real(dp) :: vector(size(nodal))
+      integer :: k
+      do k = 1, deck%mesh%nnode
+        vector(node_dof(deck%mesh, k, 1)) = nodal(2*k - 1)
+        vector(node_dof(deck%mesh, k, 2)) = nodal(2*k)
+      end do
+    end function band_order
+
+    real(dp) function node_stress_z(node)
+      integer, intent(in) :: node
+      real(dp) :: s(4)
+      s = node_stress(deck%mesh, solution%stress, node)
+      node_stress_z = s(2)
+    end function node_stress_z
+  end subroutine solve_static_contact
+end module visco2d_contact
