@@ -1,5 +1,6 @@
 # visco2d — the two commands of a new user:
-#   make run    install what is missing, build (release), run every deck in inputs/ into out/
+#   make run    install what is missing, build (release), run every deck in inputs/ into out/,
+#               then print the impact results beside the paper's (scripts/paper_table.py)
 #   make test   install what is missing, run the tests and the reference-output diffs
 # and, on purpose only:
 #   make bless  regenerate reference_outputs/ from the current code (say why in the commit)
@@ -22,7 +23,9 @@ build: setup
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"
-	@$(EXE) -o out $(DECKS)
+	@$(EXE) -o out $(DECKS); status=$$?; \
+	  echo; python3 scripts/paper_table.py out; \
+	  exit $$status
 
 check: build
 	@$(EXE) check $(DECKS)
