@@ -432,4 +432,160 @@ check paper_table_no_folder_all_missing "$(grep -c '^- ' empty.out) missing line
   test "$(grep -c '^- ' empty.out)" = 10
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- contact
+# A sphere dropped onto a rigid plate (level 1, tiny): check names the plate,
+# the stop criterion and the effects; one card removed at a time turns off
+# exactly its effect; a bad PLATE card is located and leaves no folder; a run
+# writes the impact keys, the contact history columns and the snapshots at the
+# maxima; a run to separation writes the rebound keys.
+mkdir contact && cd contact || exit 0
+cat > drop.inp <<'EOF'
+TITLE apple dropped onto a plate
+ANALYSIS DYNAMIC
+GEOMETRY AXISYMMETRIC
+MATERIAL apple ELASTIC E=40e6 NU=0.3 RHO=800
+MESH SPHERE R=0.0381 LEVEL=1
+INITIAL VZ=-1
+GRAVITY
+PLATE Z=0
+TIME DT=1e-5 TEND=4e-3
+END
+EOF
+"$exe" check drop.inp > check.out 2> check.err
+check_rc contact_check_exit_0 0 $?
+check contact_check_plate "stdout: $(first_lines check.out)" \
+  grep -q "^ *plate *z = 0.0000E+00 m, STICK, RELEASE=NO$" check.out
+check contact_check_stop_at "stdout: $(first_lines check.out)" grep -q "^ *stop at *MAXDEFORMATION$" check.out
+check contact_check_effects "stdout: $(first_lines check.out)" \
+  grep -q "^ *effects *inertia contact gravity$" check.out
+check contact_check_no_warning "stderr: $(first_lines check.err)" test ! -s check.err
+check contact_check_writes_nothing "check created: $(ls -A | grep -v -e '^check\.' -e '\.inp$' | tr '\n' ' ')" \
+  test -z "$(ls -A | grep -v -e '^check\.' -e '\.inp$')"
+# The full scene (viscoelastic) and one card removed at a time.
+sed -e 's/^MATERIAL .*/MATERIAL apple VISCOELASTIC K=13.5e6 RHO=757\nPRONY G=3.91e6 BETA=203/' drop.inp > scene_full.inp
+grep -v '^PLATE' scene_full.inp > scene_noplate.inp
+grep -v '^GRAVITY' scene_full.inp > scene_nogravity.inp
+cat > scene_static.inp <<'EOF'
+TITLE apple pressed onto a plate
+ANALYSIS STATIC
+GEOMETRY AXISYMMETRIC
+MATERIAL apple ELASTIC E=40e6 NU=0.3 RHO=800
+MESH SPHERE R=0.0381 LEVEL=1
+GRAVITY G=1000
+PLATE Z=0 SLIP
+END
+EOF
+for pair in "full:inertia viscoelastic contact gravity" "noplate:inertia viscoelastic gravity" \
+            "nogravity:inertia viscoelastic contact" "static:contact gravity"; do
+  name=${pair%%:*}
+  effects=${pair#*:}
+  "$exe" check "scene_$name.inp" > "scene_$name.out" 2>&1
+  check "contact_check_effects_$name" "expected effects '$effects'; output: $(first_lines "scene_$name.out")" \
+    grep -q "^ *effects *$effects\$" "scene_$name.out"
+done
+check contact_check_static_no_stop_line "stdout: $(first_lines scene_static.out)" \
+  test "$(grep -c '^ *stop at ' scene_static.out)" = 0
+# A bad PLATE card: Z is not a number (line 8, the Z field at column 7).
+sed -e 's/^PLATE Z=0$/PLATE Z=abc/' drop.inp > badplate.inp
+"$exe" -o out badplate.inp > badplate.out 2> badplate.err
+check_rc contact_bad_plate_exit_1 1 $?
+check contact_bad_plate_located "stderr: $(first_lines badplate.err)" \
+  grep -qF 'visco2d: error: badplate.inp:8:7: PLATE: Z must be a number, got "abc"' badplate.err
+check contact_bad_plate_no_case_folder "out/badplate exists" test ! -e out/badplate
+check contact_bad_plate_no_hidden_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(entries_matching out badplate)"
+"$exe" check badplate.inp > checkbadplate.out 2> checkbadplate.err
+check_rc contact_check_bad_plate_exit_1 1 $?
+check contact_check_bad_plate_located "stderr: $(first_lines checkbadplate.err)" \
+  grep -qF 'badplate.inp:8:7: PLATE: ' checkbadplate.err
+# A plate above the sphere's pole (z = 0): located at the PLATE card, no folder.
+sed -e 's/^PLATE Z=0$/PLATE Z=0.001/' drop.inp > cutplate.inp
+"$exe" -o out cutplate.inp > cutplate.out 2> cutplate.err
+check_rc contact_plate_cuts_body_exit_1 1 $?
+check contact_plate_cuts_body_located "stderr: $(first_lines cutplate.err)" \
+  grep -q '^visco2d: error: cutplate.inp:8: PLATE: node [0-9]* (.*) lies below the plate' cutplate.err
+check contact_plate_cuts_body_no_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(entries_matching out cutplate)"
+
+# The impact run (STOP AT=MAXDEFORMATION by default).
+"$exe" -q -o out drop.inp > drop.out 2> drop.err
+check_rc contact_run_exit_0 0 $?
+check contact_run_stderr_empty "stderr: $(first_lines drop.err)" test ! -s drop.err
+summary=out/drop/summary.txt
+for key in alpha_max_mm q_max_MPa force_max_N contact_radius_max_mm accel_center_max_g effects cpu_s \
+           t_alpha_max_ms stop_reason hertz_alpha_max_mm; do
+  check "contact_run_summary_has_$key" "no '$key = ' line in $summary" grep -qs "^$key = " "$summary"
+done
+check contact_run_summary_effects "effects = '$(value_of effects)'" test "$(value_of effects)" = "inertia contact gravity"
+check contact_run_stop_reason "stop_reason = '$(value_of stop_reason)'" \
+  test "$(value_of stop_reason)" = "maximum deformation"
+check contact_run_no_separation_keys "separation keys in a run stopped at maximum deformation" \
+  test "$(grep -c -e '^contact_duration_ms = ' -e '^coefficient_of_restitution = ' "$summary")" = 0
+header=$(head -1 out/drop/history.csv 2>/dev/null)
+for column in t_ms alpha_mm force_N q_MPa contact_radius_mm accel_center_g n_contact; do
+  check "contact_run_history_has_$column" "header: $header" grep -q "\(^\|,\)$column\(,\|$\)" <<< "$header"
+done
+h5=out/drop/results.h5
+if command -v h5dump > /dev/null; then
+  h5dump -A -g /fields "$h5" > drop_fields.txt 2>&1
+  check_rc contact_h5dump_fields 0 $?
+  for label in "maximum deformation" "maximum pressure"; do
+    check "contact_h5_label_${label// /_}" \
+      "no /fields/<step> with label '$label': $(grep '(0): "' drop_fields.txt | tr '\n' ' ')" \
+      grep -q "(0): \"\(.*; \)\?$label\(;.*\)\?\"" drop_fields.txt
+  done
+else
+  fail contact_h5dump_available "h5dump is not on PATH"
+fi
+if command -v python3 > /dev/null && python3 -c 'import h5py' > /dev/null 2>&1; then
+  # The snapshot labelled 'maximum deformation' is taken at t_alpha_max (first contact at t = 0 here).
+  python3 - "$h5" > drop_h5py.out 2> drop_h5py.err <<'EOF'
+import sys, h5py
+with h5py.File(sys.argv[1], "r") as f:
+    for name, group in f["/fields"].items():
+        label = group.attrs["label"]
+        label = label.decode() if isinstance(label, bytes) else str(label)
+        if "maximum deformation" in label.split("; "):
+            print("t_ms %.9e" % (1000.0 * float(group.attrs["time"])))
+            print("has_stress", "stress" in group)
+EOF
+  check_rc contact_h5py_reads 0 $?
+  t_snap=$(sed -n 's/^t_ms //p' drop_h5py.out)
+  t_key=$(value_of t_alpha_max_ms)
+  check contact_h5_max_deformation_time "snapshot at '$t_snap' ms, t_alpha_max_ms = '$t_key'" \
+    awk -v a="$t_snap" -v b="$t_key" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && b != "" && d <= 1e-6) }'
+  check contact_h5_max_deformation_stress "h5py: $(first_lines drop_h5py.out)" grep -q '^has_stress True$' drop_h5py.out
+else
+  echo "# h5py not available: h5py contact checks skipped"
+fi
+
+# To separation: SLIP RELEASE=YES STOP AT=SEPARATION (Hertz duration ~2.4 ms < TEND).
+sed -e 's/^PLATE Z=0$/PLATE Z=0 SLIP RELEASE=YES\nSTOP AT=SEPARATION/' drop.inp > bounce.inp
+"$exe" check bounce.inp > checkbounce.out 2>&1
+check contact_check_separation_stop_at "stdout: $(first_lines checkbounce.out)" \
+  grep -q "^ *stop at *SEPARATION$" checkbounce.out
+check contact_check_separation_plate "stdout: $(first_lines checkbounce.out)" \
+  grep -q "^ *plate *z = 0.0000E+00 m, SLIP, RELEASE=YES$" checkbounce.out
+"$exe" -q -o out bounce.inp > bounce.out 2> bounce.err
+check_rc contact_separation_exit_0 0 $?
+summary=out/bounce/summary.txt
+check contact_separation_stop_reason "stop_reason = '$(value_of stop_reason)'; stderr: $(first_lines bounce.err)" \
+  test "$(value_of stop_reason)" = separation
+for key in contact_duration_ms rebound_velocity_m_s energy_absorbed_J coefficient_of_restitution; do
+  check "contact_separation_has_$key" "no '$key = ' line in $summary" grep -qs "^$key = " "$summary"
+done
+# Their definitions, from the summary's own values (10 digits): e = v_out/V_in,
+# energy absorbed = 1/2 M (V_in^2 - v_out^2) with the whole-body mass.
+check contact_separation_restitution_definition \
+  "e = $(value_of coefficient_of_restitution), v_out = $(value_of rebound_velocity_m_s), V_in = $(value_of impact_velocity_m_s)" \
+  awk -v e="$(value_of coefficient_of_restitution)" -v v="$(value_of rebound_velocity_m_s)" \
+      -v w="$(value_of impact_velocity_m_s)" \
+      'BEGIN { if (e == "" || w + 0 == 0) exit 1; d = e - v / w; if (d < 0) d = -d; exit !(d <= 1e-8) }'
+check contact_separation_energy_definition \
+  "energy_absorbed_J = $(value_of energy_absorbed_J), M = $(value_of body_mass_kg)" \
+  awk -v q="$(value_of energy_absorbed_J)" -v m="$(value_of body_mass_kg)" -v v="$(value_of rebound_velocity_m_s)" \
+      -v w="$(value_of impact_velocity_m_s)" \
+      'BEGIN { x = 0.5 * m * (w * w - v * v); if (q == "" || x == 0) exit 1; d = (q - x) / x; if (d < 0) d = -d; exit !(d <= 1e-6) }'
+cd "$work" || exit 0
+
 exit 0

@@ -6,7 +6,8 @@
 program test_bad_decks
   use visco2d_kinds, only: dp, geometry_plane_strain, formulation_bbar
   use visco2d_error, only: error_t, error_text
-  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_dynamic, initial_velocity
+  use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_dynamic, initial_velocity, &
+                         stop_at_max_deformation, stop_at_separation
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
@@ -380,6 +381,68 @@ program test_bad_decks
   ! material in the standard element are warnings, not errors.
   call expect_valid_dynamic()
 
+  ! ------------------------------------------------------- contact cards: PLATE and STOP
+  lines = impact()
+  lines(7) = 'PLATE'
+  call expect_read_error('plate_without_z', lines, 7, 1, 'PLATE', 'missing field Z=')
+
+  lines = impact()
+  lines(7) = 'PLATE Z=abc'
+  call expect_read_error('plate_z_not_a_number', lines, 7, 7, 'PLATE', 'Z must be a number, got "abc"')
+
+  lines = impact()
+  lines(7) = 'PLATE Z=0 GRIP'
+  call expect_read_error('plate_unknown_kind', lines, 7, 11, 'PLATE', &
+                         'contact kind must be STICK or SLIP, got "GRIP"')
+
+  lines = impact()
+  lines(7) = 'PLATE Z=0 RELEASE=MAYBE'
+  call expect_read_error('plate_release_maybe', lines, 7, 11, 'PLATE', 'RELEASE must be YES or NO, got "MAYBE"')
+
+  lines = impact()
+  call expect_read_error('plate_twice', [lines(1:7), lines(7:10)], 8, 1, 'PLATE', &
+                         'only one PLATE card is allowed (first on line 7)')
+
+  lines = creep()
+  call expect_read_error('plate_in_quasistatic', [lines(1:10), 'PLATE Z=0', lines(11:)], 11, 0, 'PLATE', &
+                         'PLATE needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no contact search)')
+
+  lines = impact()
+  lines(8) = 'STOP'
+  call expect_read_error('stop_without_at', lines, 8, 1, 'STOP', 'missing field AT=')
+
+  lines = impact()
+  lines(8) = 'STOP AT=SOMETIME'
+  call expect_read_error('stop_at_unknown', lines, 8, 6, 'STOP', &
+                         'AT must be MAXDEFORMATION, SEPARATION or TEND, got "SOMETIME"')
+
+  lines = impact()
+  lines(8) = 'STOP AT=SEPARATION'
+  call expect_read_error('stop_separation_without_release', lines, 8, 0, 'STOP', &
+                         'STOP AT=SEPARATION needs PLATE ... RELEASE=YES (line 7)')
+
+  lines = impact()
+  call expect_read_error('stop_maxdeformation_without_plate', [lines(1:6), lines(8:10)], 7, 0, 'STOP', &
+                         'STOP AT=MAXDEFORMATION needs a PLATE card (or use STOP AT=TEND)')
+
+  lines = press()
+  call expect_read_error('stop_in_static', [lines(1:7), 'STOP AT=TEND', lines(8:)], 8, 0, 'STOP', &
+                         'STOP needs ANALYSIS DYNAMIC (this deck is STATIC)')
+
+  ! The generated sphere's pole (its lowest node) is at z = 0: a plate at 1 mm cuts into it.
+  lines = impact()
+  lines(7) = 'PLATE Z=0.001'
+  call expect_read_error('plate_above_lowest_node', lines, 7, 0, 'PLATE', &
+                         'lies below the plate z = 1.0000E-03: the body must start on or above the plate')
+
+  lines = impact()
+  lines(7) = 'PLATE Z=0 FOO=1'
+  call expect_read_error('plate_unknown_field', lines, 7, 11, 'PLATE', &
+                         'unknown field FOO (expected: PLATE Z=.. [STICK | SLIP] [RELEASE=YES|NO])')
+
+  ! The contact decks themselves are valid and parse to the intended settings.
+  call expect_valid_contact()
+
   call test_summary('test_bad_decks')
 
 contains
@@ -435,6 +498,80 @@ contains
       'OUTPUT EVERY=10 FIELDS=1e-4,5e-4', &               ! 10
       'END']                                              ! 11
   end function dynamic
+
+  !> A valid dynamic contact deck: a sphere (pole at z = 0) dropped onto a plate at z = 0.
+  function impact() result(deck_lines)
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = [character(len=100) :: &
+      'TITLE dropped sphere', &                           ! 1
+      'ANALYSIS DYNAMIC', &                               ! 2
+      'GEOMETRY AXISYMMETRIC', &                          ! 3
+      'MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=800', &    ! 4
+      'MESH SPHERE R=0.0381 LEVEL=1', &                   ! 5
+      'INITIAL VZ=-1', &                                  ! 6
+      'PLATE Z=0', &                                      ! 7
+      'STOP AT=MAXDEFORMATION', &                         ! 8
+      'TIME DT=1e-5 TEND=2e-3', &                         ! 9
+      'END']                                              ! 10
+  end function impact
+
+  !> A valid static contact deck: the sphere pressed onto the plate by its weight.
+  function press() result(deck_lines)
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = [character(len=100) :: &
+      'TITLE pressed sphere', &                           ! 1
+      'ANALYSIS STATIC', &                                ! 2
+      'GEOMETRY AXISYMMETRIC', &                          ! 3
+      'MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=800', &    ! 4
+      'MESH SPHERE R=0.0381 LEVEL=1', &                   ! 5
+      'GRAVITY G=1000', &                                 ! 6
+      'PLATE Z=0 SLIP', &                                 ! 7
+      'END']                                              ! 8
+  end function press
+
+  !> The contact decks parse: STICK, RELEASE=NO and STOP AT=MAXDEFORMATION by
+  !> default with a plate in DYNAMIC; SLIP RELEASE=YES with STOP AT=SEPARATION;
+  !> a plate in STATIC; the plate may sit below the body.
+  subroutine expect_valid_contact()
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(len=100), allocatable :: deck_lines(:)
+    deck_lines = impact()
+    call write_deck(deck_path('contact_default'), [deck_lines(1:7), deck_lines(9:10)])
+    call read_deck(deck_path('contact_default'), deck, error)
+    call check('contact_default_reads', .not. allocated(error))
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    call check('contact_default_plate_line', deck%plate%line == 7)
+    call check_close('contact_default_plate_z', deck%plate%z, 0.0_dp, 0.0_dp)
+    call check('contact_default_stick', deck%plate%stick .and. .not. deck%plate%release)
+    call check('contact_default_stop', deck%stop_at == stop_at_max_deformation)
+
+    deck_lines(7) = 'plate z = -0.002 slip release = yes'
+    deck_lines(8) = 'stop at=separation'
+    call write_deck(deck_path('contact_separation'), deck_lines)
+    call read_deck(deck_path('contact_separation'), deck, error)
+    call check('contact_separation_reads', .not. allocated(error))
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    call check_close('contact_separation_plate_z', deck%plate%z, -0.002_dp, 0.0_dp)
+    call check('contact_separation_slip_release', .not. deck%plate%stick .and. deck%plate%release)
+    call check('contact_separation_stop', deck%stop_at == stop_at_separation)
+
+    call write_deck(deck_path('contact_static'), press())
+    call read_deck(deck_path('contact_static'), deck, error)
+    call check('contact_static_reads', .not. allocated(error))
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    call check('contact_static_plate', deck%plate%line == 7 .and. .not. deck%plate%stick)
+    call check('contact_static_analysis', deck%analysis == analysis_static)
+  end subroutine expect_valid_contact
 
   !> The dynamic deck parses to the intended settings; warnings for theta < 1.37
   !> and for nu = 0.4999 in the standard element (not in B-bar); DROP gives -sqrt(2 g h).
