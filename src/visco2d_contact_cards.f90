@@ -78,8 +78,12 @@ contains
     integer, intent(out) :: stop_at
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable :: word
+    character(len=*), parameter :: form = 'STOP AT=MAXDEFORMATION | SEPARATION | TEND'
+    if (.not. has_field(card, 'AT')) then
+      call card_error(error, cards, card, 'missing field AT= (expected: '//form//')'); return
+    end if
     call named_word(cards, card, 'AT', word, error); if (allocated(error)) return
-    call check_fields_used(cards, card, error, 'STOP AT=MAXDEFORMATION | SEPARATION | TEND')
+    call check_fields_used(cards, card, error, form)
     if (allocated(error)) return
     select case (word)
     case ('MAXDEFORMATION')
