@@ -269,16 +269,16 @@ contains
     if (deck%geometry == geometry_axisymmetric) force = 2.0_dp*pi*force
   end function contact_force
 
-  !> Contact radius: the largest deformed |r| of a contact node (0 without contact).
-  pure real(dp) function contact_radius(deck, contact, u) result(radius)
+  !> Contact radius: the largest |r| of a contact node in the undeformed body
+  !> (the frame of the small-displacement theory, and of Hertz's a); 0 without contact.
+  pure real(dp) function contact_radius(deck, contact) result(radius)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(in) :: contact
-    real(dp), intent(in) :: u(:)
     integer :: i, node
     radius = 0.0_dp
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
-      if (contact%active(node)) radius = max(radius, abs(deck%mesh%xy(1, node) + u(node_dof(deck%mesh, node, 1))))
+      if (contact%active(node)) radius = max(radius, abs(deck%mesh%xy(1, node)))
     end do
   end function contact_radius
 
@@ -307,18 +307,21 @@ contains
   !> reactions R (per radian) of the contact nodes by a boundary-mass
   !> projection, lumped by rows: p_i = R_i / A_i with
   !>   A_i = sum_j M_ij = int N_i r ds    (r = 1 in plane strain)
-  !> over the deformed edges whose two nodes are in contact (a contact node
+  !> over the undeformed edges whose two nodes are in contact (a contact node
   !> with no such edge, e.g. the pole alone, takes all its boundary edges).
+  !> Undeformed, because the reactions come from the small-displacement
+  !> stiffness of the undeformed body (on the deformed edges a uniform p
+  !> would come back as p/(1 + nu p/E)^2).
   !> A uniform pressure is recovered exactly: on the axis node of an edge of
   !> length h, A = h^2/6 per radian (the naive tributary disc r < h/2 gives
   !> h^2/8 and overstates q by 4/3). The consistent (unlumped) projection
   !> M p = R is not used: when the true contact edge lies between the last
   !> contact node and the next free one, it oscillates (on the level-2
   !> sphere of Table 1 the pole pressure even turns negative). q = p at the pole.
-  subroutine contact_pressure(deck, contact, u, reaction, pressure, q)
+  subroutine contact_pressure(deck, contact, reaction, pressure, q)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(in) :: contact
-    real(dp), intent(in) :: u(:), reaction(:)
+    real(dp), intent(in) :: reaction(:)
     real(dp), intent(out) :: pressure(:)
     real(dp), intent(out) :: q
     real(dp), allocatable :: area(:)
@@ -344,10 +347,9 @@ contains
       a = contact%edges(1, k)
       b = contact%edges(2, k)
       if (.not. (contact%active(a) .or. contact%active(b))) cycle
-      ra = abs(mesh%xy(1, a) + u(node_dof(mesh, a, 1)))
-      rb = abs(mesh%xy(1, b) + u(node_dof(mesh, b, 1)))
-      length = norm2(mesh%xy(:, a) + [u(node_dof(mesh, a, 1)), u(node_dof(mesh, a, 2))] - &
-                     mesh%xy(:, b) - [u(node_dof(mesh, b, 1)), u(node_dof(mesh, b, 2))])
+      ra = abs(mesh%xy(1, a))
+      rb = abs(mesh%xy(1, b))
+      length = norm2(mesh%xy(:, a) - mesh%xy(:, b))
       if (deck%geometry == geometry_axisymmetric) then     ! int N_a r ds, int N_b r ds
         share_a = length*(2.0_dp*ra + rb)/6.0_dp
         share_b = length*(ra + 2.0_dp*rb)/6.0_dp
@@ -442,7 +444,7 @@ contains
     end do
     call static_record(deck, solution, record)
     allocate(pressure(mesh%nnode))
-    call contact_pressure(deck, contact, u, reaction, pressure, q)
+    call contact_pressure(deck, contact, reaction, pressure, q)
     weight = volume_weights(deck)
     call record_put_integer(record, 'factorizations', iteration)
     call record_put_integer(record, 'contact_iterations', contact%iterations)
@@ -451,7 +453,7 @@ contains
     call record_put_real(record, 'alpha_mm', -1.0e3_dp*dot_product(weight(2::2), u(2::2))/sum(weight(2::2)))
     call record_put_real(record, 'q_MPa', 1.0e-6_dp*q)
     call record_put_real(record, 'q_surface_MPa', -1.0e-6_dp*node_stress_z(contact%pole))
-    call record_put_real(record, 'contact_radius_mm', 1.0e3_dp*contact_radius(deck, contact, u))
+    call record_put_real(record, 'contact_radius_mm', 1.0e3_dp*contact_radius(deck, contact))
     end associate
 
   contains

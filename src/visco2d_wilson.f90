@@ -493,11 +493,11 @@ contains
         v_cm_contact = v_cm - (1.0_dp - touch_fraction)*(v_cm - centre_of_mass(v - dv))
       end if
       force = contact_force(deck, contact, reaction)
-      call contact_pressure(deck, contact, u, reaction, pressure, q)
+      call contact_pressure(deck, contact, reaction, pressure, q)
       s = node_stress(deck%mesh, stress, contact%pole)
       q_surface = 0.0_dp
       if (contact%active(contact%pole)) q_surface = -s(2)
-      radius = contact_radius(deck, contact, u)
+      radius = contact_radius(deck, contact)
       accel_centre = a(node_dof(deck%mesh, centre_node, 2))
       if (t_contact < 0.0_dp) return
       since = t - t_contact
