@@ -1,0 +1,955 @@
+!> Verification of impact on a rigid plate: Wilson-theta (theta = 1.4) with
+!> the PLATE card (src/visco2d_contact.f90, the contact part of
+!> src/visco2d_wilson.f90), on the paper's sphere (MESH SPHERE, R = 36.6 mm).
+!>
+!>  1. Convergence, elastic sphere of Table 1 (E 18.11 MPa, nu 0.219,
+!>     rho 756.85, V 0.9982 m/s, g 9.8): alpha_m, t_alpha, q_max, force_max
+!>     for mesh levels 1-4 (dt 1e-5 s) and for dt 4e-5 .. 5e-6 s (level 3);
+!>     observed orders p = log2(|f1 - f2| / |f2 - f3|) and Richardson values.
+!>     Only alpha_m (the approach of the centre of mass, a whole-body
+!>     quantity) is checked: its changes must shrink at least by 2 per
+!>     halving (p >= 1). The peak times are sampled at dt and q is the
+!>     pressure at the pole node, which jumps when a ring of nodes joins the
+!>     contact: they are printed, not checked for an order.
+!>  2. Restitution (elastic, level 3, RELEASE=YES, STOP AT=SEPARATION),
+!>     SLIP and STICK: the energy books close (energy_absorbed_J against the
+!>     per-radian split times 2 pi), where the deficit 1 - e^2 goes, and the
+!>     contact duration against the Hertz duration 2.9432 alpha_m / V with
+!>     the run's own alpha_m, and against an independent integration of the
+!>     Hertz oscillator with gravity.
+!>  3. Viscoelastic sphere of Table 2 (K 13.5 MPa, G 3.91 MPa, beta 203 1/s,
+!>     drop 5 cm): q peaks before alpha by more than the time resolution
+!>     (dt and the ring-arrival interval near the peak).
+!>  4. The apples of Table 3 at 0.7 and 1.2 m/s: both maxima come sooner at
+!>     the higher speed; t_alpha - t_q is reported with its resolution.
+!>  5. A nearly incompressible sphere (nu 0.4999): FORMULATION BBAR does not
+!>     lock (alpha_m follows Hertz's (1 - nu^2) scaling from nu = 0.49),
+!>     STANDARD does; the plate force and pole pressure histories are
+!>     examined for spikes when nodes join the contact (the run's maxima are
+!>     reported beside smooth estimates), and the same impacts are run with
+!>     RELEASE=YES to separation (contact chatter).
+!> What is checked holds for the library as it is; what it gets wrong is
+!> printed on NOTE lines, not failed (reported to the lead with proposed
+!> changes): q_max at levels 1-2 (the consistent projection oscillates while
+!> few nodes touch), force_max / q_max at nu = 0.4999 (spikes: the held nodes'
+!> reactions at t + dt carry a stiff mode that Wilson-theta damps only by
+!> rho_inf = -0.778 per step), and contact chatter with RELEASE=YES at
+!> nu >= 0.49 (those reactions turn tensile every other step).
+!> For an elastic body dissipated_J is round-off: the integrator's own loss
+!> appears in balance_error_J (section 2).
+!> Every number is printed in markdown tables. Decks are written to
+!> build/test-tmp/test_contact_dynamic/. Release run time ~45 s; the longer
+!> study (level 5, dt to 1.25e-6) is scripts/convergence_table1.py.
+program test_contact_dynamic
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use visco2d_kinds, only: dp, pi
+  use visco2d_error, only: error_t, error_text
+  use visco2d_deck, only: deck_t, read_deck
+  use visco2d_wilson, only: solve_dynamic
+  use visco2d_contact, only: hertz_duration_constant
+  use visco2d_record, only: record_t
+  use visco2d_driver, only: summary_value
+  use visco2d_strings, only: itoa
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
+                             history_column, history_last
+  implicit none
+
+  character(*), parameter :: folder = 'build/test-tmp/test_contact_dynamic'
+  integer, parameter :: line_length = 100
+
+  interface
+    subroutine dgels(trans, m, n, nrhs, a, lda, b, ldb, work, lwork, info)
+      import :: dp
+      character, intent(in) :: trans
+      integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
+      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
+      real(dp), intent(out) :: work(*)
+      integer, intent(out) :: info
+    end subroutine dgels
+  end interface
+
+  !> One dynamic run: its record and the history columns used here.
+  type :: run_t
+    character(:), allocatable :: name
+    type(record_t) :: record
+    logical :: ok = .false.
+    real(dp) :: seconds = 0.0_dp                 !< wall time of the run (printed only)
+    real(dp) :: dt_ms = 0.0_dp
+    integer :: nodes = 0, elements = 0
+    real(dp), allocatable :: t(:), alpha(:), force(:), q(:), n(:)   !< ms, mm, N, MPa, contact nodes
+  end type run_t
+
+  !> The energy split of a run to separation (whole body, J).
+  type :: split_t
+    real(dp) :: e, v_in, v_out, v_cm, absorbed, input, mass, mass_per_radian, ke0
+    real(dp) :: vibration, strain, dissipated, loss, w_ext, w_grav, balance, books
+  end type split_t
+
+  integer :: clock_start, clock_rate, clock_end
+  !> t_alpha - t_q (ms) of the elastic Table 1 runs at levels 3 and 4 (Hertz:
+  !> both peak together), the discretization's own offset, from section 1.
+  real(dp) :: elastic_lead(3:4) = 0.0_dp
+
+  call system_clock(clock_start, clock_rate)
+  call execute_command_line('mkdir -p '//folder)
+  call test_hertz_constants()
+  call test_convergence()
+  call test_restitution()
+  call test_table2()
+  call test_apples()
+  call test_incompressible()
+  call system_clock(clock_end)
+  print '(a, f0.1, a)', 'test_contact_dynamic: wall time ', real(clock_end - clock_start, dp)/clock_rate, ' s'
+  call test_summary('test_contact_dynamic')
+
+contains
+
+  ! ---------------------------------------------------------------- decks
+
+  !> The elastic sphere of Table 1 dropping on the plate: level, dt, end time,
+  !> the PLATE card and extra cards; nu and FORMULATION may be changed.
+  function table1_deck(level, dt, tend, plate, extra, poisson, formulation) result(lines)
+    integer, intent(in) :: level
+    real(dp), intent(in) :: dt, tend
+    character(*), intent(in) :: plate
+    character(*), intent(in), optional :: extra, poisson, formulation
+    character(len=line_length), allocatable :: lines(:)
+    character(:), allocatable :: nu
+    nu = '0.219'
+    if (present(poisson)) nu = poisson
+    lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC']
+    if (present(formulation)) call add(lines, 'FORMULATION '//formulation)
+    call add(lines, 'MATERIAL apple ELASTIC E=18.11e6 NU='//nu//' RHO=756.85')
+    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
+    call add(lines, 'INITIAL VZ=-0.9982 AZ=-9.8')
+    call add(lines, 'GRAVITY G=9.8')
+    call add(lines, 'WILSON THETA=1.4')
+    call add(lines, 'TIME DT='//real_text(dt)//' TEND='//real_text(tend))
+    call add(lines, plate)
+    if (present(extra)) call add(lines, extra)
+  end function table1_deck
+
+  subroutine add(lines, text)
+    character(len=line_length), allocatable, intent(inout) :: lines(:)
+    character(*), intent(in) :: text
+    character(len=line_length), allocatable :: longer(:)
+    allocate(longer(size(lines) + 1))
+    longer(1:size(lines)) = lines
+    longer(size(lines) + 1) = text
+    call move_alloc(longer, lines)
+  end subroutine add
+
+  !> Write TITLE + body + END, read it and run it (a failed check if it does not run).
+  function run_case(name, body) result(run)
+    character(*), intent(in) :: name
+    character(len=line_length), intent(in) :: body(:)
+    type(run_t) :: run
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path
+    character(len=line_length), allocatable :: deck_lines(:)
+    integer :: start, finish, rate
+    call system_clock(start, rate)
+    run%name = name
+    path = folder//'/'//name//'.inp'
+    allocate(deck_lines(size(body) + 2))
+    deck_lines(1) = 'TITLE '//name
+    deck_lines(2:size(body) + 1) = body
+    deck_lines(size(body) + 2) = 'END'
+    call write_deck(path, deck_lines)
+    call read_deck(path, deck, error)
+    if (.not. allocated(error)) call solve_dynamic(deck, run%record, error)
+    if (allocated(error)) then
+      call check('run_'//name, .false., error_text(error))
+      allocate(run%t(0), run%alpha(0), run%force(0), run%q(0), run%n(0))
+      return
+    end if
+    run%ok = .true.
+    run%dt_ms = 1.0e3_dp*deck%stages(1)%dt
+    run%nodes = deck%mesh%nnode
+    run%elements = deck%mesh%nelem
+    run%t = history_column(run%record, 't_ms')
+    run%alpha = history_column(run%record, 'alpha_mm')
+    run%force = history_column(run%record, 'force_N')
+    run%q = history_column(run%record, 'q_MPa')
+    run%n = history_column(run%record, 'n_contact')
+    call system_clock(finish)
+    run%seconds = real(finish - start, dp)/rate
+  end function run_case
+
+  !> A real summary value of a run (NaN, and a failed check, if absent).
+  real(dp) function value_of(run, key) result(x)
+    type(run_t), intent(in) :: run
+    character(*), intent(in) :: key
+    character(:), allocatable :: text
+    integer :: status
+    x = ieee_value(1.0_dp, ieee_quiet_nan)
+    text = summary_value(run%record, key)
+    if (len(text) == 0) then
+      call check(run%name//'_has_'//key, .false., 'no summary key '//key)
+      return
+    end if
+    read(text, *, iostat=status) x
+    if (status /= 0) call check(run%name//'_reads_'//key, .false., 'not a number: '//text)
+  end function value_of
+
+  ! ---------------------------------------------------------------- analysis helpers
+
+  !> The peak of a sampled curve refined by the parabola through the largest
+  !> sample and its two neighbours (removes most of the O(dt^2) sampling error).
+  subroutine parabola_peak(t, f, t_peak, f_peak)
+    real(dp), intent(in) :: t(:), f(:)
+    real(dp), intent(out) :: t_peak, f_peak
+    integer :: i
+    real(dp) :: shift, curvature
+    i = maxloc(f, dim=1)
+    t_peak = t(i)
+    f_peak = f(i)
+    if (i == 1 .or. i == size(f)) return
+    curvature = f(i - 1) - 2.0_dp*f(i) + f(i + 1)
+    if (curvature >= 0.0_dp) return
+    shift = 0.5_dp*(f(i - 1) - f(i + 1))/curvature
+    t_peak = t(i) + shift*(t(i + 1) - t(i))
+    f_peak = f(i) - 0.25_dp*(f(i - 1) - f(i + 1))*shift
+  end subroutine parabola_peak
+
+  !> The ring-arrival interval near a peak at t_end: the mean time between the
+  !> last three increases of the contact-node count at or before t_end (-1 if
+  !> there are fewer than three).
+  real(dp) function ring_interval(t, n, t_end) result(interval)
+    real(dp), intent(in) :: t(:), n(:), t_end
+    real(dp) :: times(size(t))
+    integer :: i, count
+    count = 0
+    do i = 2, size(t)
+      if (n(i) > n(i - 1) .and. t(i) <= t_end + 1.0e-9_dp) then
+        count = count + 1
+        times(count) = t(i)
+      end if
+    end do
+    interval = -1.0_dp
+    if (count >= 3) interval = 0.5_dp*(times(count) - times(count - 2))
+  end function ring_interval
+
+  !> Does the contact-node count change within |t - t0| <= half_width?
+  logical function ring_change_near(t, n, t0, half_width) result(near)
+    real(dp), intent(in) :: t(:), n(:), t0, half_width
+    integer :: i
+    near = .false.
+    do i = 2, size(t)
+      if (n(i) /= n(i - 1) .and. abs(t(i) - t0) <= half_width + 1.0e-9_dp) near = .true.
+    end do
+  end function ring_change_near
+
+  !> Contact-set chatter: the number of releases (decreases of the contact-node
+  !> count) before t_end, and the number of increases after the first release.
+  subroutine chatter(t, n, t_end, early_releases, recaptures)
+    real(dp), intent(in) :: t(:), n(:), t_end
+    integer, intent(out) :: early_releases, recaptures
+    integer :: i
+    logical :: released
+    early_releases = 0
+    recaptures = 0
+    released = .false.
+    do i = 2, size(t)
+      if (n(i) < n(i - 1)) then
+        released = .true.
+        if (t(i) < t_end) early_releases = early_releases + 1
+      else if (n(i) > n(i - 1) .and. released) then
+        recaptures = recaptures + 1
+      end if
+    end do
+  end subroutine chatter
+
+  !> The peak of the centred moving average of f over a window of the given width.
+  subroutine moving_average_peak(t, f, width, f_peak, t_peak)
+    real(dp), intent(in) :: t(:), f(:), width
+    real(dp), intent(out) :: f_peak, t_peak
+    integer :: i
+    real(dp) :: mean
+    f_peak = -huge(1.0_dp)
+    t_peak = 0.0_dp
+    do i = 1, size(t)
+      mean = sum(f, mask=abs(t - t(i)) <= 0.5_dp*width + 1.0e-9_dp)/ &
+             count(abs(t - t(i)) <= 0.5_dp*width + 1.0e-9_dp)
+      if (mean > f_peak) then
+        f_peak = mean
+        t_peak = t(i)
+      end if
+    end do
+  end subroutine moving_average_peak
+
+  !> The least-squares polynomial of the given degree through (t, f),
+  !> evaluated at t (LAPACK dgels on x = 2 t / max(t) - 1).
+  function poly_fit(t, f, degree) result(fit)
+    real(dp), intent(in) :: t(:), f(:)
+    integer, intent(in) :: degree
+    real(dp) :: fit(size(t))
+    real(dp) :: x(size(t)), a(size(t), degree + 1), b(size(t), 1), v(size(t), degree + 1)
+    real(dp), allocatable :: work(:)
+    integer :: m, k, info
+    m = size(t)
+    x = 2.0_dp*t/maxval(t) - 1.0_dp
+    do k = 0, degree
+      v(:, k + 1) = x**k
+    end do
+    a = v
+    b(:, 1) = f
+    allocate(work(64*(m + degree + 1)))
+    call dgels('N', m, degree + 1, 1, a, m, b, m, work, size(work), info)
+    fit = matmul(v, b(1:degree + 1, 1))
+    if (info /= 0) fit = ieee_value(1.0_dp, ieee_quiet_nan)
+  end function poly_fit
+
+  !> Contact duration of the Hertz oscillator with gravity,
+  !> alpha'' = g - kappa alpha^(3/2) (alpha > 0), alpha(0) = 0, alpha'(0) = V,
+  !> with kappa such that alpha reaches alpha_m: (2/5) kappa alpha_m^(5/2) = V^2/2 + g alpha_m.
+  !> Classical RK4 with 40000 steps per alpha_m / V (error far below 1e-6),
+  !> the return to alpha = 0 interpolated linearly.
+  real(dp) function hertz_duration(speed, gravity, alpha_m) result(duration)
+    real(dp), intent(in) :: speed, gravity, alpha_m
+    real(dp) :: kappa, h, y(2), k1(2), k2(2), k3(2), k4(2), previous, time
+    kappa = (0.5_dp*speed**2 + gravity*alpha_m)/(0.4_dp*alpha_m**2.5_dp)
+    h = alpha_m/speed/40000.0_dp
+    y = [0.0_dp, speed]
+    time = 0.0_dp
+    do
+      previous = y(1)
+      k1 = hertz_slope(y, gravity, kappa)
+      k2 = hertz_slope(y + 0.5_dp*h*k1, gravity, kappa)
+      k3 = hertz_slope(y + 0.5_dp*h*k2, gravity, kappa)
+      k4 = hertz_slope(y + h*k3, gravity, kappa)
+      y = y + h/6.0_dp*(k1 + 2.0_dp*k2 + 2.0_dp*k3 + k4)
+      time = time + h
+      if (y(1) < 0.0_dp) exit
+    end do
+    duration = time - h*y(1)/(y(1) - previous)
+  end function hertz_duration
+
+  !> (alpha', alpha'') of the Hertz oscillator with gravity.
+  pure function hertz_slope(state, gravity, kappa) result(rate)
+    real(dp), intent(in) :: state(2), gravity, kappa
+    real(dp) :: rate(2)
+    rate = [state(2), gravity - kappa*max(state(1), 0.0_dp)**1.5_dp]
+  end function hertz_slope
+
+  !> log2(|f1 - f2| / |f2 - f3|).
+  real(dp) function order_of(f1, f2, f3) result(p)
+    real(dp), intent(in) :: f1, f2, f3
+    p = log(abs(f1 - f2)/abs(f2 - f3))/log(2.0_dp)
+  end function order_of
+
+  ! ---------------------------------------------------------------- text
+
+  function fx(x, decimals) result(text)
+    real(dp), intent(in) :: x
+    integer, intent(in) :: decimals
+    character(:), allocatable :: text
+    character(len=40) :: buffer, form
+    write(form, '(a, i0, a)') '(f30.', decimals, ')'
+    write(buffer, form) x
+    text = trim(adjustl(buffer))
+  end function fx
+
+  function ex(x) result(text)
+    real(dp), intent(in) :: x
+    character(:), allocatable :: text
+    character(len=40) :: buffer
+    write(buffer, '(es11.4)') x
+    text = trim(adjustl(buffer))
+  end function ex
+
+  function real_text(x) result(text)
+    real(dp), intent(in) :: x
+    character(:), allocatable :: text
+    character(len=40) :: buffer
+    write(buffer, '(es12.5)') x
+    text = trim(adjustl(buffer))
+  end function real_text
+
+  ! ---------------------------------------------------------------- 0. constants
+
+  !> The Hertz duration constant of the library and the oscillator used below:
+  !> 2 t_m V / alpha_m = 2 (2/5) B(2/5, 1/2) exactly (energy integral of
+  !> m alpha'' = -k alpha^(3/2)); the library prints 1.4716 (5 digits, rtol 5e-5).
+  subroutine test_hertz_constants()
+    real(dp) :: exact
+    exact = 2.0_dp*0.4_dp*gamma(0.4_dp)*gamma(0.5_dp)/gamma(0.9_dp)
+    call check_close('hertz_duration_constant', hertz_duration_constant, exact, 5.0e-5_dp)
+    call check_close('hertz_oscillator_without_gravity', hertz_duration(1.0_dp, 0.0_dp, 1.0e-3_dp), &
+                     exact*1.0e-3_dp, 1.0e-6_dp)
+  end subroutine test_hertz_constants
+
+  ! ---------------------------------------------------------------- 1. convergence
+
+  subroutine test_convergence()
+    real(dp), parameter :: dts(4) = [4.0e-5_dp, 2.0e-5_dp, 1.0e-5_dp, 5.0e-6_dp]
+    type(run_t) :: mesh(4), steps(4)
+    real(dp) :: alpha(4), alpha_dt(4), alpha_dt_raw(4), t_peak, p_mesh(2), p_dt(2), alpha_inf, alpha_dt_inf
+    real(dp) :: bound_dt, force(4)
+    integer :: l
+
+    print '(a)', ''
+    print '(a)', '### 1. Convergence: elastic sphere of Table 1 (V 0.9982 m/s, STICK, stop at maximum deformation)'
+    do l = 1, 4
+      mesh(l) = run_case('table1_level'//itoa(l), table1_deck(l, 1.0e-5_dp, 4.0e-3_dp, 'PLATE Z=0'))
+      if (.not. mesh(l)%ok) return
+    end do
+    do l = 1, 4
+      if (l == 3) then
+        steps(l) = mesh(3)
+      else
+        steps(l) = run_case('table1_dt'//itoa(l), table1_deck(3, dts(l), 4.0e-3_dp, 'PLATE Z=0'))
+        if (.not. steps(l)%ok) return
+      end if
+    end do
+
+    print '(a)', ''
+    print '(a)', 'Mesh refinement (dt = 1e-5 s). q_max is at the pole node; min q shows the consistent'// &
+                 ' projection going negative on coarse meshes.'
+    print '(a)', ''
+    print '(a)', '| level | elements | nodes | alpha_max mm | t_alpha ms | q_max MPa | t_q ms | min q MPa |'// &
+                 ' q_surface_max MPa | force_max N | t_force ms | contact nodes | Hertz alpha mm | Hertz q MPa |'// &
+                 ' Hertz F N | run s |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|'
+    do l = 1, 4
+      alpha(l) = value_of(mesh(l), 'alpha_max_mm')
+      force(l) = value_of(mesh(l), 'force_max_N')
+      print '(a)', '| '//itoa(l)//' | '//itoa(mesh(l)%elements)//' | '//itoa(mesh(l)%nodes)//' | '//fx(alpha(l), 4)//' | '// &
+        fx(value_of(mesh(l), 't_alpha_max_ms'), 3)//' | '//fx(value_of(mesh(l), 'q_max_MPa'), 3)//' | '// &
+        fx(value_of(mesh(l), 't_q_max_ms'), 3)//' | '//fx(minval(mesh(l)%q), 3)//' | '// &
+        fx(value_of(mesh(l), 'q_surface_max_MPa'), 3)//' | '//fx(force(l), 2)//' | '// &
+        fx(value_of(mesh(l), 't_force_max_ms'), 3)//' | '//summary_value(mesh(l)%record, 'contact_nodes_max')// &
+        ' | '//fx(value_of(mesh(l), 'hertz_alpha_max_mm'), 4)//' | '//fx(value_of(mesh(l), 'hertz_q_max_MPa'), 3)// &
+        ' | '//fx(value_of(mesh(l), 'hertz_force_max_N'), 1)//' | '//fx(mesh(l)%seconds, 2)//' |'
+    end do
+    do l = 3, 4
+      elastic_lead(l) = value_of(mesh(l), 't_alpha_max_ms') - value_of(mesh(l), 't_q_max_ms')
+    end do
+    p_mesh(1) = order_of(alpha(1), alpha(2), alpha(3))
+    p_mesh(2) = order_of(alpha(2), alpha(3), alpha(4))
+    alpha_inf = alpha(4) + (alpha(4) - alpha(3))/(2.0_dp**p_mesh(2) - 1.0_dp)
+    print '(a)', ''
+    print '(a)', '| alpha_m, mesh | value |'
+    print '(a)', '|---|---|'
+    print '(a)', '| changes L1->2, L2->3, L3->4 (mm) | '//ex(alpha(2) - alpha(1))//', '//ex(alpha(3) - alpha(2))// &
+                 ', '//ex(alpha(4) - alpha(3))//' |'
+    print '(a)', '| observed order p (L1,2,3) | '//fx(p_mesh(1), 2)//' |'
+    print '(a)', '| observed order p (L2,3,4) | '//fx(p_mesh(2), 2)//' |'
+    print '(a)', '| Richardson alpha_m (L2,3,4) mm | '//fx(alpha_inf, 4)//' |'
+    print '(a)', '| level 4 vs Richardson | '//fx(100.0_dp*(alpha(4)/alpha_inf - 1.0_dp), 2)//' % |'
+    print '(a)', '| level 3 vs level 4 | '//fx(100.0_dp*(alpha(3)/alpha(4) - 1.0_dp), 2)//' % |'
+    print '(a)', '| level 1 (the paper''s 88 elements) vs level 4 | '//fx(100.0_dp*(alpha(1)/alpha(4) - 1.0_dp), 2)// &
+                 ' % |'
+    print '(a)', '| level 1 vs Richardson | '//fx(100.0_dp*(alpha(1)/alpha_inf - 1.0_dp), 2)//' % |'
+    print '(a)', '| Richardson vs Hertz (level-4 mass) | '//fx(100.0_dp*(alpha_inf/value_of(mesh(4), &
+                 'hertz_alpha_max_mm') - 1.0_dp), 2)//' % |'
+    print '(a)', '| force_max level 3 vs level 4 | '//fx(100.0_dp*(force(3)/force(4) - 1.0_dp), 3)//' % |'
+
+    ! Bilinear elements converge at O(h^2) in displacement; a contact edge
+    ! resolved only to one node ring can lower that to O(h), never below: so
+    ! each halving of h must at least halve the change of alpha_m (p >= 1).
+    do l = 1, 4
+      if (value_of(mesh(l), 't_q_max_ms') < 0.5_dp*value_of(mesh(l), 't_alpha_max_ms')) print '(a)', &
+        'NOTE level '//itoa(l)//': q_max_MPa '//fx(value_of(mesh(l), 'q_max_MPa'), 3)//' at '// &
+        fx(value_of(mesh(l), 't_q_max_ms'), 3)//' ms is not the impact''s peak pressure: with few contact'// &
+        ' nodes the consistent projection oscillates (q down to '//fx(minval(mesh(l)%q), 3)//' MPa)'
+    end do
+    call check('table1_mesh_alpha_changes_halve', abs(alpha(2) - alpha(1)) >= 2.0_dp*abs(alpha(3) - alpha(2)) .and. &
+               abs(alpha(3) - alpha(2)) >= 2.0_dp*abs(alpha(4) - alpha(3)), 'p(1,2,3) = '//fx(p_mesh(1), 3)// &
+               ', p(2,3,4) = '//fx(p_mesh(2), 3))
+    ! With p >= 1 the level-4 change is at most half the level 2->3 change
+    ! (1.8 %, measured): level 3 must be within 1 % of level 4.
+    call check_close('table1_mesh_level3_within_1pc_of_level4', alpha(3), alpha(4), 0.01_dp)
+    ! The plate force is a whole-body quantity too (M (g - alpha'')): same bound.
+    call check_close('table1_mesh_force_level3_within_1pc_of_level4', force(3), force(4), 0.01_dp)
+
+    print '(a)', ''
+    print '(a)', 'Time-step refinement (level 3). alpha_m is the largest sample; "parabola" refines it by the'// &
+                 ' parabola through the three samples around it (the O(dt^2) sampling error of a maximum).'
+    print '(a)', ''
+    print '(a)', '| dt s | alpha_max mm | alpha (parabola) mm | t_alpha ms | q_max MPa | t_q ms | force_max N |'// &
+                 ' balance_error J/rad | run s |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|'
+    do l = 1, 4
+      alpha_dt_raw(l) = value_of(steps(l), 'alpha_max_mm')
+      call parabola_peak(steps(l)%t, steps(l)%alpha, t_peak, alpha_dt(l))
+      print '(a)', '| '//ex(dts(l))//' | '//fx(alpha_dt_raw(l), 6)//' | '//fx(alpha_dt(l), 6)//' | '// &
+        fx(value_of(steps(l), 't_alpha_max_ms'), 3)//' | '//fx(value_of(steps(l), 'q_max_MPa'), 3)//' | '// &
+        fx(value_of(steps(l), 't_q_max_ms'), 3)//' | '//fx(value_of(steps(l), 'force_max_N'), 2)//' | '// &
+        ex(value_of(steps(l), 'balance_error_J'))//' | '//fx(steps(l)%seconds, 2)//' |'
+    end do
+    p_dt(1) = order_of(alpha_dt(1), alpha_dt(2), alpha_dt(3))
+    p_dt(2) = order_of(alpha_dt(2), alpha_dt(3), alpha_dt(4))
+    alpha_dt_inf = alpha_dt(4) + (alpha_dt(4) - alpha_dt(3))/(2.0_dp**p_dt(2) - 1.0_dp)
+    print '(a)', ''
+    print '(a)', '| alpha_m (parabola), dt | value |'
+    print '(a)', '|---|---|'
+    print '(a)', '| changes 4e-5->2e-5->1e-5->5e-6 (mm) | '//ex(alpha_dt(2) - alpha_dt(1))//', '// &
+                 ex(alpha_dt(3) - alpha_dt(2))//', '//ex(alpha_dt(4) - alpha_dt(3))//' |'
+    print '(a)', '| observed order p (4e-5, 2e-5, 1e-5) | '//fx(p_dt(1), 2)//' |'
+    print '(a)', '| observed order p (2e-5, 1e-5, 5e-6) | '//fx(p_dt(2), 2)//' |'
+    print '(a)', '| Richardson alpha_m mm | '//fx(alpha_dt_inf, 6)//' |'
+    print '(a)', '| dt = 1e-5 vs Richardson | '//fx(100.0_dp*(alpha_dt(3)/alpha_dt_inf - 1.0_dp), 4)//' % |'
+    print '(a)', '| raw maxima: observed order p (2e-5, 1e-5, 5e-6) | '// &
+                 fx(order_of(alpha_dt_raw(2), alpha_dt_raw(3), alpha_dt_raw(4)), 2)//' |'
+
+    ! Wilson-theta converges (O(dt^2), contact events at O(dt)): the changes
+    ! must shrink monotonically as dt halves.
+    call check('table1_dt_alpha_changes_shrink', abs(alpha_dt(2) - alpha_dt(1)) > abs(alpha_dt(3) - alpha_dt(2)) .and. &
+               abs(alpha_dt(3) - alpha_dt(2)) > abs(alpha_dt(4) - alpha_dt(3)), 'p = '//fx(p_dt(1), 3)//', '// &
+               fx(p_dt(2), 3))
+    ! The paper's dt = 1e-5 does not limit the accuracy: with p >= 1 its error
+    ! is at most 2 |alpha(5e-6) - alpha(1e-5)|, which must stay below a tenth
+    ! of the level-3 mesh error (at least |alpha_4 - alpha_3|).
+    bound_dt = 2.0_dp*abs(alpha_dt(4) - alpha_dt(3))
+    call check('table1_dt_error_below_tenth_of_mesh_error', bound_dt < 0.1_dp*abs(alpha(4) - alpha(3)), &
+               'dt bound '//ex(bound_dt)//' mm, mesh change '//ex(abs(alpha(4) - alpha(3)))//' mm')
+  end subroutine test_convergence
+
+  ! ---------------------------------------------------------------- 2. restitution
+
+  type(split_t) function energy_split(run) result(split)
+    type(run_t), intent(in) :: run
+    split%e = value_of(run, 'coefficient_of_restitution')
+    split%v_in = value_of(run, 'impact_velocity_m_s')
+    split%v_out = value_of(run, 'rebound_velocity_m_s')
+    split%absorbed = value_of(run, 'energy_absorbed_J')
+    split%mass = value_of(run, 'body_mass_kg')
+    split%mass_per_radian = value_of(run, 'mass_kg')
+    split%input = 0.5_dp*split%mass*split%v_in**2
+    ! Per-radian energies from the last history row (full precision), times 2 pi.
+    split%ke0 = 2*pi*run%record%history(index_of(run, 'kinetic_J'), 1)
+    split%v_cm = history_last(run%record, 'vz_cm_m_s')
+    split%vibration = 2*pi*(history_last(run%record, 'kinetic_J') - 0.5_dp*split%mass_per_radian*split%v_cm**2)
+    split%strain = 2*pi*history_last(run%record, 'strain_J')
+    split%dissipated = 2*pi*history_last(run%record, 'dissipated_J')
+    split%loss = 2*pi*history_last(run%record, 'contact_loss_J')
+    split%w_ext = 2*pi*history_last(run%record, 'external_work_J')
+    split%w_grav = 2*pi*history_last(run%record, 'gravity_work_J')
+    split%balance = 2*pi*history_last(run%record, 'balance_error_J')
+    ! The books: the run's energy balance, kinetic + internal + loss = initial
+    ! kinetic + works + balance, rearranged for 1/2 M (V0^2 - v_out^2), less
+    ! the pre-contact fall (KE0 - 1/2 M V^2; zero here, contact at t = 0).
+    split%books = split%vibration + split%strain + split%dissipated + split%loss - split%w_ext - split%w_grav - &
+                  split%balance - (split%ke0 - split%input)
+  end function energy_split
+
+  subroutine test_restitution()
+    character(len=5), parameter :: modes(2) = ['SLIP ', 'STICK']
+    type(run_t) :: runs(2)
+    type(split_t) :: split
+    real(dp) :: alpha_m, duration, hertz_own, hertz_g, hertz_ref, t_alpha, v_in
+    integer :: k, early, recaptured
+    character(:), allocatable :: tag
+
+    print '(a)', ''
+    print '(a)', '### 2. Restitution and energy (elastic, level 3, dt 1e-5, RELEASE=YES, STOP AT=SEPARATION)'
+    do k = 1, 2
+      runs(k) = run_case('restitution_'//trim(modes(k)), table1_deck(3, 1.0e-5_dp, 6.0e-3_dp, 'PLATE Z=0 '// &
+                         trim(modes(k))//' RELEASE=YES', 'STOP AT=SEPARATION'))
+      if (.not. runs(k)%ok) return
+    end do
+    print '(a)', ''
+    print '(a)', 'Energies in J for the whole body (2 pi x the per-radian values). absorbed = 1/2 M (V^2 - v_out^2) ='// &
+                 ' vibration left in the body (kinetic - 1/2 M v_cm^2, and strain) + contact loss (kinetic energy of'// &
+                 ' nodes stopped by the plate) + work against gravity (-W_g: the centre of mass is higher at'// &
+                 ' separation than at first contact) + work of the plate (-W_ext) + what the balance does not'// &
+                 ' account for (-balance: Wilson-theta''s algorithmic loss and the contact events) + dissipated.'
+    print '(a)', ''
+    print '(a)', '| plate | e | 1 - e^2 | 1/2 M V^2 | absorbed | vib. kinetic | strain | dissipated | contact loss |'// &
+                 ' -W_gravity | -W_plate | -balance | books - absorbed |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|'
+    do k = 1, 2
+      split = energy_split(runs(k))
+      print '(a)', '| '//trim(modes(k))//' | '//fx(split%e, 6)//' | '//ex(1.0_dp - split%e**2)//' | '// &
+        ex(split%input)//' | '//ex(split%absorbed)//' | '//ex(split%vibration)//' | '//ex(split%strain)//' | '// &
+        ex(split%dissipated)//' | '//ex(split%loss)//' | '//ex(-split%w_grav)//' | '//ex(-split%w_ext)//' | '// &
+        ex(-split%balance)//' | '//ex(split%books - split%absorbed)//' |'
+      print '(a)', '| '//trim(modes(k))//', share of absorbed | | | | 100 % | '// &
+        fx(100*split%vibration/split%absorbed, 1)//' % | '//fx(100*split%strain/split%absorbed, 1)//' % | '// &
+        fx(100*split%dissipated/split%absorbed, 1)//' % | '//fx(100*split%loss/split%absorbed, 1)//' % | '// &
+        fx(-100*split%w_grav/split%absorbed, 1)//' % | '//fx(-100*split%w_ext/split%absorbed, 1)//' % | '// &
+        fx(-100*split%balance/split%absorbed, 1)//' % | |'
+    end do
+
+    print '(a)', ''
+    print '(a)', '| plate | alpha_max mm | t_alpha ms | duration ms | 2.9432 alpha_m/V ms | ratio | Hertz + gravity'// &
+                 ' (own alpha_m) ms | ratio | hertz_contact_duration ms | ratio | 2 t_alpha / duration | v_out m/s | run s |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|'
+    do k = 1, 2
+      associate (run => runs(k))
+      alpha_m = value_of(run, 'alpha_max_mm')
+      t_alpha = value_of(run, 't_alpha_max_ms')
+      v_in = value_of(run, 'impact_velocity_m_s')
+      duration = value_of(run, 'contact_duration_ms')
+      hertz_own = hertz_duration_constant*alpha_m/v_in
+      hertz_g = 1.0e3_dp*hertz_duration(v_in, 9.8_dp, 1.0e-3_dp*alpha_m)
+      hertz_ref = value_of(run, 'hertz_contact_duration_ms')
+      print '(a)', '| '//trim(modes(k))//' | '//fx(alpha_m, 4)//' | '//fx(t_alpha, 3)//' | '//fx(duration, 3)//' | '// &
+        fx(hertz_own, 4)//' | '//fx(duration/hertz_own, 4)//' | '//fx(hertz_g, 4)//' | '// &
+        fx(duration/hertz_g, 4)//' | '//fx(hertz_ref, 4)//' | '//fx(duration/hertz_ref, 4)//' | '// &
+        fx(2*t_alpha/duration, 4)//' | '//fx(value_of(run, 'rebound_velocity_m_s'), 5)//' | '// &
+        fx(run%seconds, 2)//' |'
+      end associate
+    end do
+
+    do k = 1, 2
+      tag = 'restitution_'//trim(modes(k))
+      split = energy_split(runs(k))
+      call check_text_contains(tag//'_stops_at_separation', summary_value(runs(k)%record, 'stop_reason'), &
+                               'separation')
+      ! Summary keys agree with their definitions (10 printed digits: rtol 1e-8).
+      call check_close(tag//'_whole_body_mass_is_2pi_per_radian', split%mass, 2*pi*split%mass_per_radian, 1.0e-8_dp)
+      call check_close(tag//'_rebound_is_final_cm_velocity', split%v_out, split%v_cm, 1.0e-8_dp)
+      call check_close(tag//'_e2_is_1_minus_absorbed_fraction', split%e**2, 1.0_dp - split%absorbed/split%input, &
+                       1.0e-8_dp)
+      ! The books close: the summary's 10 digits of M, V and absorbed and the
+      ! cancellation in KE - 1/2 M v^2 (terms of size KE0) allow ~1e-9 KE0.
+      call check_close(tag//'_books_close', split%books, split%absorbed, 0.0_dp, 1.0e-8_dp*split%ke0)
+      ! No energy is created, and the deficit stays small (the split explains it).
+      call check(tag//'_e_at_most_1', split%e <= 1.0_dp, 'e = '//fx(split%e, 8))
+      call check(tag//'_e_above_0.99', split%e > 0.99_dp, 'e = '//fx(split%e, 8))
+      ! For an elastic body the internal work (trapezoidal, exact for linear
+      ! forces) equals the stored energy: dissipated_J is round-off, and
+      ! Wilson-theta's algorithmic loss shows in balance_error_J instead.
+      call check(tag//'_elastic_dissipated_is_roundoff', abs(split%dissipated) <= 1.0e-12_dp*split%ke0, &
+                 'dissipated '//ex(split%dissipated)//' J')
+      ! What the books cannot attribute (the balance error) is a small part of
+      ! the deficit: 1 - e^2 is explained to 10 %.
+      call check(tag//'_unexplained_below_10pc_of_absorbed', abs(split%balance) <= 0.1_dp*split%absorbed, &
+                 '2 pi balance '//ex(split%balance)//' J, absorbed '//ex(split%absorbed)//' J')
+      associate (run => runs(k))
+      ! RELEASE=YES frees a node only when its reaction turns tensile: none
+      ! during loading, and once unloading has begun the contact only shrinks.
+      call chatter(run%t, run%n, value_of(run, 't_alpha_max_ms'), early, recaptured)
+      call check(tag//'_no_release_before_alpha_max_no_recapture', early == 0 .and. recaptured == 0, &
+                 itoa(early)//' early releases, '//itoa(recaptured)//' recaptures')
+      alpha_m = value_of(run, 'alpha_max_mm')
+      v_in = value_of(run, 'impact_velocity_m_s')
+      duration = value_of(run, 'contact_duration_ms')
+      ! Hertz's relation T = 2.9432 alpha_m / V with the run's own alpha_m holds
+      ! for a force law F ~ alpha^(3/2) without gravity. Allowed: the duration is
+      ! found at the first step after separation (0 .. +dt = 0.33 %); gravity
+      ! shortens it by 0.43 % (the oscillator with g); the finite sphere's
+      ! force-approach exponent, measured 1.49 .. 1.57 over the pulse, changes
+      ! the constant 2 (2/(n+1)) B(1/(n+1), 1/2) by up to 0.8 %: 2 % in all.
+      call check_close(tag//'_duration_vs_hertz_own_alpha', duration, hertz_duration_constant*alpha_m/v_in, 0.02_dp)
+      call check_close(tag//'_duration_vs_hertz_gravity_own_alpha', duration, &
+                       1.0e3_dp*hertz_duration(v_in, 9.8_dp, 1.0e-3_dp*alpha_m), 0.02_dp)
+      end associate
+    end do
+  end subroutine test_restitution
+
+  integer function index_of(run, name) result(k)
+    type(run_t), intent(in) :: run
+    character(*), intent(in) :: name
+    integer :: i
+    k = 0
+    do i = 1, size(run%record%columns)
+      if (trim(run%record%columns(i)) == name) k = i
+    end do
+  end function index_of
+
+  ! ---------------------------------------------------------------- 3. Table 2
+
+  subroutine test_table2()
+    type(run_t) :: runs(3:4)
+    real(dp) :: t_alpha(3:4), t_q(3:4), ring(3:4), resolution(3:4)
+    integer :: level
+    character(:), allocatable :: tag
+    character(len=line_length), allocatable :: lines(:)
+
+    print '(a)', ''
+    print '(a)', '### 3. Viscoelastic sphere of Table 2 (K 13.5 MPa, G 3.91 MPa, beta 203 1/s, drop 5 cm, dt 1e-5)'
+    do level = 3, 4
+      lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
+               'MATERIAL apple VISCOELASTIC K=13.5e6 RHO=757', 'PRONY G=3.91e6 BETA=203']
+      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
+      call add(lines, 'DROP HEIGHT=0.05')
+      call add(lines, 'GRAVITY G=9.8')
+      call add(lines, 'WILSON THETA=1.4')
+      call add(lines, 'TIME DT=1e-5 TEND=4e-3')
+      call add(lines, 'PLATE Z=0')
+      runs(level) = run_case('table2_level'//itoa(level), lines)
+      if (.not. runs(level)%ok) return
+      t_alpha(level) = value_of(runs(level), 't_alpha_max_ms')
+      t_q(level) = value_of(runs(level), 't_q_max_ms')
+      ring(level) = ring_interval(runs(level)%t, runs(level)%n, t_alpha(level))
+      resolution(level) = max(2.0_dp*runs(level)%dt_ms, ring(level))
+    end do
+    print '(a)', ''
+    print '(a)', 'Ring interval: mean time between the last three increases of n_contact before t_alpha.'// &
+                 ' Resolution of t_alpha - t_q: the larger of 2 dt and the ring interval.'
+    print '(a)', ''
+    print '(a)', '| source | alpha_max mm | t_alpha ms | q_max MPa | t_q ms | q_surface_max MPa | t_q_surface ms |'// &
+                 ' force_max N | t_force ms | ring interval ms | t_alpha - t_q ms | resolution ms | Hertz alpha mm |'// &
+                 ' Hertz q MPa | run s |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|'
+    print '(a)', '| paper (Table 2) | 1.34 | 1.80 | 1.17 | 1.60 | | | | | | 0.20 | | | | |'
+    do level = 3, 4
+      associate (run => runs(level))
+      print '(a)', '| visco2d level '//itoa(level)//' | '//fx(value_of(run, 'alpha_max_mm'), 4)//' | '// &
+        fx(t_alpha(level), 3)//' | '//fx(value_of(run, 'q_max_MPa'), 4)//' | '//fx(t_q(level), 3)//' | '// &
+        fx(value_of(run, 'q_surface_max_MPa'), 4)//' | '//fx(value_of(run, 't_q_surface_max_ms'), 3)//' | '// &
+        fx(value_of(run, 'force_max_N'), 2)//' | '//fx(value_of(run, 't_force_max_ms'), 3)//' | '// &
+        fx(ring(level), 3)//' | '//fx(t_alpha(level) - t_q(level), 3)//' | '//fx(resolution(level), 3)//' | '// &
+        fx(value_of(run, 'hertz_alpha_max_mm'), 4)//' | '//fx(value_of(run, 'hertz_q_max_MPa'), 3)//' | '// &
+        fx(run%seconds, 2)//' |'
+      end associate
+    end do
+    do level = 3, 4
+      tag = 'table2_level'//itoa(level)
+      associate (run => runs(level))
+      ! The relaxing sphere unloads its pole before the centre stops: q leads
+      ! alpha by more than the sampling (2 dt) and the ring-arrival interval.
+      call check(tag//'_q_peaks_before_alpha_beyond_resolution', t_alpha(level) - t_q(level) > resolution(level), &
+                 't_alpha - t_q = '//fx(t_alpha(level) - t_q(level), 3)//' ms, resolution '// &
+                 fx(resolution(level), 3)//' ms')
+      ! The q peak is smooth, not a ring arrival: the contact set is constant
+      ! within 2 steps of it, the run went on past it, and the independent
+      ! recovery (-sigma_z extrapolated to the pole) peaks at the same step (2 dt).
+      call check(tag//'_q_peak_not_at_a_ring_arrival', .not. ring_change_near(run%t, run%n, t_q(level), &
+                 2*run%dt_ms) .and. t_q(level) < value_of(run, 't_stop_ms') - 2*run%dt_ms)
+      call check_close(tag//'_q_surface_peaks_with_q', value_of(run, 't_q_surface_max_ms'), t_q(level), 0.0_dp, &
+                       2*run%dt_ms + 1.0e-9_dp)
+      end associate
+    end do
+  end subroutine test_table2
+
+  ! ---------------------------------------------------------------- 4. apples
+
+  !> Table 3 apple (R 35 mm, rho 790) at 0.7 or 1.2 m/s (its own Prony set),
+  !> STICK RELEASE=YES, run past both maxima (STOP AT=TEND).
+  function apple_deck(level, slow) result(lines)
+    integer, intent(in) :: level
+    logical, intent(in) :: slow
+    character(len=line_length), allocatable :: lines(:)
+    lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC']
+    if (slow) then
+      call add(lines, 'MATERIAL apple VISCOELASTIC K=1.756e6 RHO=790')
+      call add(lines, 'PRONY G=0.636e6 BETA=0.000347')
+      call add(lines, 'PRONY G=0.111e6 BETA=0.0409')
+      call add(lines, 'PRONY G=0.208e6 BETA=1.121')
+      call add(lines, 'PRONY G=0.099e6 BETA=35.26')
+      call add(lines, 'INITIAL VZ=-0.7 AZ=-9.8')
+      call add(lines, 'TIME DT=1e-5 TEND=3.8e-3')
+    else
+      call add(lines, 'MATERIAL apple VISCOELASTIC K=2.047e6 RHO=790')
+      call add(lines, 'PRONY G=0.710e6 BETA=0.000380')
+      call add(lines, 'PRONY G=0.134e6 BETA=0.0420')
+      call add(lines, 'PRONY G=0.265e6 BETA=1.633')
+      call add(lines, 'PRONY G=0.119e6 BETA=41.30')
+      call add(lines, 'INITIAL VZ=-1.2 AZ=-9.8')
+      call add(lines, 'TIME DT=1e-5 TEND=3.3e-3')
+    end if
+    call add(lines, 'MESH SPHERE R=0.035 LEVEL='//itoa(level))
+    call add(lines, 'GRAVITY G=9.8')
+    call add(lines, 'WILSON THETA=1.4')
+    call add(lines, 'PLATE Z=0 STICK RELEASE=YES')
+    call add(lines, 'STOP AT=TEND')
+  end function apple_deck
+
+  subroutine test_apples()
+    type(run_t) :: runs(2, 3:4)
+    real(dp) :: t_alpha(2, 3:4), t_q(2, 3:4), ring(2, 3:4), t_end(2, 3:4), dt, resolution_alpha, resolution_q
+    real(dp) :: lead(2, 3:4), lead_resolution(2)
+    character(len=3), parameter :: speeds(2) = ['0.7', '1.2']
+    integer :: level, k
+    character(:), allocatable :: tag
+
+    print '(a)', ''
+    print '(a)', '### 4. Apples of Table 3 (R 35 mm, rho 790, STICK RELEASE=YES, dt 1e-5, run past both maxima)'
+    do level = 3, 4
+      do k = 1, 2
+        runs(k, level) = run_case('apple_'//speeds(k)//'_level'//itoa(level), apple_deck(level, k == 1))
+        if (.not. runs(k, level)%ok) return
+        t_alpha(k, level) = value_of(runs(k, level), 't_alpha_max_ms')
+        t_q(k, level) = value_of(runs(k, level), 't_q_max_ms')
+        lead(k, level) = t_alpha(k, level) - t_q(k, level)
+        ring(k, level) = ring_interval(runs(k, level)%t, runs(k, level)%n, t_q(k, level))
+        t_end(k, level) = value_of(runs(k, level), 't_stop_ms')
+      end do
+    end do
+    dt = runs(1, 3)%dt_ms
+    print '(a)', ''
+    print '(a)', '| V m/s | level | alpha_max mm | t_alpha ms | q_max MPa | t_q ms | force_max N | t_force ms |'// &
+                 ' ring interval before t_q ms | t_alpha - t_q ms | Hertz alpha mm | Hertz q MPa | run s |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|'
+    do level = 3, 4
+      do k = 1, 2
+        associate (run => runs(k, level))
+        print '(a)', '| '//speeds(k)//' | '//itoa(level)//' | '//fx(value_of(run, 'alpha_max_mm'), 4)//' | '// &
+          fx(t_alpha(k, level), 3)//' | '//fx(value_of(run, 'q_max_MPa'), 4)//' | '//fx(t_q(k, level), 3)//' | '// &
+          fx(value_of(run, 'force_max_N'), 2)//' | '//fx(value_of(run, 't_force_max_ms'), 3)//' | '// &
+          fx(ring(k, level), 3)//' | '//fx(lead(k, level), 3)//' | '//fx(value_of(run, 'hertz_alpha_max_mm'), 4)// &
+          ' | '//fx(value_of(run, 'hertz_q_max_MPa'), 4)//' | '//fx(run%seconds, 2)//' |'
+        end associate
+      end do
+    end do
+    ! Resolution of a peak time: 2 dt (sampling) plus its change from level 3 to
+    ! level 4 at either speed (the mesh's share).
+    resolution_alpha = 2*dt + maxval(abs(t_alpha(:, 4) - t_alpha(:, 3)))
+    resolution_q = 2*dt + maxval(abs(t_q(:, 4) - t_q(:, 3)))
+    lead_resolution = 2*dt + abs(lead(:, 4) - lead(:, 3))
+    print '(a)', ''
+    print '(a)', 'Resolution: 2 dt plus the level 3 -> 4 change. Reference: the elastic sphere of section 1 (Hertz:'// &
+                 ' alpha and q peak together) gives t_alpha - t_q = '//fx(elastic_lead(3), 3)//' ms (level 3), '// &
+                 fx(elastic_lead(4), 3)//' ms (level 4).'
+    print '(a)', ''
+    print '(a)', '| quantity (level 4) | 0.7 m/s | 1.2 m/s | paper | resolution ms |'
+    print '(a)', '|---|---|---|---|---|'
+    print '(a)', '| t_alpha ms | '//fx(t_alpha(1, 4), 3)//' | '//fx(t_alpha(2, 4), 3)//' | | '// &
+                 fx(resolution_alpha, 3)//' |'
+    print '(a)', '| t_q ms | '//fx(t_q(1, 4), 3)//' | '//fx(t_q(2, 4), 3)//' | | '//fx(resolution_q, 3)//' |'
+    print '(a)', '| t_alpha - t_q ms | '//fx(lead(1, 4), 3)//' (+-'//fx(lead_resolution(1), 3)// &
+                 ') | '//fx(lead(2, 4), 3)//' (+-'//fx(lead_resolution(2), 3)//') | ~0.2 / ~0 | |'
+    print '(a)', '| ring interval before t_q ms | '//fx(ring(1, 4), 3)//' | '//fx(ring(2, 4), 3)//' | | |'
+    do level = 3, 4
+      do k = 1, 2
+        tag = 'apple_'//speeds(k)//'_level'//itoa(level)
+        ! Both maxima are interior: the run went on at least 0.2 ms past them.
+        call check(tag//'_maxima_inside_run', max(t_alpha(k, level), t_q(k, level)) < t_end(k, level) - 0.2_dp, &
+                   't_alpha '//fx(t_alpha(k, level), 3)//', t_q '//fx(t_q(k, level), 3)//', end '// &
+                   fx(t_end(k, level), 3))
+      end do
+    end do
+    call check('apples_alpha_sooner_at_1.2', t_alpha(1, 4) - t_alpha(2, 4) > resolution_alpha, &
+               fx(t_alpha(1, 4), 3)//' vs '//fx(t_alpha(2, 4), 3)//' ms')
+    call check('apples_q_sooner_at_1.2', t_q(1, 4) - t_q(2, 4) > resolution_q, &
+               fx(t_q(1, 4), 3)//' vs '//fx(t_q(2, 4), 3)//' ms')
+  end subroutine test_apples
+
+  ! ---------------------------------------------------------------- 5. nu = 0.4999
+
+  subroutine test_incompressible()
+    character(len=8), parameter :: forms(3) = ['BBAR    ', 'BBAR    ', 'STANDARD']
+    character(len=6), parameter :: nus(3) = ['0.49  ', '0.4999', '0.4999']
+    type(run_t) :: runs(3), release(2)
+    integer :: early(2), recaptured(2)
+    real(dp) :: alpha(3), t_alpha(3), f_fit_max(3), spike(3), jump(3), ring, mavg(3), t_mavg, roughness(3)
+    real(dp) :: hertz_ratio, force_scaled, q_at_alpha(3), q_jump(3), decay(3)
+    real(dp), allocatable :: fit(:), alpha_fit(:)
+    integer :: k, i
+    character(:), allocatable :: tag
+
+    print '(a)', ''
+    print '(a)', '### 5. Nearly incompressible sphere (E 18.11 MPa, level 3, dt 1e-5, STICK): BBAR vs STANDARD'
+    print '(a)', ''
+    print '(a)', '| formulation | nu | alpha_max mm | t_alpha ms | t_stop ms | stop | t_paper ms | force_max N |'// &
+                 ' t_force ms | F fit peak N | moving-avg peak N | max abs(F - fit) / fit peak | max jump / fit peak |'// &
+                 ' spike decay per step | q_max MPa | t_q ms | q at t_alpha MPa | max q jump / q(t_alpha) |'// &
+                 ' alpha roughness |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|'
+    do k = 1, 3
+      tag = 'nu'//trim(nus(k))//'_'//trim(forms(k))
+      runs(k) = run_case(tag, table1_deck(3, 1.0e-5_dp, 4.0e-3_dp, 'PLATE Z=0', poisson=trim(nus(k)), &
+                                          formulation=trim(forms(k))))
+      if (.not. runs(k)%ok) return
+      associate (run => runs(k))
+      alpha(k) = value_of(run, 'alpha_max_mm')
+      t_alpha(k) = value_of(run, 't_alpha_max_ms')
+      ! Smooth estimates: a least-squares quartic through the force history
+      ! (the pulse is ~sin^(3/2): a quartic follows it to ~1 %), and the peak of
+      ! the moving average over one ring-arrival interval.
+      fit = poly_fit(run%t, run%force, 4)
+      f_fit_max(k) = maxval(fit)
+      spike(k) = maxval(abs(run%force - fit))/f_fit_max(k)
+      jump(k) = maxval(abs(run%force(2:) - run%force(:size(run%force) - 1)))/f_fit_max(k)
+      ring = ring_interval(run%t, run%n, t_alpha(k))
+      mavg(k) = -1.0_dp
+      if (ring > 0.0_dp) call moving_average_peak(run%t, run%force, ring, mavg(k), t_mavg)
+      ! alpha's roughness: max deviation from a least-squares sextic, / alpha_m.
+      alpha_fit = poly_fit(run%t, run%alpha, 6)
+      roughness(k) = maxval(abs(run%alpha - alpha_fit))/alpha(k)
+      i = minloc(abs(run%t - t_alpha(k)), dim=1)
+      q_at_alpha(k) = run%q(i)
+      q_jump(k) = maxval(abs(run%q(2:) - run%q(:size(run%q) - 1)))/q_at_alpha(k)
+      ! Decay per step of the largest force spike: (r_{i+6}/r_i)^(1/6) of the
+      ! residual r = F - fit, signed by r_{i+1}/r_i (negative: period-2 mode).
+      i = maxloc(abs(run%force - fit), dim=1)
+      decay(k) = 0.0_dp
+      if (i + 6 <= size(fit)) decay(k) = sign(abs((run%force(i + 6) - fit(i + 6))/(run%force(i) - fit(i)))**(1.0_dp/6), &
+                                             (run%force(i + 1) - fit(i + 1))/(run%force(i) - fit(i)))
+      print '(a)', '| '//trim(forms(k))//' | '//trim(nus(k))//' | '//fx(alpha(k), 4)//' | '//fx(t_alpha(k), 3)// &
+        ' | '//fx(value_of(run, 't_stop_ms'), 3)//' | '//summary_value(run%record, 'stop_reason')//' | '// &
+        fx(value_of(run, 't_paper_criterion_ms'), 3)//' | '//fx(value_of(run, 'force_max_N'), 1)//' | '// &
+        fx(value_of(run, 't_force_max_ms'), 3)//' | '//fx(f_fit_max(k), 1)//' | '//fx(mavg(k), 1)//' | '// &
+        fx(spike(k), 3)//' | '//fx(jump(k), 3)//' | '//fx(decay(k), 3)//' | '//fx(value_of(run, 'q_max_MPa'), 3)// &
+        ' | '//fx(value_of(run, 't_q_max_ms'), 3)//' | '//fx(q_at_alpha(k), 3)//' | '//fx(q_jump(k), 3)//' | '// &
+        ex(roughness(k))//' |'
+      end associate
+    end do
+
+    ! Hertz: alpha_m ~ ((1 - nu^2)/E)^(2/5), F_m ~ (E/(1 - nu^2))^(2/5) at the same M and V.
+    hertz_ratio = ((1.0_dp - 0.4999_dp**2)/(1.0_dp - 0.49_dp**2))**0.4_dp
+    force_scaled = f_fit_max(1)/hertz_ratio
+    print '(a)', ''
+    print '(a)', '| comparison | value |'
+    print '(a)', '|---|---|'
+    print '(a)', '| alpha(BBAR 0.4999) / alpha(BBAR 0.49) | '//fx(alpha(2)/alpha(1), 5)//' (Hertz '// &
+                 fx(hertz_ratio, 5)//') |'
+    print '(a)', '| alpha(STANDARD 0.4999) / alpha(BBAR 0.4999) | '//fx(alpha(3)/alpha(2), 4)//' |'
+    print '(a)', '| force_max_N(BBAR 0.4999) / smooth peak (fit) | '// &
+                 fx(value_of(runs(2), 'force_max_N')/f_fit_max(2), 3)//' |'
+    print '(a)', '| smooth peak (fit) BBAR 0.4999 / Hertz-scaled BBAR 0.49 fit peak | '// &
+                 fx(f_fit_max(2)/force_scaled, 4)//' |'
+    print '(a)', '| q_max_MPa(BBAR 0.4999) / q at t_alpha | '//fx(value_of(runs(2), 'q_max_MPa')/q_at_alpha(2), 2)//' |'
+
+    ! The same impacts with RELEASE=YES to separation: a node is freed when its
+    ! reaction (at t + dt) turns tensile, so the spikes can free it.
+    print '(a)', ''
+    print '(a)', 'With PLATE Z=0 STICK RELEASE=YES, STOP AT=SEPARATION (nu = 0.219: section 2, no early release):'
+    print '(a)', ''
+    print '(a)', '| formulation | nu | e | duration ms | 2.9432 alpha_m/V ms | releases before t_alpha |'// &
+                 ' recaptures after first release | force_max N | q_max MPa |'
+    print '(a)', '|---|---|---|---|---|---|---|---|---|'
+    do k = 1, 2
+      release(k) = run_case('nu'//trim(nus(k))//'_'//trim(forms(k))//'_release', table1_deck(3, 1.0e-5_dp, 6.0e-3_dp, &
+                            'PLATE Z=0 STICK RELEASE=YES', 'STOP AT=SEPARATION', poisson=trim(nus(k)), &
+                            formulation=trim(forms(k))))
+      if (.not. release(k)%ok) return
+      call chatter(release(k)%t, release(k)%n, value_of(release(k), 't_alpha_max_ms'), early(k), recaptured(k))
+      print '(a)', '| '//trim(forms(k))//' | '//trim(nus(k))//' | '// &
+        fx(value_of(release(k), 'coefficient_of_restitution'), 5)//' | '// &
+        fx(value_of(release(k), 'contact_duration_ms'), 3)//' | '//fx(hertz_duration_constant* &
+        value_of(release(k), 'alpha_max_mm')/value_of(release(k), 'impact_velocity_m_s'), 3)//' | '// &
+        itoa(early(k))//' | '//itoa(recaptured(k))//' | '//fx(value_of(release(k), 'force_max_N'), 1)//' | '// &
+        fx(value_of(release(k), 'q_max_MPa'), 2)//' |'
+    end do
+    do k = 1, 2
+      if (early(k) > 0) print '(a)', 'NOTE RELEASE=YES, BBAR nu = '//trim(nus(k))//': '//itoa(early(k))// &
+        ' releases before maximum deformation and '//itoa(recaptured(k))//' recaptures (contact chatter: the'// &
+        ' spiky reactions turn tensile every other step); e = '// &
+        fx(value_of(release(k), 'coefficient_of_restitution'), 5)//', duration '// &
+        fx(value_of(release(k), 'contact_duration_ms'), 3)//' ms'
+    end do
+
+    ! BBAR does not lock: alpha_m follows Hertz's (1 - nu^2) scaling from
+    ! nu = 0.49 to 0.4999 (-0.52 %) to 1 % (the level-3 mesh error of alpha_m
+    ! itself is ~0.5 %, section 1; locking would stiffen by tens of %).
+    call check_close('nu0.4999_bbar_alpha_follows_hertz_scaling', alpha(2)/alpha(1), hertz_ratio, 0.01_dp)
+    ! STANDARD locks: much stiffer (alpha_m at least 20 % smaller).
+    call check('nu0.4999_standard_locks', alpha(3) < 0.8_dp*alpha(2), 'ratio '//fx(alpha(3)/alpha(2), 4))
+    ! The run stopped at the true maximum deformation, not early on a spike:
+    ! stop reason, t_stop one step after t_alpha, and t_alpha as for nu = 0.49 (2 dt).
+    call check_text_contains('nu0.4999_bbar_stop_reason', summary_value(runs(2)%record, 'stop_reason'), &
+                             'maximum deformation')
+    call check_close('nu0.4999_bbar_stops_just_after_alpha_max', value_of(runs(2), 't_stop_ms'), t_alpha(2), &
+                     0.0_dp, 2*runs(2)%dt_ms + 1.0e-9_dp)
+    call check_close('nu0.4999_bbar_t_alpha_as_nu0.49', t_alpha(2), t_alpha(1), 0.0_dp, 2*runs(2)%dt_ms + 1.0e-9_dp)
+    ! alpha (the centre of mass, an integral quantity) stays smooth: its
+    ! deviation from a smooth fit is no more than twice that of nu = 0.49.
+    call check('nu0.4999_bbar_alpha_smooth', roughness(2) <= 2.0_dp*roughness(1), &
+               ex(roughness(2))//' vs '//ex(roughness(1)))
+    ! The smooth force (fit) follows Hertz's scaling of the nu = 0.49 force to
+    ! 3 % (the fit's own error ~1 %, the mesh's ~1 %, section 1).
+    call check_close('nu0.4999_bbar_smooth_force_follows_hertz_scaling', f_fit_max(2), force_scaled, 0.03_dp)
+    if (value_of(runs(2), 'force_max_N') > 1.1_dp*f_fit_max(2)) print '(a)', 'NOTE force_max_N of BBAR nu = 0.4999 is '// &
+      fx(value_of(runs(2), 'force_max_N')/f_fit_max(2), 2)//' x its smooth peak: a spike when a node ring joins the'// &
+      ' contact (period-2 decay by Wilson-theta''s rho_inf = -0.778), not the impact force'
+    if (value_of(runs(2), 'q_max_MPa') > 1.1_dp*q_at_alpha(2)) print '(a)', 'NOTE q_max_MPa of BBAR nu = 0.4999 is '// &
+      fx(value_of(runs(2), 'q_max_MPa'), 2)//' MPa at '//fx(value_of(runs(2), 't_q_max_ms'), 3)// &
+      ' ms: a spike at first contact (q at t_alpha is '//fx(q_at_alpha(2), 3)//' MPa)'
+  end subroutine test_incompressible
+end program test_contact_dynamic
