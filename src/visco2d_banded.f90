@@ -7,7 +7,7 @@ module visco2d_banded
   implicit none
   private
 
-  public :: band_matrix_t, band_create, band_add_element, band_multiply, band_constrain
+  public :: band_matrix_t, band_create, band_add_element, band_multiply, band_multiply_rows, band_constrain
   public :: band_constrain_matrix, band_constrain_rhs
   public :: band_factor, band_solve
 
@@ -80,6 +80,26 @@ contains
       end do
     end do
   end function band_multiply
+
+  !> y = A x on the rows p with rows(p) (0 elsewhere), A the (unfactored)
+  !> symmetric band matrix: O(kd) per selected row.
+  pure function band_multiply_rows(matrix, x, rows) result(y)
+    type(band_matrix_t), intent(in) :: matrix
+    real(dp), intent(in) :: x(:)
+    logical, intent(in) :: rows(:)
+    real(dp) :: y(size(x))
+    integer :: i, j, p
+    y = 0.0_dp
+    do p = 1, matrix%n
+      if (.not. rows(p)) cycle
+      do j = max(1, p - matrix%kd), p                      ! row p, left of and on the diagonal
+        y(p) = y(p) + matrix%ab(1 + p - j, j)*x(j)
+      end do
+      do i = p + 1, min(matrix%n, p + matrix%kd)           ! row p, right of the diagonal (column p below it)
+        y(p) = y(p) + matrix%ab(1 + i - p, p)*x(i)
+      end do
+    end do
+  end function band_multiply_rows
 
   !> Impose u(p) = value(p) on the equations with constrained(p) without losing
   !> symmetry: move the columns to the right-hand side, zero row and column p,

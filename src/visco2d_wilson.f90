@@ -42,7 +42,8 @@ module visco2d_wilson
   use visco2d_dynamic_cards, only: theta_unconditional
   use visco2d_material, only: stress_from_strain, has_memory
   use visco2d_element, only: element_strains, element_internal_force, element_b_matrices, gauss_count
-  use visco2d_banded, only: band_matrix_t, band_factor, band_solve, band_constrain_matrix, band_constrain_rhs
+  use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_factor, band_solve, band_constrain_matrix, &
+                            band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
                               prescribed_displacement, internal_force, scatter_add, lumped_mass, gravity_load, nodal_field
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
@@ -86,6 +87,7 @@ contains
     real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:)
     real(dp), allocatable :: mass(:), gravity(:), load(:), load_next(:), internal(:), internal_next(:)
     real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:), pressure(:)
+    real(dp), allocatable :: reaction_tau(:)
     real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :)
     real(dp), allocatable :: shear_dt(:), bulk_dt(:)
     logical, allocatable :: fixed(:), supports(:), held(:)
@@ -310,6 +312,18 @@ contains
         if (contact_on) call adjusted_displacements(theta)
         call band_constrain_rhs(effective, fixed, prescribed, rhs)
         call band_solve(factor, rhs)                                  ! rhs <- dU_tau, eq. [34]
+        ! The plate reactions at t + tau, where Wilson-theta holds equilibrium
+        ! (the residual of eq. [34] on the held rows). Force, pressure and
+        ! release use them: at t + dt a held node's reaction carries the stiff
+        ! modes a contact event excites, which Wilson-theta damps only by its
+        ! limit spectral radius (-0.78 per step at theta = 1.4), so it flips
+        ! sign from step to step (spikes of 5x the impact force at nu = 0.4999,
+        ! and release/recapture chatter with RELEASE=YES). Without the inertia
+        ! M U''_tau of the held node itself: it is zero once a node is held, and
+        ! in the step a node touches it is the impulse that stops the node's
+        ! mass (reported as contact_loss_J), not a pressure on the plate.
+        if (contact_on) reaction_tau = merge(band_multiply_rows(effective, rhs, fixed) - base &
+          - mass*(6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 2.0_dp*a), 0.0_dp, fixed)
         da = (6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 3.0_dp*a)/theta        ! eq. [37]
         dv = a*dt + 0.5_dp*dt*da                                        ! eq. [38]
         du = v*dt + 0.5_dp*dt**2*a + dt**2/6.0_dp*da                    ! eq. [39]
@@ -344,7 +358,7 @@ contains
         reaction_next = merge(mass*(a + da) + internal_next - load_next - gravity, 0.0_dp, fixed)
         if (.not. contact_on) exit
         ! The contact search; a changed set repeats the increment (the paper's iteration).
-        call contact_search(deck, contact, u, du, reaction_next, changed, fraction)
+        call contact_search(deck, contact, u, du, reaction_tau, changed, fraction)
         if (.not. changed) exit
         touch_fraction = min(touch_fraction, fraction)
         fixed = supports .or. contact_held_dofs(deck, contact)
@@ -435,8 +449,9 @@ contains
       real(dp) :: centre(2)
       integer :: node
       call contact_create(deck, contact)
-      allocate(held(2*deck%mesh%nnode), pressure(deck%mesh%nnode))
+      allocate(held(2*deck%mesh%nnode), pressure(deck%mesh%nnode), reaction_tau(2*deck%mesh%nnode))
       held = .false.
+      reaction_tau = 0.0_dp
       pressure = 0.0_dp
       associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
       centre(2) = dot_product(nodal_mass(2, :), deck%mesh%xy(2, :))/body_mass
@@ -492,8 +507,8 @@ contains
         u_cm_contact = u_cm - (1.0_dp - touch_fraction)*(u_cm - previous_u_cm())
         v_cm_contact = v_cm - (1.0_dp - touch_fraction)*(v_cm - centre_of_mass(v - dv))
       end if
-      force = contact_force(deck, contact, reaction)
-      call contact_pressure(deck, contact, reaction, pressure, q)
+      force = contact_force(deck, contact, reaction_tau)             ! at t + theta dt (see advance)
+      call contact_pressure(deck, contact, reaction_tau, pressure, q)
       s = node_stress(deck%mesh, stress, contact%pole)
       q_surface = 0.0_dp
       if (contact%active(contact%pole)) q_surface = -s(2)

@@ -28,13 +28,13 @@
 !>     examined for spikes when nodes join the contact (the run's maxima are
 !>     reported beside smooth estimates), and the same impacts are run with
 !>     RELEASE=YES to separation (contact chatter).
-!> What is checked holds for the library as it is; what it gets wrong is
-!> printed on NOTE lines, not failed (reported to the lead with proposed
-!> changes): q_max at levels 1-2 (the consistent projection oscillates while
-!> few nodes touch), force_max / q_max at nu = 0.4999 (spikes: the held nodes'
-!> reactions at t + dt carry a stiff mode that Wilson-theta damps only by
-!> rho_inf = -0.778 per step), and contact chatter with RELEASE=YES at
-!> nu >= 0.49 (those reactions turn tensile every other step).
+!>     The maxima must not be spikes: q >= 0 and q peaks with alpha on every
+!>     level, force_max is the smooth peak and q_max the pressure at maximum
+!>     deformation (to 3 %), and through rebound e <= 1 and the duration is
+!>     Hertz's to 2 % -- which holds because the plate reactions are taken at
+!>     t + theta dt, where Wilson-theta holds equilibrium (at t + dt they
+!>     carried a stiff mode damped only by rho_inf = -0.778 per step: spikes of
+!>     5x the force, and release/recapture chatter).
 !> For an elastic body dissipated_J is round-off: the integrator's own loss
 !> appears in balance_error_J (section 2).
 !> Every number is printed in markdown tables. Decks are written to
@@ -449,11 +449,14 @@ contains
     ! Bilinear elements converge at O(h^2) in displacement; a contact edge
     ! resolved only to one node ring can lower that to O(h), never below: so
     ! each halving of h must at least halve the change of alpha_m (p >= 1).
+    ! q (the pole's reaction at t + theta dt over its row of the lumped
+    ! boundary mass) is never negative and peaks with alpha, within the
+    ! arrival interval of a node ring (0.1 ms at these levels), on every level.
     do l = 1, 4
-      if (value_of(mesh(l), 't_q_max_ms') < 0.5_dp*value_of(mesh(l), 't_alpha_max_ms')) print '(a)', &
-        'NOTE level '//itoa(l)//': q_max_MPa '//fx(value_of(mesh(l), 'q_max_MPa'), 3)//' at '// &
-        fx(value_of(mesh(l), 't_q_max_ms'), 3)//' ms is not the impact''s peak pressure: with few contact'// &
-        ' nodes the consistent projection oscillates (q down to '//fx(minval(mesh(l)%q), 3)//' MPa)'
+      call check('table1_level'//itoa(l)//'_q_never_negative', minval(mesh(l)%q) >= 0.0_dp, &
+                 'min q = '//fx(minval(mesh(l)%q), 3)//' MPa')
+      call check_close('table1_level'//itoa(l)//'_q_peaks_with_alpha', value_of(mesh(l), 't_q_max_ms'), &
+                       value_of(mesh(l), 't_alpha_max_ms'), 0.0_dp, 0.1_dp)
     end do
     call check('table1_mesh_alpha_changes_halve', abs(alpha(2) - alpha(1)) >= 2.0_dp*abs(alpha(3) - alpha(2)) .and. &
                abs(alpha(3) - alpha(2)) >= 2.0_dp*abs(alpha(4) - alpha(3)), 'p(1,2,3) = '//fx(p_mesh(1), 3)// &
@@ -917,13 +920,23 @@ contains
         itoa(early(k))//' | '//itoa(recaptured(k))//' | '//fx(value_of(release(k), 'force_max_N'), 1)//' | '// &
         fx(value_of(release(k), 'q_max_MPa'), 2)//' |'
     end do
+    ! Through rebound: an elastic body cannot come back faster than it came
+    ! (e <= 1), and the contact lasts Hertz's 2.9432 alpha_m/V to 2 % (the
+    ! sources of the 2 % as in test_restitution). At nu = 0.49 no node lets
+    ! go before maximum deformation; at 0.4999 with STICK a few edge nodes
+    ! may (tension at the edge of a bonded, nearly incompressible contact):
+    ! they are printed, and e and the duration must still hold.
     do k = 1, 2
+      call check('release_bbar_nu'//trim(nus(k))//'_restitution_at_most_1', &
+                 value_of(release(k), 'coefficient_of_restitution') <= 1.0_dp, &
+                 'e = '//fx(value_of(release(k), 'coefficient_of_restitution'), 6))
+      call check_close('release_bbar_nu'//trim(nus(k))//'_duration_hertz', value_of(release(k), 'contact_duration_ms'), &
+                       hertz_duration_constant*value_of(release(k), 'alpha_max_mm')/ &
+                       value_of(release(k), 'impact_velocity_m_s'), 0.02_dp)
       if (early(k) > 0) print '(a)', 'NOTE RELEASE=YES, BBAR nu = '//trim(nus(k))//': '//itoa(early(k))// &
-        ' releases before maximum deformation and '//itoa(recaptured(k))//' recaptures (contact chatter: the'// &
-        ' spiky reactions turn tensile every other step); e = '// &
-        fx(value_of(release(k), 'coefficient_of_restitution'), 5)//', duration '// &
-        fx(value_of(release(k), 'contact_duration_ms'), 3)//' ms'
+        ' releases before maximum deformation and '//itoa(recaptured(k))//' recaptures'
     end do
+    call check('release_bbar_nu'//trim(nus(1))//'_no_early_release', early(1) == 0, itoa(early(1))//' early releases')
 
     ! BBAR does not lock: alpha_m follows Hertz's (1 - nu^2) scaling from
     ! nu = 0.49 to 0.4999 (-0.52 %) to 1 % (the level-3 mesh error of alpha_m
@@ -945,11 +958,11 @@ contains
     ! The smooth force (fit) follows Hertz's scaling of the nu = 0.49 force to
     ! 3 % (the fit's own error ~1 %, the mesh's ~1 %, section 1).
     call check_close('nu0.4999_bbar_smooth_force_follows_hertz_scaling', f_fit_max(2), force_scaled, 0.03_dp)
-    if (value_of(runs(2), 'force_max_N') > 1.1_dp*f_fit_max(2)) print '(a)', 'NOTE force_max_N of BBAR nu = 0.4999 is '// &
-      fx(value_of(runs(2), 'force_max_N')/f_fit_max(2), 2)//' x its smooth peak: a spike when a node ring joins the'// &
-      ' contact (period-2 decay by Wilson-theta''s rho_inf = -0.778), not the impact force'
-    if (value_of(runs(2), 'q_max_MPa') > 1.1_dp*q_at_alpha(2)) print '(a)', 'NOTE q_max_MPa of BBAR nu = 0.4999 is '// &
-      fx(value_of(runs(2), 'q_max_MPa'), 2)//' MPa at '//fx(value_of(runs(2), 't_q_max_ms'), 3)// &
-      ' ms: a spike at first contact (q at t_alpha is '//fx(q_at_alpha(2), 3)//' MPa)'
+    ! The reported maxima are not spikes: force_max_N is the smooth peak to
+    ! 3 % and q_max_MPa is q at maximum deformation's time to 3 % (the
+    ! reactions are taken at t + theta dt, where Wilson-theta holds
+    ! equilibrium; at t + dt they carried period-2 spikes of 5x the force).
+    call check_close('nu0.4999_bbar_force_max_is_smooth_peak', value_of(runs(2), 'force_max_N'), f_fit_max(2), 0.03_dp)
+    call check_close('nu0.4999_bbar_q_max_near_alpha_max', value_of(runs(2), 'q_max_MPa'), q_at_alpha(2), 0.03_dp)
   end subroutine test_incompressible
 end program test_contact_dynamic
