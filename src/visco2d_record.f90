@@ -9,7 +9,7 @@ module visco2d_record
 
   public :: record_t, snapshot_t, summary_item_t
   public :: record_put, record_put_real, record_put_integer
-  public :: history_define, history_append, record_add_snapshot, record_insert_snapshot
+  public :: history_define, history_append, record_add_snapshot, record_insert_snapshot, record_column
 
   integer, parameter :: key_length = 48
 
@@ -98,6 +98,16 @@ contains
     allocate(record%history(size(columns), rows))
     record%nrow = 0
   end subroutine history_define
+
+  !> Index of a history column by name, 0 if absent.
+  pure integer function record_column(record, name) result(index)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: name
+    do index = 1, size(record%columns)
+      if (record%columns(index) == name) return
+    end do
+    index = 0
+  end function record_column
 
   !> Append one row to the history (grows geometrically: no per-step allocation).
   subroutine history_append(record, row)

@@ -30,7 +30,10 @@
 !> t + tau) and the same increment is repeated with S~ refactored; from then
 !> on its held components have U'' = U' = dU = 0. The kinetic energy those
 !> components had is lost in the impact of the node on the plate: it is
-!> reported (contact_loss_J) and kept in the energy balance. An energy balance is kept every step; the run stops with an
+!> reported (contact_loss_J) and kept in the energy balance. What the impact
+!> reports (alpha, q, maxima, stop criteria) is measured by visco2d_impact.
+!>
+!> An energy balance is kept every step; the run stops with an
 !> error if a value is not finite or the energy grows far beyond the work
 !> done on the body (an unstable integration), so no NaN reaches the results.
 module visco2d_wilson
@@ -50,12 +53,11 @@ module visco2d_wilson
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
   use visco2d_static, only: singular_message, node_stress, put_field_summary, put_probe_summary, set_snapshot_stress
-  use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, &
+  use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, &
                             history_define, history_append, record_add_snapshot, record_insert_snapshot
-  use visco2d_deck, only: stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, &
-                             contact_search, contact_count, contact_pressure, contact_force, contact_radius, &
-                             contact_gap, nearest_free_node, put_hertz_summary
+                             contact_search, contact_gap
+  use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row
   implicit none
   private
 
@@ -66,8 +68,6 @@ module visco2d_wilson
   !> gross work of loads, gravity and supports), widened by Wilson-theta's
   !> transient overshoot (see `factor_for`).
   real(dp), parameter :: energy_growth_limit = 100.0_dp
-  !> One g, m/s^2, the unit of accel_center_g (the standard acceleration of gravity).
-  real(dp), parameter :: g_unit = 9.80665_dp
 
 contains
 
@@ -83,24 +83,20 @@ contains
     type(step_coefficients_t), allocatable :: over_tau(:), over_dt(:)
     type(viscoelastic_state_t) :: state
     type(contact_t) :: contact
+    type(impact_t) :: impact
     type(snapshot_t) :: at_alpha_max, at_q_max
     real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:)
     real(dp), allocatable :: mass(:), gravity(:), load(:), load_next(:), internal(:), internal_next(:)
-    real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:), pressure(:)
-    real(dp), allocatable :: reaction_tau(:)
+    real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:), reaction_tau(:)
     real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :)
     real(dp), allocatable :: shear_dt(:), bulk_dt(:)
     logical, allocatable :: fixed(:), supports(:), held(:)
-    logical :: memory, contact_on, stopped, paper_fired, alpha_passed
+    logical :: memory, contact_on
     integer :: step, stage, k, factorizations, step_count, next_field, width
-    integer :: centre_node, contact_nodes, contact_nodes_max
     real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
     real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, gross_input, contact_loss
     real(dp) :: stored, balance, balance_max, input_max, growth_limit, omega_max
-    real(dp) :: t_contact, u_cm_contact, v_cm_contact, touch_fraction, t_paper, t_separation, v_separation
-    real(dp) :: alpha, alpha_max, t_alpha_max, q, q_max, t_q_max, q_surface, q_surface_max, t_q_surface_max
-    real(dp) :: force, force_max, t_force_max, radius, radius_max, accel_centre, accel_max, t_accel_max, accel_cm_max
-    character(:), allocatable :: stop_reason
+    real(dp) :: touch_fraction
 
     associate (mesh => deck%mesh, materials => deck%materials)
     theta = deck%dynamics%theta
@@ -126,8 +122,6 @@ contains
     step_count = 0
     width = max(6, len(itoa(total_steps(deck))))
     contact_loss = 0.0_dp
-    stopped = .false.
-    stop_reason = 'end of time'
 
     ! Initial state: u = 0, the INITIAL / DROP velocity on the free equations,
     ! and the acceleration from equilibrium M a = R(0) + G - F(0) unless INITIAL gives it.
@@ -180,8 +174,8 @@ contains
         call advance()
         if (allocated(error)) return
         step_count = step_count + 1
-        if (contact_on) call contact_results()
-        if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck) .or. stopped) &
+        if (contact_on) call measure_impact()
+        if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck) .or. impact%stopped) &
           call append_row()
         if (next_field <= size(deck%output%field_times)) then
           if (t >= deck%output%field_times(next_field)*(1.0_dp - 1.0e-12_dp)) then
@@ -189,9 +183,9 @@ contains
             call skip_field_times(t)
           end if
         end if
-        if (stopped) exit
+        if (impact%stopped) exit
       end do
-      if (stopped) exit
+      if (impact%stopped) exit
       stage_start = deck%stages(stage)%end_time
     end do
     call keep_snapshot('final')
@@ -217,7 +211,13 @@ contains
     call record_put_real(record, 'balance_error_J', balance)
     call record_put_real(record, 'balance_error_max_J', balance_max)
     call record_put_real(record, 'balance_error_max_rel', balance_max/max(input_max, tiny(1.0_dp)))
-    if (contact_on) call finish_contact()
+    if (contact_on) then
+      call impact_summary(impact, deck, contact, record, whole_body_mass(), t)
+      if (impact%t_contact >= 0.0_dp) then                     ! the fields at the maxima
+        call insert_maximum_snapshot(at_alpha_max)
+        call insert_maximum_snapshot(at_q_max)
+      end if
+    end if
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
     call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     do k = 1, size(deck%probes)
@@ -361,7 +361,8 @@ contains
         call contact_search(deck, contact, u, du, reaction_tau, changed, fraction)
         if (.not. changed) exit
         touch_fraction = min(touch_fraction, fraction)
-        fixed = supports .or. contact_held_dofs(deck, contact)
+        held = contact_held_dofs(deck, contact)
+        fixed = supports .or. held
         call refactor()
         if (allocated(error)) return
       end do
@@ -428,11 +429,9 @@ contains
     !> The adjusted displacements of the contact conditions, into `prescribed`:
     !> a contact node's u_z goes to the plate over the increment (0 once it is
     !> there), u_r stays (STICK); `fraction` = theta gives the values at t + tau.
-    !> `held` = the components the plate holds.
     subroutine adjusted_displacements(fraction)
       real(dp), intent(in) :: fraction
       integer :: i, node
-      held = contact_held_dofs(deck, contact)
       do i = 1, size(contact%candidates)
         node = contact%candidates(i)
         if (.not. contact%active(node)) cycle
@@ -443,199 +442,50 @@ contains
       end do
     end subroutine adjusted_displacements
 
-    !> The contact state at t = 0, the node whose acceleration is the centre's
-    !> (the node nearest the centre of mass), and the running maxima.
+    !> The contact state and the impact measures at t = 0.
     subroutine start_contact()
-      real(dp) :: centre(2)
-      integer :: node
       call contact_create(deck, contact)
-      allocate(held(2*deck%mesh%nnode), pressure(deck%mesh%nnode), reaction_tau(2*deck%mesh%nnode))
+      allocate(held(2*deck%mesh%nnode), reaction_tau(2*deck%mesh%nnode))
       held = .false.
       reaction_tau = 0.0_dp
-      pressure = 0.0_dp
-      associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
-      centre(2) = dot_product(nodal_mass(2, :), deck%mesh%xy(2, :))/body_mass
-      centre(1) = dot_product(nodal_mass(1, :), deck%mesh%xy(1, :))/max(sum(nodal_mass(1, :)), tiny(1.0_dp))
-      end associate
-      if (deck%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
-      centre_node = 1
-      do node = 2, deck%mesh%nnode
-        if (norm2(deck%mesh%xy(:, node) - centre) < norm2(deck%mesh%xy(:, centre_node) - centre)) centre_node = node
-      end do
-      t_contact = -1.0_dp
-      u_cm_contact = 0.0_dp
-      v_cm_contact = 0.0_dp
-      t_paper = -1.0_dp
-      t_separation = -1.0_dp
-      v_separation = 0.0_dp
-      paper_fired = .false.
-      alpha_passed = .false.
-      contact_nodes = 0
-      contact_nodes_max = 0
-      alpha = 0.0_dp
-      alpha_max = 0.0_dp
-      t_alpha_max = 0.0_dp
-      q = 0.0_dp
-      q_max = 0.0_dp
-      t_q_max = 0.0_dp
-      q_surface = 0.0_dp
-      q_surface_max = 0.0_dp
-      t_q_surface_max = 0.0_dp
-      force = 0.0_dp
-      force_max = 0.0_dp
-      t_force_max = 0.0_dp
-      radius = 0.0_dp
-      radius_max = 0.0_dp
-      accel_centre = a(node_dof(deck%mesh, centre_node, 2))
-      accel_max = -huge(1.0_dp)
-      accel_cm_max = -huge(1.0_dp)
-      t_accel_max = 0.0_dp
+      call impact_start(deck, mass, a, impact)
     end subroutine start_contact
 
-    !> After a step: first contact (t = 0 of the results, interpolated within
-    !> the step), force, pressure, radius, alpha = approach of the centre of
-    !> mass since first contact, their maxima, and the stop criteria.
-    subroutine contact_results()
-      real(dp) :: s(4), since, u_cm, v_cm
-      integer :: nearest
-      contact_nodes = contact_count(contact)
-      u_cm = centre_of_mass(u)
-      v_cm = centre_of_mass(v)
-      if (t_contact < 0.0_dp .and. contact_nodes > 0) then
-        ! Linear within the step: t, u_cm and v_cm at the crossing of the plate.
-        t_contact = t - dt + touch_fraction*dt
-        u_cm_contact = u_cm - (1.0_dp - touch_fraction)*(u_cm - previous_u_cm())
-        v_cm_contact = v_cm - (1.0_dp - touch_fraction)*(v_cm - centre_of_mass(v - dv))
-      end if
-      force = contact_force(deck, contact, reaction_tau)             ! at t + theta dt (see advance)
-      call contact_pressure(deck, contact, reaction_tau, pressure, q)
-      s = node_stress(deck%mesh, stress, contact%pole)
-      q_surface = 0.0_dp
-      if (contact%active(contact%pole)) q_surface = -s(2)
-      radius = contact_radius(deck, contact)
-      accel_centre = a(node_dof(deck%mesh, centre_node, 2))
-      if (t_contact < 0.0_dp) return
-      since = t - t_contact
-      contact_nodes_max = max(contact_nodes_max, contact_nodes)
-      alpha = u_cm_contact - u_cm
-      if (alpha > alpha_max) then
-        alpha_max = alpha
-        t_alpha_max = since
-        at_alpha_max = snapshot_now('maximum deformation')
-      else if (alpha_max > 0.0_dp) then
-        alpha_passed = .true.
-      end if
-      if (q > q_max) then
-        q_max = q
-        t_q_max = since
-        at_q_max = snapshot_now('maximum pressure')
-      end if
-      if (q_surface > q_surface_max) then
-        q_surface_max = q_surface
-        t_q_surface_max = since
-      end if
-      if (force > force_max) then
-        force_max = force
-        t_force_max = since
-      end if
-      radius_max = max(radius_max, radius)
-      accel_cm_max = max(accel_cm_max, centre_of_mass(a))
-      if (accel_centre > accel_max) then
-        accel_max = accel_centre
-        t_accel_max = since
-      end if
-      ! The paper's criterion: the free node nearest the plate moves up.
-      nearest = nearest_free_node(deck, contact, u)
-      if (.not. paper_fired .and. nearest > 0) then
-        if (v(node_dof(deck%mesh, nearest, 2)) > 0.0_dp) then
-          paper_fired = .true.
-          t_paper = since
-        end if
-      end if
-      select case (deck%stop_at)
-      case (stop_at_max_deformation)
-        if (paper_fired .and. alpha_passed) then
-          stopped = .true.
-          stop_reason = 'maximum deformation'
-        end if
-      case (stop_at_separation)
-        if (contact_nodes == 0 .and. v_cm > 0.0_dp) then
-          stopped = .true.
-          stop_reason = 'separation'
-          t_separation = since
-          v_separation = v_cm
-        end if
-      end select
-    end subroutine contact_results
+    !> After a step: the impact measures (plate reactions at t + theta dt, see
+    !> advance), and the fields at a new maximum of alpha or q, kept raw: their
+    !> nodal stresses are recovered once, at the end (insert_maximum_snapshot).
+    subroutine measure_impact()
+      logical :: new_alpha_max, new_q_max
+      call impact_measure(impact, deck, contact, t, dt, touch_fraction, &
+                          [centre_of_mass(u), centre_of_mass(v), centre_of_mass(a)], &
+                          [centre_of_mass(u - du), centre_of_mass(v - dv)], reaction_tau, u, v, a, stress, &
+                          new_alpha_max, new_q_max)
+      if (new_alpha_max) at_alpha_max = raw_snapshot('maximum deformation')
+      if (new_q_max) at_q_max = raw_snapshot('maximum pressure')
+    end subroutine measure_impact
 
-    !> u_cm at the start of the step just taken.
-    real(dp) function previous_u_cm()
-      previous_u_cm = centre_of_mass(u - du)
-    end function previous_u_cm
+    !> The fields now without their nodal stress recovery (stress_gauss only).
+    function raw_snapshot(label) result(snapshot)
+      character(*), intent(in) :: label
+      type(snapshot_t) :: snapshot
+      character(len=16) :: digits
+      write(digits, '(i0.'//itoa(width)//')') step_count
+      snapshot%name = 'step_'//trim(digits)
+      snapshot%label = label
+      snapshot%time = t
+      snapshot%displacement = nodal_field(deck%mesh, u)
+      snapshot%velocity = nodal_field(deck%mesh, v)
+      snapshot%acceleration = nodal_field(deck%mesh, a)
+      snapshot%stress_gauss = stress
+    end function raw_snapshot
 
-    !> The contact summary, the Hertz reference and the snapshots at the maxima.
-    subroutine finish_contact()
-      integer :: row, t_column, alpha_column, uz_column
-      call record_put_real(record, 'plate_z_m', deck%plate%z)
-      call record_put(record, 'plate', trim(merge('STICK', 'SLIP ', deck%plate%stick))// &
-                      trim(merge(' RELEASE=YES', ' RELEASE=NO ', deck%plate%release)))
-      call record_put(record, 'stop_at', stop_name(deck%stop_at))
-      call record_put(record, 'stop_reason', stop_reason)
-      call record_put_integer(record, 'contact_iterations', contact%iterations)
-      call record_put_integer(record, 'contact_nodes_max', contact_nodes_max)
-      if (t_contact < 0.0_dp) then
-        write(0, '(a)') 'visco2d: warning: '//deck%cards%file//': the body never touched the plate (PLATE Z = '// &
-          short_real(deck%plate%z)//' m): no contact results'
-        call record_put(record, 'contact', 'none')
-      else
-        call record_put_real(record, 'time_first_contact_s', t_contact)
-        call record_put_real(record, 'impact_velocity_m_s', -v_cm_contact)
-        call record_put_real(record, 't_stop_ms', 1.0e3_dp*(t - t_contact))
-        if (paper_fired) call record_put_real(record, 't_paper_criterion_ms', 1.0e3_dp*t_paper)
-        call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*alpha_max)
-        call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*t_alpha_max)
-        call record_put_real(record, 'q_max_MPa', 1.0e-6_dp*q_max)
-        call record_put_real(record, 't_q_max_ms', 1.0e3_dp*t_q_max)
-        call record_put_real(record, 'q_surface_max_MPa', 1.0e-6_dp*q_surface_max)
-        call record_put_real(record, 't_q_surface_max_ms', 1.0e3_dp*t_q_surface_max)
-        call record_put_real(record, 'force_max_N', force_max)
-        call record_put_real(record, 't_force_max_ms', 1.0e3_dp*t_force_max)
-        call record_put_real(record, 'contact_radius_max_mm', 1.0e3_dp*radius_max)
-        call record_put_real(record, 'accel_center_max_g', accel_max/g_unit)
-        call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*t_accel_max)
-        call record_put_real(record, 'accel_cm_max_g', accel_cm_max/g_unit)
-        if (t_separation >= 0.0_dp) then
-          call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*t_separation)
-          call record_put_real(record, 'rebound_velocity_m_s', v_separation)
-          call record_put_real(record, 'coefficient_of_restitution', v_separation/max(-v_cm_contact, tiny(1.0_dp)))
-          call record_put_real(record, 'energy_absorbed_J', &
-                               0.5_dp*whole_body_mass()*(v_cm_contact**2 - v_separation**2))
-        end if
-        call put_hertz_summary(deck, record, whole_body_mass(), v_cm_contact)
-        if (allocated(at_alpha_max%name)) call record_insert_snapshot(record, at_alpha_max)
-        if (allocated(at_q_max%name)) call record_insert_snapshot(record, at_q_max)
-      end if
-      if (stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) write(0, '(a)') 'visco2d: warning: '// &
-        deck%cards%file//': the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)
-      ! t_ms and alpha_mm from t_s and uz_cm_m, now that first contact is known.
-      t_column = column_of('t_s')
-      uz_column = column_of('uz_cm_m')
-      do row = 1, record%nrow
-        record%history(column_of('t_ms'), row) = 1.0e3_dp*(record%history(t_column, row) - max(t_contact, 0.0_dp))
-        alpha_column = column_of('alpha_mm')
-        record%history(alpha_column, row) = 0.0_dp
-        if (t_contact >= 0.0_dp) record%history(alpha_column, row) = &
-          1.0e3_dp*(u_cm_contact - record%history(uz_column, row))
-      end do
-    end subroutine finish_contact
-
-    integer function column_of(name)
-      character(*), intent(in) :: name
-      do column_of = 1, size(record%columns)
-        if (record%columns(column_of) == name) return
-      end do
-      column_of = 0
-    end function column_of
+    !> Complete a raw snapshot (nodal stresses) and keep it in time order.
+    subroutine insert_maximum_snapshot(snapshot)
+      type(snapshot_t), intent(inout) :: snapshot
+      if (.not. allocated(snapshot%name)) return
+      call set_snapshot_stress(deck%mesh, snapshot%stress_gauss, snapshot)
+      call record_insert_snapshot(record, snapshot)
+    end subroutine insert_maximum_snapshot
 
     !> Mass of the whole body, kg (2 pi times the mass per radian in axisymmetry).
     real(dp) function whole_body_mass()
@@ -710,8 +560,7 @@ contains
       columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'uz_cm_m', 'vz_cm_m_s', &
                  'az_cm_m_s2', 'kinetic_J', 'strain_J', 'dissipated_J', 'external_work_J', 'gravity_work_J', &
                  'balance_error_J', 'reaction_r_N', 'reaction_z_N']
-      if (contact_on) columns = [character(len=48) :: columns, 't_ms', 'alpha_mm', 'force_N', 'q_MPa', &
-                                 'q_surface_MPa', 'contact_radius_mm', 'accel_center_g', 'n_contact', 'contact_loss_J']
+      if (contact_on) columns = [character(len=48) :: columns, impact_columns(), 'contact_loss_J']
       do p = 1, size(deck%probes)
         do k = 1, size(probe_columns)
           columns = [character(len=48) :: columns, deck%probes(p)%name//'_'//trim(probe_columns(k))]
@@ -727,9 +576,8 @@ contains
       row = [real(step_count, dp), t, maxval(norm2(nodal_field(deck%mesh, u), dim=1)), centre_of_mass(u), centre_of_mass(v), &
              centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
              balance, sum(reaction(1::2)), sum(reaction(2::2))]
-      ! t_ms and alpha_mm are filled in by finish_contact, once first contact is known.
-      if (contact_on) row = [row, 0.0_dp, 0.0_dp, force, 1.0e-6_dp*q, 1.0e-6_dp*q_surface, 1.0e3_dp*radius, &
-                             accel_centre/g_unit, real(contact_nodes, dp), contact_loss]
+      ! t_ms and alpha_mm are filled in by impact_summary, once first contact is known.
+      if (contact_on) row = [row, impact_row(impact), contact_loss]
       do p = 1, size(deck%probes)
         node = deck%probes(p)%node
         associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
@@ -767,14 +615,7 @@ contains
     function snapshot_now(label) result(snapshot)
       character(*), intent(in) :: label
       type(snapshot_t) :: snapshot
-      character(len=16) :: digits
-      write(digits, '(i0.'//itoa(width)//')') step_count
-      snapshot%name = 'step_'//trim(digits)
-      snapshot%label = label
-      snapshot%time = t
-      snapshot%displacement = nodal_field(deck%mesh, u)
-      snapshot%velocity = nodal_field(deck%mesh, v)
-      snapshot%acceleration = nodal_field(deck%mesh, a)
+      snapshot = raw_snapshot(label)
       call set_snapshot_stress(deck%mesh, stress, snapshot)
     end function snapshot_now
   end subroutine solve_dynamic

@@ -2,7 +2,7 @@
 !> one line, `PASS name` or `FAIL name: detail`; the test runner counts them.
 module visco2d_testing
   use visco2d_kinds, only: dp
-  use visco2d_record, only: record_t
+  use visco2d_record, only: record_t, record_column
   implicit none
   private
 
@@ -74,11 +74,7 @@ contains
   integer function history_index(record, name) result(index)
     type(record_t), intent(in) :: record
     character(*), intent(in) :: name
-    integer :: k
-    index = 0
-    do k = 1, size(record%columns)
-      if (trim(record%columns(k)) == name) index = k
-    end do
+    index = record_column(record, name)
   end function history_index
 
   !> A history column over the rows (empty, and a failed check, if absent).

@@ -1,0 +1,236 @@
+!> What an impact on the plate reports (DESIGN.md's keys), measured after
+!> every step of a dynamic run with a PLATE: first contact (t = 0 of the
+!> results), alpha = the approach of the centre of mass since then, the plate
+!> force and the pressure at the pole, the contact radius, the centre's
+!> acceleration, their maxima, and the stop criteria of the STOP card.
+module visco2d_impact
+  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_strings, only: short_real
+  use visco2d_deck, only: deck_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
+  use visco2d_assembly, only: node_dof, nodal_field
+  use visco2d_static, only: node_stress
+  use visco2d_contact, only: contact_t, contact_count, contact_pressure, contact_force, contact_radius, &
+                             nearest_free_node, put_hertz_summary
+  use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column
+  implicit none
+  private
+
+  public :: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row
+
+  !> One g, m/s^2, the unit of accel_center_g (the standard acceleration of gravity).
+  real(dp), parameter :: g_unit = 9.80665_dp
+
+  !> The running measures of an impact (SI units; times since first contact).
+  type :: impact_t
+    integer :: centre_node = 0                !< the node nearest the centre of mass
+    real(dp) :: t_contact = -1.0_dp           !< s, deck time of first contact (< 0: none yet)
+    real(dp) :: u_cm_contact = 0.0_dp, v_cm_contact = 0.0_dp  !< centre of mass at first contact
+    logical :: stopped = .false.              !< the STOP criterion is met
+    character(:), allocatable :: stop_reason
+    logical :: paper_fired = .false.          !< the paper's criterion has fired (at t_paper)
+    logical :: alpha_passed = .false.         !< alpha has passed its maximum
+    real(dp) :: t_paper = -1.0_dp
+    real(dp) :: t_separation = -1.0_dp, v_separation = 0.0_dp
+    integer :: contact_nodes = 0, contact_nodes_max = 0
+    real(dp) :: alpha = 0.0_dp, alpha_max = 0.0_dp, t_alpha_max = 0.0_dp
+    real(dp) :: q = 0.0_dp, q_max = 0.0_dp, t_q_max = 0.0_dp
+    real(dp) :: q_surface = 0.0_dp, q_surface_max = 0.0_dp, t_q_surface_max = 0.0_dp
+    real(dp) :: force = 0.0_dp, force_max = 0.0_dp, t_force_max = 0.0_dp
+    real(dp) :: radius = 0.0_dp, radius_max = 0.0_dp
+    real(dp) :: accel_centre = 0.0_dp, accel_max = -huge(1.0_dp), t_accel_max = 0.0_dp
+    real(dp) :: accel_cm_max = -huge(1.0_dp)
+    real(dp), allocatable :: pressure(:)      !< (nnode) recovered contact pressure, Pa
+  end type impact_t
+
+contains
+
+  !> The impact state at t = 0: the centre node (nearest the centre of mass;
+  !> on the axis in axisymmetry) and the initial acceleration there.
+  subroutine impact_start(deck, mass, a, impact)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: mass(:), a(:)   !< lumped mass and acceleration, band order
+    type(impact_t), intent(out) :: impact
+    real(dp) :: centre(2)
+    integer :: node
+    associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
+    centre(2) = dot_product(nodal_mass(2, :), deck%mesh%xy(2, :))/sum(nodal_mass(2, :))
+    centre(1) = dot_product(nodal_mass(1, :), deck%mesh%xy(1, :))/max(sum(nodal_mass(1, :)), tiny(1.0_dp))
+    end associate
+    if (deck%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
+    impact%centre_node = 1
+    do node = 2, deck%mesh%nnode
+      if (norm2(deck%mesh%xy(:, node) - centre) < norm2(deck%mesh%xy(:, impact%centre_node) - centre)) &
+        impact%centre_node = node
+    end do
+    allocate(impact%pressure(deck%mesh%nnode))
+    impact%pressure = 0.0_dp
+    impact%stop_reason = 'end of time'
+    impact%accel_centre = a(node_dof(deck%mesh, impact%centre_node, 2))
+  end subroutine impact_start
+
+  !> After the step from t - dt to t: first contact (interpolated within the
+  !> step at `touch_fraction`, linear in time), force and pressure from the
+  !> plate reactions, radius, alpha, the maxima (`new_alpha_max`,
+  !> `new_q_max` tell the caller to keep the fields) and the stop criteria.
+  !> cm = (u, v, a) of the centre of mass at t, cm_start = (u, v) at t - dt.
+  subroutine impact_measure(impact, deck, contact, t, dt, touch_fraction, cm, cm_start, reaction, u, v, a, stress, &
+                            new_alpha_max, new_q_max)
+    type(impact_t), intent(inout) :: impact
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: t, dt, touch_fraction, cm(3), cm_start(2)
+    real(dp), intent(in) :: reaction(:), u(:), v(:), a(:), stress(:, :, :)
+    logical, intent(out) :: new_alpha_max, new_q_max
+    real(dp) :: s(4), since
+    integer :: nearest
+    new_alpha_max = .false.
+    new_q_max = .false.
+    associate (m => impact)
+    m%contact_nodes = contact_count(contact)
+    if (m%t_contact < 0.0_dp .and. m%contact_nodes > 0) then
+      m%t_contact = t - dt + touch_fraction*dt
+      m%u_cm_contact = cm_start(1) + touch_fraction*(cm(1) - cm_start(1))
+      m%v_cm_contact = cm_start(2) + touch_fraction*(cm(2) - cm_start(2))
+    end if
+    m%force = contact_force(deck, contact, reaction)
+    call contact_pressure(deck, contact, reaction, m%pressure, m%q)
+    m%q_surface = 0.0_dp
+    if (contact%active(contact%pole)) then
+      s = node_stress(deck%mesh, stress, contact%pole)
+      m%q_surface = -s(2)
+    end if
+    m%radius = contact_radius(deck, contact)
+    m%accel_centre = a(node_dof(deck%mesh, m%centre_node, 2))
+    if (m%t_contact < 0.0_dp) return
+    since = t - m%t_contact
+    m%contact_nodes_max = max(m%contact_nodes_max, m%contact_nodes)
+    m%alpha = m%u_cm_contact - cm(1)
+    if (m%alpha > m%alpha_max) then
+      m%alpha_max = m%alpha
+      m%t_alpha_max = since
+      new_alpha_max = .true.
+    else if (m%alpha_max > 0.0_dp) then
+      m%alpha_passed = .true.
+    end if
+    if (m%q > m%q_max) then
+      m%q_max = m%q
+      m%t_q_max = since
+      new_q_max = .true.
+    end if
+    call keep_max(m%q_surface, m%q_surface_max, m%t_q_surface_max)
+    call keep_max(m%force, m%force_max, m%t_force_max)
+    call keep_max(m%accel_centre, m%accel_max, m%t_accel_max)
+    m%radius_max = max(m%radius_max, m%radius)
+    m%accel_cm_max = max(m%accel_cm_max, cm(3))
+    ! The paper's criterion: the free node nearest the plate moves up.
+    nearest = nearest_free_node(deck, contact, u)
+    if (.not. m%paper_fired .and. nearest > 0) then
+      if (v(node_dof(deck%mesh, nearest, 2)) > 0.0_dp) then
+        m%paper_fired = .true.
+        m%t_paper = since
+      end if
+    end if
+    select case (deck%stop_at)
+    case (stop_at_max_deformation)            ! and alpha past its maximum: a wave cannot cut the loading short
+      if (m%paper_fired .and. m%alpha_passed) then
+        m%stopped = .true.
+        m%stop_reason = 'maximum deformation'
+      end if
+    case (stop_at_separation)
+      if (m%contact_nodes == 0 .and. cm(2) > 0.0_dp) then
+        m%stopped = .true.
+        m%stop_reason = 'separation'
+        m%t_separation = since
+        m%v_separation = cm(2)
+      end if
+    end select
+    end associate
+
+  contains
+
+    pure subroutine keep_max(value, maximum, at)
+      real(dp), intent(in) :: value
+      real(dp), intent(inout) :: maximum, at
+      if (value <= maximum) return
+      maximum = value
+      at = since
+    end subroutine keep_max
+  end subroutine impact_measure
+
+  !> History columns of an impact (t_ms and alpha_mm are filled by impact_summary).
+  pure function impact_columns() result(columns)
+    character(len=17) :: columns(8)
+    columns = [character(len=17) :: 't_ms', 'alpha_mm', 'force_N', 'q_MPa', 'q_surface_MPa', 'contact_radius_mm', &
+               'accel_center_g', 'n_contact']
+  end function impact_columns
+
+  !> The values of impact_columns now.
+  pure function impact_row(impact) result(row)
+    type(impact_t), intent(in) :: impact
+    real(dp) :: row(8)
+    row = [0.0_dp, 0.0_dp, impact%force, 1.0e-6_dp*impact%q, 1.0e-6_dp*impact%q_surface, 1.0e3_dp*impact%radius, &
+           impact%accel_centre/g_unit, real(impact%contact_nodes, dp)]
+  end function impact_row
+
+  !> The impact keys of the summary (DESIGN.md), the Hertz reference for
+  !> `mass` (kg, whole body), the warnings, and the history columns t_ms and
+  !> alpha_mm from t_s and uz_cm_m now that first contact is known.
+  subroutine impact_summary(impact, deck, contact, record, mass, t_end)
+    type(impact_t), intent(in) :: impact
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: mass, t_end
+    integer :: row, t_column, uz_column, t_ms_column, alpha_column
+    associate (m => impact)
+    call record_put_real(record, 'plate_z_m', deck%plate%z)
+    call record_put(record, 'plate', trim(merge('STICK', 'SLIP ', deck%plate%stick))// &
+                    trim(merge(' RELEASE=YES', ' RELEASE=NO ', deck%plate%release)))
+    call record_put(record, 'stop_at', stop_name(deck%stop_at))
+    call record_put(record, 'stop_reason', m%stop_reason)
+    call record_put_integer(record, 'contact_iterations', contact%iterations)
+    call record_put_integer(record, 'contact_nodes_max', m%contact_nodes_max)
+    if (m%t_contact < 0.0_dp) then
+      write(0, '(a)') 'visco2d: warning: '//deck%cards%file//': the body never touched the plate (PLATE Z = '// &
+        short_real(deck%plate%z)//' m): no contact results'
+      call record_put(record, 'contact', 'none')
+    else
+      call record_put_real(record, 'time_first_contact_s', m%t_contact)
+      call record_put_real(record, 'impact_velocity_m_s', -m%v_cm_contact)
+      call record_put_real(record, 't_stop_ms', 1.0e3_dp*(t_end - m%t_contact))
+      if (m%paper_fired) call record_put_real(record, 't_paper_criterion_ms', 1.0e3_dp*m%t_paper)
+      call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*m%alpha_max)
+      call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*m%t_alpha_max)
+      call record_put_real(record, 'q_max_MPa', 1.0e-6_dp*m%q_max)
+      call record_put_real(record, 't_q_max_ms', 1.0e3_dp*m%t_q_max)
+      call record_put_real(record, 'q_surface_max_MPa', 1.0e-6_dp*m%q_surface_max)
+      call record_put_real(record, 't_q_surface_max_ms', 1.0e3_dp*m%t_q_surface_max)
+      call record_put_real(record, 'force_max_N', m%force_max)
+      call record_put_real(record, 't_force_max_ms', 1.0e3_dp*m%t_force_max)
+      call record_put_real(record, 'contact_radius_max_mm', 1.0e3_dp*m%radius_max)
+      call record_put_real(record, 'accel_center_max_g', m%accel_max/g_unit)
+      call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*m%t_accel_max)
+      call record_put_real(record, 'accel_cm_max_g', m%accel_cm_max/g_unit)
+      if (m%t_separation >= 0.0_dp) then
+        call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*m%t_separation)
+        call record_put_real(record, 'rebound_velocity_m_s', m%v_separation)
+        call record_put_real(record, 'coefficient_of_restitution', m%v_separation/max(-m%v_cm_contact, tiny(1.0_dp)))
+        call record_put_real(record, 'energy_absorbed_J', 0.5_dp*mass*(m%v_cm_contact**2 - m%v_separation**2))
+      end if
+      call put_hertz_summary(deck, record, mass, m%v_cm_contact)
+    end if
+    if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) write(0, '(a)') 'visco2d: warning: '// &
+      deck%cards%file//': the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)
+    t_column = record_column(record, 't_s')
+    uz_column = record_column(record, 'uz_cm_m')
+    t_ms_column = record_column(record, 't_ms')
+    alpha_column = record_column(record, 'alpha_mm')
+    do row = 1, record%nrow
+      record%history(t_ms_column, row) = 1.0e3_dp*(record%history(t_column, row) - max(m%t_contact, 0.0_dp))
+      record%history(alpha_column, row) = 0.0_dp
+      if (m%t_contact >= 0.0_dp) record%history(alpha_column, row) = &
+        1.0e3_dp*(m%u_cm_contact - record%history(uz_column, row))
+    end do
+    end associate
+  end subroutine impact_summary
+end module visco2d_impact
