@@ -15,7 +15,7 @@ module visco2d_assembly
   private
 
   public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask, prescribed_displacement
-  public :: lumped_mass, gravity_load, internal_force, nodal_average, gather, scatter_add, nodal_field
+  public :: lumped_mass, gravity_load, internal_force, nodal_average, gather, scatter_add, nodal_field, band_vector
 
 contains
 
@@ -57,6 +57,17 @@ contains
       field(:, node) = vector(node_dof(mesh, node, 1):node_dof(mesh, node, 2))
     end do
   end function nodal_field
+
+  !> The inverse of nodal_field: a (2, nnode) field in node order as a global vector in band order.
+  pure function band_vector(mesh, field) result(vector)
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: field(:, :)
+    real(dp) :: vector(2*mesh%nnode)
+    integer :: node
+    do node = 1, mesh%nnode
+      vector(node_dof(mesh, node, 1):node_dof(mesh, node, 2)) = field(:, node)
+    end do
+  end function band_vector
 
   pure subroutine scatter_add(mesh, e, local, vector)
     type(mesh_t), intent(in) :: mesh

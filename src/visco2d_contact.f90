@@ -19,7 +19,7 @@ module visco2d_contact
   use visco2d_mesh, only: side_nodes
   use visco2d_renumber, only: sort_integers
   use visco2d_element, only: element_lumped_mass
-  use visco2d_assembly, only: node_dof, scatter_add, support_mask
+  use visco2d_assembly, only: node_dof, scatter_add, band_vector
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   implicit none
@@ -404,7 +404,7 @@ contains
     real(dp), allocatable :: u(:), zero(:), reaction(:), values(:), pressure(:), weight(:)
     logical, allocatable :: held(:)
     logical :: changed
-    real(dp) :: fraction, q
+    real(dp) :: fraction, q, surface(4)
     integer :: iteration, i, node, limit
 
     associate (mesh => deck%mesh)
@@ -430,9 +430,8 @@ contains
           'from turning or sliding)'
         return
       end if
-      u = reshape(solution%displacement, [2*mesh%nnode])
-      u = band_order(u)
-      reaction = band_order(reshape(solution%reaction, [2*mesh%nnode]))
+      u = band_vector(mesh, solution%displacement)
+      reaction = band_vector(mesh, solution%reaction)
       call contact_begin_increment(contact)
       call contact_search(deck, contact, zero, u, reaction, changed, fraction, always_release=.true.)
       if (.not. changed) exit
@@ -452,28 +451,9 @@ contains
     call record_put_real(record, 'force_N', contact_force(deck, contact, reaction))
     call record_put_real(record, 'alpha_mm', -1.0e3_dp*dot_product(weight(2::2), u(2::2))/sum(weight(2::2)))
     call record_put_real(record, 'q_MPa', 1.0e-6_dp*q)
-    call record_put_real(record, 'q_surface_MPa', -1.0e-6_dp*node_stress_z(contact%pole))
+    surface = node_stress(mesh, solution%stress, contact%pole)
+    call record_put_real(record, 'q_surface_MPa', -1.0e-6_dp*surface(2))
     call record_put_real(record, 'contact_radius_mm', 1.0e3_dp*contact_radius(deck, contact))
     end associate
-
-  contains
-
-    !> (u_r, u_z) per node in node order -> band order.
-    function band_order(nodal) result(vector)
-      real(dp), intent(in) :: nodal(:)
-      real(dp) :: vector(size(nodal))
-      integer :: k
-      do k = 1, deck%mesh%nnode
-        vector(node_dof(deck%mesh, k, 1)) = nodal(2*k - 1)
-        vector(node_dof(deck%mesh, k, 2)) = nodal(2*k)
-      end do
-    end function band_order
-
-    real(dp) function node_stress_z(node)
-      integer, intent(in) :: node
-      real(dp) :: s(4)
-      s = node_stress(deck%mesh, solution%stress, node)
-      node_stress_z = s(2)
-    end function node_stress_z
   end subroutine solve_static_contact
 end module visco2d_contact

@@ -43,7 +43,7 @@ program test_contact_static
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_pressure, &
                              solve_static_contact, hertz_impact, hertz_t, hertz_time_constant, volume_weights
-  use visco2d_assembly, only: node_dof
+  use visco2d_assembly, only: node_dof, band_vector
   use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t
   use visco2d_driver, only: summary_value
@@ -229,12 +229,8 @@ contains
       call check(tag//': direct solve', .false., error_text(error))
       return
     end if
-    do node = 1, mesh%nnode
-      u(node_dof(mesh, node, 1)) = solution%displacement(1, node)
-      u(node_dof(mesh, node, 2)) = solution%displacement(2, node)
-      reaction(node_dof(mesh, node, 1)) = solution%reaction(1, node)
-      reaction(node_dof(mesh, node, 2)) = solution%reaction(2, node)
-    end do
+    u = band_vector(mesh, solution%displacement)
+    reaction = band_vector(mesh, solution%reaction)
     ! The axis (x = 0) bottom node, the first edge length h, the outer bottom node.
     axis_node = 0
     outer_node = 0
@@ -637,12 +633,8 @@ contains
       call check(tag//': rebuilt state solves', .false., error_text(error))
       return
     end if
-    do node = 1, mesh%nnode
-      u(node_dof(mesh, node, 1)) = solution%displacement(1, node)
-      u(node_dof(mesh, node, 2)) = solution%displacement(2, node)
-      reaction(node_dof(mesh, node, 1)) = solution%reaction(1, node)
-      reaction(node_dof(mesh, node, 2)) = solution%reaction(2, node)
-    end do
+    u = band_vector(mesh, solution%displacement)
+    reaction = band_vector(mesh, solution%reaction)
     weight = volume_weights(deck)
     call check_close(tag//': rebuilt state has the same alpha', -dot_product(weight(2::2), u(2::2))/sum(weight(2::2)), &
                      alpha, 1.0e-8_dp)
