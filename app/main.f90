@@ -11,6 +11,7 @@ program visco2d
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: itoa
+  use visco2d_timers, only: timers_enable
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   interface
@@ -51,6 +52,8 @@ program visco2d
       call get_argument(i, out_root)
     case ('-q', '--quiet')
       quiet = .true.
+    case ('--timing')
+      call timers_enable(.true.)
     case ('check')
       if (count == 0 .and. .not. checking) then
         checking = .true.
@@ -206,6 +209,7 @@ contains
     print '(a)', 'options:'
     print '(a)', '  -o, --out DIR   output root folder (default: out)'
     print '(a)', '  -q, --quiet     do not print the one-line result of each deck'
+    print '(a)', '  --timing        print the time of each phase of each run (make bench)'
     print '(a)', '  -h, --help      this text'
     print '(a)', '      --version   program version'
     print '(a)', ''

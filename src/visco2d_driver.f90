@@ -2,6 +2,7 @@
 !> written under a temporary name and renamed into place only when every
 !> file is complete, so a failed deck never leaves half-written output.
 module visco2d_driver
+  use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
   use visco2d_strings, only: itoa, rtoa, to_upper, to_lower
@@ -13,6 +14,7 @@ module visco2d_driver
   use visco2d_contact, only: solve_static_contact
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
+  use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
                             directory_exists, remove_tree
   implicit none
@@ -79,8 +81,11 @@ contains
     type(static_solution_t) :: static_solution
     character(:), allocatable :: case_name, final_dir, temporary_dir, old_dir
     real :: cpu_start, cpu_end
+    integer(int64) :: clock_start, clock_end, clock_rate
 
     call cpu_time(cpu_start)
+    call system_clock(clock_start, clock_rate)
+    call timers_reset()
     case_name = case_name_of(path)
     call read_deck(path, deck, error)
     if (allocated(error)) return
@@ -141,7 +146,9 @@ contains
       call set_error(error, 'cannot create output folder '//temporary_dir, file=path)
       return
     end if
+    call timer_start(phase_output)
     call write_all(error)
+    call timer_stop(phase_output)
     if (allocated(error)) then
       call discard(temporary_dir)
       return
@@ -159,6 +166,11 @@ contains
       return
     end if
     if (directory_exists(old_dir)) call remove_tree(old_dir)
+    if (timers_enabled()) then
+      call system_clock(clock_end)
+      call timers_report(6, case_name//' ('//itoa(2*deck%mesh%nnode)//' equations, half-bandwidth '// &
+        itoa(deck%mesh%half_bandwidth)//')', real(clock_end - clock_start, dp)/real(clock_rate, dp))
+    end if
 
   contains
 

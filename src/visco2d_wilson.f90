@@ -38,6 +38,7 @@
 !> done on the body (an unstable integration), so no NaN reaches the results.
 module visco2d_wilson
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
@@ -57,6 +58,9 @@ module visco2d_wilson
                             history_define, history_append, record_add_snapshot, record_insert_snapshot
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, &
                              contact_search, contact_gap
+  use visco2d_timers, only: timer_start, timer_stop, timers_enabled, timers_set_floor, timers_set_steps, &
+                            phase_assembly, phase_factorization, phase_solve, phase_constitutive, phase_contact, &
+                            phase_output, phase_step_loop
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row
   implicit none
   private
@@ -163,6 +167,7 @@ contains
     call skip_field_times(0.0_dp)
 
     stage_start = 0.0_dp
+    call timer_start(phase_step_loop)
     do stage = 1, size(deck%stages)
       dt = deck%stages(stage)%dt
       tau = theta*dt
@@ -174,7 +179,10 @@ contains
         call advance()
         if (allocated(error)) return
         step_count = step_count + 1
+        call timer_start(phase_contact)
         if (contact_on) call measure_impact()
+        call timer_stop(phase_contact)
+        call timer_start(phase_output)
         if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck) .or. impact%stopped) &
           call append_row()
         if (next_field <= size(deck%output%field_times)) then
@@ -183,11 +191,15 @@ contains
             call skip_field_times(t)
           end if
         end if
+        call timer_stop(phase_output)
         if (impact%stopped) exit
       end do
       if (impact%stopped) exit
       stage_start = deck%stages(stage)%end_time
     end do
+    call timer_stop(phase_step_loop)
+    call timers_set_steps(step_count)
+    if (timers_enabled()) call measure_floor()
     call keep_snapshot('final')
 
     stored = stored_energy()
@@ -249,8 +261,10 @@ contains
       end do
       shear_dt = over_dt(deck%mesh%element_material)%shear
       bulk_dt = over_dt(deck%mesh%element_material)%bulk
+      call timer_start(phase_assembly)
       call assemble_stiffness(deck, over_tau(deck%mesh%element_material)%shear, &
                               over_tau(deck%mesh%element_material)%bulk, effective)
+      call timer_stop(phase_assembly)
       row_sum = 0.0_dp
       do j = 1, effective%n
         do i = j, min(effective%n, j + effective%kd)
@@ -267,9 +281,11 @@ contains
     !> Impose the current supports and contact conditions on S~ and factor it (dpbtrf).
     subroutine refactor()
       integer :: info
+      call timer_start(phase_factorization)
       factor = effective
       call band_constrain_matrix(factor, fixed)
       call band_factor(factor, info)
+      call timer_stop(phase_factorization)
       factorizations = factorizations + 1
       if (info > 0) call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive '// &
         'definite: '//singular_message(deck, info), file=deck%cards%file)
@@ -311,7 +327,9 @@ contains
         prescribed = target_now + theta*(target_next - target_now) - u
         if (contact_on) call adjusted_displacements(theta)
         call band_constrain_rhs(effective, fixed, prescribed, rhs)
+        call timer_start(phase_solve)
         call band_solve(factor, rhs)                                  ! rhs <- dU_tau, eq. [34]
+        call timer_stop(phase_solve)
         ! The plate reactions at t + tau, where Wilson-theta holds equilibrium
         ! (the residual of eq. [34] on the held rows). Force, pressure and
         ! release use them: at t + dt a held node's reaction carries the stiff
@@ -338,6 +356,7 @@ contains
         end if
 
         ! Trial stresses over dt: eqs. [13], [14], [23] (the history is updated once the increment stands).
+        call timer_start(phase_constitutive)
         do e = 1, deck%mesh%nelem
           increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
                                                 gather(deck%mesh, e, du), deck%formulation)
@@ -355,10 +374,13 @@ contains
           end do
         end do
         internal_next = internal_force(deck, trial)
+        call timer_stop(phase_constitutive)
         reaction_next = merge(mass*(a + da) + internal_next - load_next - gravity, 0.0_dp, fixed)
         if (.not. contact_on) exit
         ! The contact search; a changed set repeats the increment (the paper's iteration).
+        call timer_start(phase_contact)
         call contact_search(deck, contact, u, du, reaction_tau, changed, fraction)
+        call timer_stop(phase_contact)
         if (.not. changed) exit
         touch_fraction = min(touch_fraction, fraction)
         held = contact_held_dofs(deck, contact)
@@ -368,6 +390,7 @@ contains
       end do
 
       ! The increment stands: strains, stresses and history (eq. [24]).
+      call timer_start(phase_constitutive)
       do e = 1, deck%mesh%nelem
         strain(:, :, e) = strain(:, :, e) + increments(:, :, e)
         if (.not. memory) cycle
@@ -381,6 +404,7 @@ contains
         end do
       end do
       stress = trial
+      call timer_stop(phase_constitutive)
       if (contact_on) then                       ! the kinetic energy of the components stopped by the plate
         do i = 1, size(contact%candidates)
           node = contact%candidates(i)
@@ -425,6 +449,24 @@ contains
       target_now = target_next
       t = t_next
     end subroutine advance
+
+    !> The floor of the step loop for `--timing`: the seconds of one dpbtrs
+    !> back-substitution with the run's factor (the best of a few repeats).
+    subroutine measure_floor()
+      integer(int64) :: start, finish, rate
+      real(dp) :: best
+      integer :: repeat
+      best = huge(1.0_dp)
+      call system_clock(count_rate=rate)
+      do repeat = 1, 5
+        rhs = base
+        call system_clock(start)
+        call band_solve(factor, rhs)
+        call system_clock(finish)
+        best = min(best, real(finish - start, dp)/real(rate, dp))
+      end do
+      call timers_set_floor(best)
+    end subroutine measure_floor
 
     !> The adjusted displacements of the contact conditions, into `prescribed`:
     !> a contact node's u_z goes to the plate over the increment (0 once it is
