@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS,
-# HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm and
-# h5py (PyPI). Safe to run again; quiet when everything is present.
+# HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm,
+# h5py and matplotlib (PyPI). Safe to run again; quiet when everything is present.
 set -euo pipefail
 
 packages=()
@@ -29,6 +29,7 @@ fi
 pip_missing=()
 command -v fpm >/dev/null 2>&1 || pip_missing+=(fpm)
 "$python" -c "import h5py" 2>/dev/null || pip_missing+=(h5py)
+"$python" -c "import matplotlib" 2>/dev/null || pip_missing+=(matplotlib)   # make study, make figures
 if [ ${#pip_missing[@]} -gt 0 ]; then
   echo "setup: pip installing ${pip_missing[*]}"
   if ! "$python" -m pip --version >/dev/null 2>&1; then
