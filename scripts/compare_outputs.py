@@ -85,7 +85,11 @@ def compare_history(reference, run, rtol):
     if len(ref) != len(new):
         return [f"{len(new) - 1} rows vs {len(ref) - 1} in the reference"]
     columns = ref[0]
-    scales = [max((abs(float(row[j])) for row in ref[1:]), default=0.0) for j in range(len(columns))]
+    column_scales = [max((abs(float(row[j])) for row in ref[1:]), default=0.0) for j in range(len(columns))]
+    unit_scales = {}
+    for name, scale in zip(columns, column_scales):
+        unit_scales[unit(name)] = max(unit_scales.get(unit(name), 0.0), scale)
+    scales = [unit_scales[unit(name)] for name in columns]
     problems = []
     for i, (row_ref, row_new) in enumerate(zip(ref[1:], new[1:]), start=2):
         for j, name in enumerate(columns):

@@ -45,7 +45,9 @@ module visco2d_wilson
   use visco2d_deck, only: deck_t, total_steps, initial_velocity
   use visco2d_dynamic_cards, only: theta_unconditional
   use visco2d_material, only: stress_from_strain, has_memory
-  use visco2d_element, only: element_strains, element_internal_force, element_b_matrices, gauss_count
+  use visco2d_element, only: gauss_count
+  use visco2d_operators, only: operators_t, operators_create, operators_strains, operators_internal_force, &
+                               operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_factor, band_solve, band_constrain_matrix, &
                             band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
@@ -61,6 +63,7 @@ module visco2d_wilson
   use visco2d_timers, only: timer_start, timer_stop, timers_enabled, timers_set_floor, timers_set_steps, &
                             phase_assembly, phase_factorization, phase_solve, phase_constitutive, phase_contact, &
                             phase_output, phase_step_loop
+  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row
   implicit none
   private
@@ -79,17 +82,23 @@ contains
   !> the summary, one history row every OUTPUT EVERY= steps (step 0 and the
   !> last step always) and snapshots at t = 0, at the FIELDS= times and at the
   !> end (with a plate also at maximum deformation and at maximum pressure).
-  subroutine solve_dynamic(deck, record, error)
+  !> `refactor_contact` (tests only): impose contact by refactoring S~ with
+  !> the held equations eliminated, instead of the capacitance system.
+  subroutine solve_dynamic(deck, record, error, refactor_contact)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: error
+    logical, intent(in), optional :: refactor_contact
+    type(capacitance_t) :: capacitance
+    type(operators_t) :: operators
+    logical :: by_refactoring
     type(band_matrix_t) :: effective, factor
     type(step_coefficients_t), allocatable :: over_tau(:), over_dt(:)
     type(viscoelastic_state_t) :: state
     type(contact_t) :: contact
     type(impact_t) :: impact
     type(snapshot_t) :: at_alpha_max, at_q_max
-    real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:)
+    real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:), free(:)
     real(dp), allocatable :: mass(:), gravity(:), load(:), load_next(:), internal(:), internal_next(:)
     real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:), reaction_tau(:)
     real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :)
@@ -103,6 +112,8 @@ contains
     real(dp) :: touch_fraction
 
     associate (mesh => deck%mesh, materials => deck%materials)
+    by_refactoring = .false.
+    if (present(refactor_contact)) by_refactoring = refactor_contact
     theta = deck%dynamics%theta
     memory = .false.
     do k = 1, size(materials)
@@ -116,7 +127,9 @@ contains
     mass = lumped_mass(deck)                                   ! eq. [32], row sums
     body_mass = sum(mass(2::2))
     gravity = gravity_load(deck)
-    allocate(du(2*mesh%nnode), dv(2*mesh%nnode), da(2*mesh%nnode), prescribed(2*mesh%nnode))
+    call operators_create(deck, operators)
+    allocate(du(2*mesh%nnode), dv(2*mesh%nnode), da(2*mesh%nnode), prescribed(2*mesh%nnode), &
+             internal_next(2*mesh%nnode), free(2*mesh%nnode))
     allocate(stress(4, gauss_count, mesh%nelem), strain(4, gauss_count, mesh%nelem), &
              trial(4, gauss_count, mesh%nelem), increments(4, gauss_count, mesh%nelem), &
              shear_dt(mesh%nelem), bulk_dt(mesh%nelem))
@@ -206,6 +219,10 @@ contains
     call record_put_integer(record, 'steps', step_count)
     call record_put_real(record, 'theta', theta)
     call record_put_integer(record, 'factorizations', factorizations)
+    if (contact_on .and. .not. by_refactoring) then
+      call record_put_integer(record, 'capacitance_columns', capacitance%solves)
+      call record_put_integer(record, 'capacitance_factorizations', capacitance%factorizations)
+    end if
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'mass_kg', body_mass)
     call record_put_real(record, 'body_mass_kg', whole_body_mass())
@@ -278,18 +295,46 @@ contains
       call refactor()
     end subroutine factor_for
 
-    !> Impose the current supports and contact conditions on S~ and factor it (dpbtrf).
+    !> Impose the supports on S~ and factor it (dpbtrf); the contact conditions
+    !> then go through the capacitance system (hold_contact), or, with
+    !> refactor_contact, are eliminated from S~ too.
     subroutine refactor()
       integer :: info
       call timer_start(phase_factorization)
       factor = effective
-      call band_constrain_matrix(factor, fixed)
+      if (by_refactoring) then
+        call band_constrain_matrix(factor, fixed)
+      else
+        call band_constrain_matrix(factor, supports)
+      end if
       call band_factor(factor, info)
       call timer_stop(phase_factorization)
       factorizations = factorizations + 1
-      if (info > 0) call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive '// &
-        'definite: '//singular_message(deck, info), file=deck%cards%file)
+      if (info > 0) then
+        call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive '// &
+          'definite: '//singular_message(deck, info), file=deck%cards%file)
+        return
+      end if
+      if (.not. by_refactoring) then
+        call capacitance_reset(capacitance, factor%n)
+        if (contact_on) call hold_contact()
+      end if
     end subroutine refactor
+
+    !> The contact set has changed: the held equations (not supports) into
+    !> the capacitance system, or S~ refactored with them eliminated.
+    subroutine hold_contact()
+      integer :: info
+      if (by_refactoring) then
+        call refactor()
+        return
+      end if
+      call timer_start(phase_factorization)
+      call capacitance_set(capacitance, factor, held .and. .not. supports, info)
+      call timer_stop(phase_factorization)
+      if (info > 0) call set_error(error, 'the contact capacitance matrix is not positive definite '// &
+        '(equation '//itoa(info)//' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+    end subroutine hold_contact
 
     !> One Wilson-theta step from t to t_next = t + dt; with a plate, repeated
     !> while the contact set changes.
@@ -312,8 +357,7 @@ contains
             slot = state%first(e) + (g - 1)*nterm
             s0(:, g) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
           end do
-          call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
-            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), s0, deck%formulation), base)
+          call scatter_add(deck%mesh, e, -operators_element_force(operators, e, s0), base)
           end associate
         end do
       end if
@@ -322,13 +366,27 @@ contains
         touch_fraction = 1.0_dp
       end if
 
-      do
-        rhs = base
-        prescribed = target_now + theta*(target_next - target_now) - u
-        if (contact_on) call adjusted_displacements(theta)
-        call band_constrain_rhs(effective, fixed, prescribed, rhs)
+      ! dU_tau with the supports only, once per increment: a repeat after a
+      ! contact change only changes the capacitance correction.
+      prescribed = target_now + theta*(target_next - target_now) - u
+      if (.not. by_refactoring) then
         call timer_start(phase_solve)
-        call band_solve(factor, rhs)                                  ! rhs <- dU_tau, eq. [34]
+        free = base
+        call band_constrain_rhs(effective, supports, prescribed, free)
+        call band_solve(factor, free)                                 ! eq. [34] without contact
+        call timer_stop(phase_solve)
+      end if
+      do
+        if (contact_on) call adjusted_displacements(theta)
+        call timer_start(phase_solve)
+        if (by_refactoring) then
+          rhs = base
+          call band_constrain_rhs(effective, fixed, prescribed, rhs)
+          call band_solve(factor, rhs)                                ! rhs <- dU_tau, eq. [34]
+        else
+          rhs = free
+          if (contact_on) call capacitance_apply(capacitance, prescribed, rhs)   ! the held equations
+        end if
         call timer_stop(phase_solve)
         ! The plate reactions at t + tau, where Wilson-theta holds equilibrium
         ! (the residual of eq. [34] on the held rows). Force, pressure and
@@ -357,9 +415,8 @@ contains
 
         ! Trial stresses over dt: eqs. [13], [14], [23] (the history is updated once the increment stands).
         call timer_start(phase_constitutive)
+        call operators_strains(operators, du, increments)
         do e = 1, deck%mesh%nelem
-          increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                                gather(deck%mesh, e, du), deck%formulation)
           nterm = 0
           if (memory) nterm = element_terms(state, e)
           do g = 1, gauss_count
@@ -373,7 +430,7 @@ contains
             end if
           end do
         end do
-        internal_next = internal_force(deck, trial)
+        call operators_internal_force(operators, trial, internal_next)
         call timer_stop(phase_constitutive)
         reaction_next = merge(mass*(a + da) + internal_next - load_next - gravity, 0.0_dp, fixed)
         if (.not. contact_on) exit
@@ -385,7 +442,7 @@ contains
         touch_fraction = min(touch_fraction, fraction)
         held = contact_held_dofs(deck, contact)
         fixed = supports .or. held
-        call refactor()
+        call hold_contact()
         if (allocated(error)) return
       end do
 
@@ -471,6 +528,7 @@ contains
     !> The adjusted displacements of the contact conditions, into `prescribed`:
     !> a contact node's u_z goes to the plate over the increment (0 once it is
     !> there), u_r stays (STICK); `fraction` = theta gives the values at t + tau.
+    !> Supports keep their own values (an axis node's u_r is 0 either way).
     subroutine adjusted_displacements(fraction)
       real(dp), intent(in) :: fraction
       integer :: i, node
@@ -478,8 +536,8 @@ contains
         node = contact%candidates(i)
         if (.not. contact%active(node)) cycle
         associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
-        prescribed(z) = -fraction*contact_gap(deck, contact, u, node)
-        if (contact%stick) prescribed(r) = 0.0_dp
+        if (.not. supports(z)) prescribed(z) = -fraction*contact_gap(deck, contact, u, node)
+        if (contact%stick .and. .not. supports(r)) prescribed(r) = 0.0_dp
         end associate
       end do
     end subroutine adjusted_displacements
@@ -560,12 +618,10 @@ contains
     !> K theta^2/2 + G_inf e:e + sum_m G_m C_m:C_m (C_m = the history of term m,
     !> whose spring carries s_m = 2 G_m C_m), times |J| r.
     real(dp) function stored_energy() result(energy)
-      real(dp) :: b(4, 8, gauss_count), weight(gauss_count), deviatoric(4), volumetric, density
+      real(dp) :: deviatoric(4), volumetric, density
       integer :: e, g, m, nterm, slot
       energy = 0.0_dp
       do e = 1, deck%mesh%nelem
-        call element_b_matrices(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), b, weight, &
-                                deck%formulation)
         associate (material => deck%materials(deck%mesh%element_material(e)))
         nterm = 0
         if (memory) nterm = element_terms(state, e)
@@ -576,7 +632,7 @@ contains
             slot = state%first(e) + (g - 1)*nterm + m - 1
             density = density + material%prony_shear(m)*contracted(state%history(:, slot))
           end do
-          energy = energy + weight(g)*density
+          energy = energy + operators%weight(g, e)*density
         end do
         end associate
       end do

@@ -1,0 +1,158 @@
+!> Contact conditions without refactoring: the capacitance (Schur-complement)
+!> method. S~ is factored once per time step size with the supports only;
+!> the m equations held by the plate (u_c = g) are then imposed on its
+!> solution w = S~^-1 f through
+!>   C lambda = g - w_c,    C = E^T S~^-1 E  (m x m, E: the unit columns e_c),
+!>   u = w + S~^-1 E lambda,
+!> which is exactly the solution of S~ with those equations eliminated
+!> (rows and columns zeroed, values moved to the right-hand side): on the
+!> free rows S~ u = f + E lambda = f. lambda is the force the plate needs.
+!> The columns z_c = S~^-1 e_c cost one back-substitution each and are kept
+!> (per equation, reused when a node leaves and comes back) until S~
+!> changes; C is refactored (dense Cholesky, m^3/3) when the set changes.
+!> A node touching thus costs O(n kd) instead of the O(n kd^2) of
+!> refactoring S~.
+module visco2d_capacitance
+  use visco2d_kinds, only: dp
+  use visco2d_banded, only: band_matrix_t, band_solve
+  implicit none
+  private
+
+  public :: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
+
+  interface
+    subroutine dpotrf(uplo, n, a, lda, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, lda
+      real(dp), intent(inout) :: a(lda, *)
+      integer, intent(out) :: info
+    end subroutine dpotrf
+    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
+      import :: dp
+      character, intent(in) :: uplo
+      integer, intent(in) :: n, nrhs, lda, ldb
+      real(dp), intent(in) :: a(lda, *)
+      real(dp), intent(inout) :: b(ldb, *)
+      integer, intent(out) :: info
+    end subroutine dpotrs
+  end interface
+
+  !> The kept columns of S~^-1 and the factored capacitance matrix of the
+  !> current set of held equations.
+  type :: capacitance_t
+    integer :: n = 0                       !< order of S~
+    real(dp), allocatable :: columns(:, :) !< (n, capacity): z = S~^-1 e_c, one per equation ever held
+    integer, allocatable :: column_of(:)   !< (n): column of equation c in `columns` (0: none yet)
+    integer :: stored = 0                  !< columns in use
+    integer, allocatable :: held(:)        !< (m) the held equations, in order
+    integer, allocatable :: slot(:)        !< (m) their columns
+    real(dp), allocatable :: matrix(:, :)  !< (m, m) Cholesky factor of C
+    real(dp), allocatable :: multiplier(:) !< (m) lambda of the last apply
+    integer :: factorizations = 0          !< dense factorizations of C
+    integer :: solves = 0                  !< back-substitutions with S~ for new columns
+  end type capacitance_t
+
+contains
+
+  !> Forget every column (S~ has changed): order n, nothing held.
+  subroutine capacitance_reset(capacitance, n)
+    type(capacitance_t), intent(inout) :: capacitance
+    integer, intent(in) :: n
+    capacitance%n = n
+    if (allocated(capacitance%columns)) then
+      if (size(capacitance%columns, 1) /= n) deallocate(capacitance%columns)
+    end if
+    if (allocated(capacitance%column_of)) then
+      if (size(capacitance%column_of) /= n) deallocate(capacitance%column_of)
+    end if
+    if (.not. allocated(capacitance%column_of)) allocate(capacitance%column_of(n))
+    capacitance%column_of = 0
+    capacitance%stored = 0
+    capacitance%held = [integer ::]
+    capacitance%slot = [integer ::]
+    if (allocated(capacitance%matrix)) deallocate(capacitance%matrix)
+    allocate(capacitance%matrix(0, 0))
+    capacitance%multiplier = [real(dp) ::]
+  end subroutine capacitance_reset
+
+  !> Hold the equations with held(c) (none of them a support of `factor`):
+  !> compute the missing columns with `factor` and factor C. info > 0 if C
+  !> is not positive definite (the held set is dependent: cannot happen for
+  !> distinct unsupported equations of a positive definite S~).
+  subroutine capacitance_set(capacitance, factor, held, info)
+    type(capacitance_t), intent(inout) :: capacitance
+    type(band_matrix_t), intent(in) :: factor
+    logical, intent(in) :: held(:)
+    integer, intent(out) :: info
+    integer :: i, j, c, m
+    info = 0
+    capacitance%held = pack([(c, c = 1, capacitance%n)], held)
+    m = size(capacitance%held)
+    if (allocated(capacitance%slot)) deallocate(capacitance%slot)
+    allocate(capacitance%slot(m))
+    do i = 1, m
+      c = capacitance%held(i)
+      if (capacitance%column_of(c) == 0) call add_column(capacitance, factor, c)
+      capacitance%slot(i) = capacitance%column_of(c)
+    end do
+    if (allocated(capacitance%matrix)) deallocate(capacitance%matrix)
+    allocate(capacitance%matrix(m, m))
+    do j = 1, m
+      do i = 1, m
+        capacitance%matrix(i, j) = capacitance%columns(capacitance%held(i), capacitance%slot(j))
+      end do
+    end do
+    if (allocated(capacitance%multiplier)) deallocate(capacitance%multiplier)
+    allocate(capacitance%multiplier(m))
+    capacitance%multiplier = 0.0_dp
+    if (m == 0) return
+    call dpotrf('L', m, capacitance%matrix, m, info)
+    capacitance%factorizations = capacitance%factorizations + 1
+  end subroutine capacitance_set
+
+  !> Given w = S~^-1 f (supports imposed), impose u_c = values(c) on the held
+  !> equations: w <- w + S~^-1 E lambda with C lambda = values_c - w_c.
+  subroutine capacitance_apply(capacitance, values, w)
+    type(capacitance_t), intent(inout) :: capacitance
+    real(dp), intent(in) :: values(:)
+    real(dp), intent(inout) :: w(:)
+    integer :: i, m, info
+    m = size(capacitance%held)
+    if (m == 0) return
+    do i = 1, m
+      capacitance%multiplier(i) = values(capacitance%held(i)) - w(capacitance%held(i))
+    end do
+    call dpotrs('L', m, 1, capacitance%matrix, m, capacitance%multiplier, m, info)
+    do i = 1, m
+      w = w + capacitance%multiplier(i)*capacitance%columns(:, capacitance%slot(i))
+    end do
+    do i = 1, m                                         ! exactly on the constraint, not to round-off
+      w(capacitance%held(i)) = values(capacitance%held(i))
+    end do
+  end subroutine capacitance_apply
+
+  !> z = S~^-1 e_c into a new column (the store doubles when full).
+  subroutine add_column(capacitance, factor, c)
+    type(capacitance_t), intent(inout) :: capacitance
+    type(band_matrix_t), intent(in) :: factor
+    integer, intent(in) :: c
+    real(dp), allocatable :: grown(:, :)
+    integer :: capacity
+    capacity = 0
+    if (allocated(capacitance%columns)) capacity = size(capacitance%columns, 2)
+    if (capacitance%stored == capacity) then
+      allocate(grown(capacitance%n, max(8, 2*capacity)))
+      if (capacity > 0) grown(:, 1:capacity) = capacitance%columns
+      call move_alloc(grown, capacitance%columns)
+    end if
+    capacitance%stored = capacitance%stored + 1
+    associate (z => capacitance%columns(:, capacitance%stored))
+    z = 0.0_dp
+    z(c) = 1.0_dp
+    call band_solve(factor, z)
+    end associate
+    capacitance%column_of(c) = capacitance%stored
+    capacitance%solves = capacitance%solves + 1
+  end subroutine add_column
+end module visco2d_capacitance

@@ -1,0 +1,91 @@
+!> The element operators of a time-stepping run, computed once: B (or B-bar)
+!> at the four Gauss points of every element (eqs. [4]-[7] through
+!> visco2d_element), the integration factors |J| r and the element equation
+!> numbers, stored element after element so the step loop streams through
+!> them. The geometry does not change (small displacements), so B is the same
+!> at every step; this trades 128 reals per element for recomputing the
+!> Jacobians twice per element per step.
+module visco2d_operators
+  use visco2d_kinds, only: dp
+  use visco2d_deck, only: deck_t
+  use visco2d_element, only: element_b_matrices, gauss_count
+  use visco2d_assembly, only: element_dofs
+  implicit none
+  private
+
+  public :: operators_t, operators_create, operators_strains, operators_internal_force, operators_element_force
+
+  !> B, |J| r and equation numbers of every element.
+  type :: operators_t
+    integer :: nelem = 0
+    real(dp), allocatable :: b(:, :, :, :)   !< (4, 8, gauss_count, nelem)
+    real(dp), allocatable :: weight(:, :)    !< (gauss_count, nelem): |J| r (|J| in plane strain)
+    integer, allocatable :: dofs(:, :)       !< (8, nelem): (r1, z1, ..., r4, z4) in band order
+  end type operators_t
+
+contains
+
+  !> The operators of the deck's mesh, geometry and formulation.
+  subroutine operators_create(deck, operators)
+    type(deck_t), intent(in) :: deck
+    type(operators_t), intent(out) :: operators
+    integer :: e
+    associate (mesh => deck%mesh)
+    operators%nelem = mesh%nelem
+    allocate(operators%b(4, 8, gauss_count, mesh%nelem), operators%weight(gauss_count, mesh%nelem), &
+             operators%dofs(8, mesh%nelem))
+    do e = 1, mesh%nelem
+      call element_b_matrices(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), operators%b(:, :, :, e), &
+                              operators%weight(:, e), deck%formulation)
+      operators%dofs(:, e) = element_dofs(mesh, e)
+    end do
+    end associate
+  end subroutine operators_create
+
+  !> Strains B u at every Gauss point of every element (eq. [4]), u in band order.
+  pure subroutine operators_strains(operators, u, strains)
+    type(operators_t), intent(in) :: operators
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(out) :: strains(:, :, :)     !< (4, gauss_count, nelem)
+    real(dp) :: local(8)
+    integer :: e, g, j
+    do e = 1, operators%nelem
+      local = u(operators%dofs(:, e))
+      do g = 1, gauss_count
+        strains(:, g, e) = 0.0_dp
+        do j = 1, 8
+          strains(:, g, e) = strains(:, g, e) + operators%b(:, j, g, e)*local(j)
+        end do
+      end do
+    end do
+  end subroutine operators_strains
+
+  !> Internal nodal forces of one element, sum_g B^T sigma |J| r.
+  pure function operators_element_force(operators, e, stress) result(force)
+    type(operators_t), intent(in) :: operators
+    integer, intent(in) :: e
+    real(dp), intent(in) :: stress(4, gauss_count)
+    real(dp) :: force(8)
+    integer :: g, j
+    force = 0.0_dp
+    do g = 1, gauss_count
+      do j = 1, 8
+        force(j) = force(j) + operators%weight(g, e)*dot_product(operators%b(:, j, g, e), stress(:, g))
+      end do
+    end do
+  end function operators_element_force
+
+  !> Internal force vector F = sum_e sum_g B^T sigma |J| r in band order.
+  pure subroutine operators_internal_force(operators, stress, force)
+    type(operators_t), intent(in) :: operators
+    real(dp), intent(in) :: stress(:, :, :)       !< (4, gauss_count, nelem)
+    real(dp), intent(out) :: force(:)
+    real(dp) :: local(8)
+    integer :: e
+    force = 0.0_dp
+    do e = 1, operators%nelem
+      local = operators_element_force(operators, e, stress(:, :, e))
+      force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + local
+    end do
+  end subroutine operators_internal_force
+end module visco2d_operators
