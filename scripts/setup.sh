@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS,
+# Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS
+# (reference and OpenBLAS serial),
 # HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm,
 # h5py and matplotlib (PyPI). Safe to run again; quiet when everything is present.
 set -euo pipefail
@@ -11,6 +12,9 @@ command -v numdiff >/dev/null 2>&1 || packages+=(numdiff)
 command -v h5dump >/dev/null 2>&1 || packages+=(hdf5-tools)
 ls /usr/lib/*/liblapack.so >/dev/null 2>&1 || packages+=(liblapack-dev)
 ls /usr/lib/*/libblas.so >/dev/null 2>&1 || packages+=(libblas-dev)
+# An optimized single-threaded BLAS/LAPACK behind the same libblas.so.3 /
+# liblapack.so.3 (Debian alternatives): dpbtrf 4-5x faster than the reference BLAS.
+ls /usr/lib/*/openblas-serial/libblas.so.3 >/dev/null 2>&1 || packages+=(libopenblas0-serial)
 pkg-config --exists hdf5 2>/dev/null && ls /usr/include/hdf5/serial/hdf5.mod >/dev/null 2>&1 || packages+=(libhdf5-dev)
 
 if [ ${#packages[@]} -gt 0 ]; then

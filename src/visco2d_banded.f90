@@ -9,7 +9,7 @@ module visco2d_banded
 
   public :: band_matrix_t, band_create, band_add_element, band_multiply, band_multiply_rows, band_constrain
   public :: band_constrain_matrix, band_constrain_rhs
-  public :: band_factor, band_solve
+  public :: band_factor, band_solve, band_solve_many
 
   interface
     subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
@@ -182,4 +182,15 @@ contains
     if (.not. matrix%factored) error stop 'visco2d_banded: band_solve called before band_factor'
     call dpbtrs('L', matrix%n, matrix%kd, 1, matrix%ab, matrix%kd + 1, b, matrix%n, info)
   end subroutine band_solve
+
+  !> Solve A X = B in place for several right-hand sides at once (one pass
+  !> over the factor for all of them: dpbtrs reads it once per column block).
+  subroutine band_solve_many(matrix, b)
+    type(band_matrix_t), intent(in) :: matrix
+    real(dp), intent(inout) :: b(:, :)
+    integer :: info
+    if (.not. matrix%factored) error stop 'visco2d_banded: band_solve_many called before band_factor'
+    if (size(b, 2) == 0) return
+    call dpbtrs('L', matrix%n, matrix%kd, size(b, 2), matrix%ab, matrix%kd + 1, b, size(b, 1), info)
+  end subroutine band_solve_many
 end module visco2d_banded

@@ -14,7 +14,7 @@
 !> refactoring S~.
 module visco2d_capacitance
   use visco2d_kinds, only: dp
-  use visco2d_banded, only: band_matrix_t, band_solve
+  use visco2d_banded, only: band_matrix_t, band_solve_many
   implicit none
   private
 
@@ -91,10 +91,9 @@ contains
     m = size(capacitance%held)
     if (allocated(capacitance%slot)) deallocate(capacitance%slot)
     allocate(capacitance%slot(m))
+    call add_columns(capacitance, factor, pack(capacitance%held, capacitance%column_of(capacitance%held) == 0))
     do i = 1, m
-      c = capacitance%held(i)
-      if (capacitance%column_of(c) == 0) call add_column(capacitance, factor, c)
-      capacitance%slot(i) = capacitance%column_of(c)
+      capacitance%slot(i) = capacitance%column_of(capacitance%held(i))
     end do
     if (allocated(capacitance%matrix)) deallocate(capacitance%matrix)
     allocate(capacitance%matrix(m, m))
@@ -132,27 +131,31 @@ contains
     end do
   end subroutine capacitance_apply
 
-  !> z = S~^-1 e_c into a new column (the store doubles when full).
-  subroutine add_column(capacitance, factor, c)
+  !> z = S~^-1 e_c for each new equation c, as new columns, in one
+  !> multi-right-hand-side back-substitution (the store doubles when full).
+  subroutine add_columns(capacitance, factor, new)
     type(capacitance_t), intent(inout) :: capacitance
     type(band_matrix_t), intent(in) :: factor
-    integer, intent(in) :: c
+    integer, intent(in) :: new(:)
     real(dp), allocatable :: grown(:, :)
-    integer :: capacity
+    integer :: capacity, first, last, k
+    if (size(new) == 0) return
     capacity = 0
     if (allocated(capacitance%columns)) capacity = size(capacitance%columns, 2)
-    if (capacitance%stored == capacity) then
-      allocate(grown(capacitance%n, max(8, 2*capacity)))
-      if (capacity > 0) grown(:, 1:capacity) = capacitance%columns
+    if (capacitance%stored + size(new) > capacity) then
+      allocate(grown(capacitance%n, max(8, 2*capacity, capacitance%stored + size(new))))
+      if (capacitance%stored > 0) grown(:, 1:capacitance%stored) = capacitance%columns(:, 1:capacitance%stored)
       call move_alloc(grown, capacitance%columns)
     end if
-    capacitance%stored = capacitance%stored + 1
-    associate (z => capacitance%columns(:, capacitance%stored))
-    z = 0.0_dp
-    z(c) = 1.0_dp
-    call band_solve(factor, z)
-    end associate
-    capacitance%column_of(c) = capacitance%stored
-    capacitance%solves = capacitance%solves + 1
-  end subroutine add_column
+    first = capacitance%stored + 1
+    last = capacitance%stored + size(new)
+    capacitance%columns(:, first:last) = 0.0_dp
+    do k = 1, size(new)
+      capacitance%columns(new(k), first + k - 1) = 1.0_dp
+      capacitance%column_of(new(k)) = first + k - 1
+    end do
+    call band_solve_many(factor, capacitance%columns(:, first:last))
+    capacitance%stored = last
+    capacitance%solves = capacitance%solves + size(new)
+  end subroutine add_columns
 end module visco2d_capacitance

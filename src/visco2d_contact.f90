@@ -235,7 +235,7 @@ contains
         end if
       else
         if (contact%let_go(node)) cycle
-        finish = contact_gap(deck, contact, u + du, node)
+        finish = contact_gap(deck, contact, u, node) + du(node_dof(deck%mesh, node, 2))
         if (finish >= -contact%tolerance) cycle
         start = max(contact_gap(deck, contact, u, node), 0.0_dp)
         fraction = min(fraction, start/(start - finish))

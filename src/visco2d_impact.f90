@@ -8,7 +8,7 @@ module visco2d_impact
   use visco2d_strings, only: short_real
   use visco2d_deck, only: deck_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
   use visco2d_assembly, only: node_dof, nodal_field
-  use visco2d_static, only: node_stress
+  use visco2d_static, only: node_corners, corner_stress
   use visco2d_contact, only: contact_t, contact_count, contact_pressure, contact_force, contact_radius, &
                              nearest_free_node, put_hertz_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column
@@ -40,6 +40,7 @@ module visco2d_impact
     real(dp) :: accel_centre = 0.0_dp, accel_max = -huge(1.0_dp), t_accel_max = 0.0_dp
     real(dp) :: accel_cm_max = -huge(1.0_dp)
     real(dp), allocatable :: pressure(:)      !< (nnode) recovered contact pressure, Pa
+    integer, allocatable :: pole_corners(:, :) !< (corner, element) pairs at the pole (node_corners)
   end type impact_t
 
 contains
@@ -96,7 +97,8 @@ contains
     call contact_pressure(deck, contact, reaction, m%pressure, m%q)
     m%q_surface = 0.0_dp
     if (contact%active(contact%pole)) then
-      s = node_stress(deck%mesh, stress, contact%pole)
+      if (.not. allocated(m%pole_corners)) m%pole_corners = node_corners(deck%mesh, contact%pole)
+      s = corner_stress(stress, m%pole_corners)
       m%q_surface = -s(2)
     end if
     m%radius = contact_radius(deck, contact)

@@ -10,10 +10,12 @@ module visco2d_operators
   use visco2d_deck, only: deck_t
   use visco2d_element, only: element_b_matrices, gauss_count
   use visco2d_assembly, only: element_dofs
+  use visco2d_material, only: stress_from_strain
   implicit none
   private
 
   public :: operators_t, operators_create, operators_strains, operators_internal_force, operators_element_force
+  public :: operators_trial_stress
 
   !> B, |J| r and equation numbers of every element.
   type :: operators_t
@@ -88,4 +90,40 @@ contains
       force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + local
     end do
   end subroutine operators_internal_force
+
+  !> The step's constitutive pass in one sweep over the elements (each
+  !> element's B is read once): strain increments B du (eq. [4]), trial
+  !> stresses stress + D(G, K) increments (eqs. [13], [14]) + history (the
+  !> Prony part of eq. [23] over dt, precomputed; absent for elastic
+  !> materials), and their internal forces F = sum B^T trial |J| r.
+  pure subroutine operators_trial_stress(operators, du, shear, bulk, stress, increments, trial, force, history)
+    type(operators_t), intent(in) :: operators
+    real(dp), intent(in) :: du(:)
+    real(dp), intent(in) :: shear(:), bulk(:)                 !< (nelem) moduli over dt
+    real(dp), intent(in) :: stress(:, :, :)                   !< (4, gauss_count, nelem) at t
+    real(dp), intent(out) :: increments(:, :, :), trial(:, :, :)
+    real(dp), intent(out) :: force(:)
+    real(dp), intent(in), optional :: history(:, :, :)       !< (4, gauss_count, nelem)
+    real(dp) :: local(8), element_force(8), increment(4), sigma(4)
+    integer :: e, g, j
+    force = 0.0_dp
+    do e = 1, operators%nelem
+      local = du(operators%dofs(:, e))
+      element_force = 0.0_dp
+      do g = 1, gauss_count
+        increment = 0.0_dp
+        do j = 1, 8
+          increment = increment + operators%b(:, j, g, e)*local(j)
+        end do
+        sigma = stress(:, g, e) + stress_from_strain(shear(e), bulk(e), increment)
+        if (present(history)) sigma = sigma + history(:, g, e)
+        increments(:, g, e) = increment
+        trial(:, g, e) = sigma
+        do j = 1, 8
+          element_force(j) = element_force(j) + operators%weight(g, e)*dot_product(operators%b(:, j, g, e), sigma)
+        end do
+      end do
+      force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + element_force
+    end do
+  end subroutine operators_trial_stress
 end module visco2d_operators

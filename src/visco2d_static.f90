@@ -34,7 +34,7 @@ module visco2d_static
   private
 
   public :: static_solution_t, solve_static, static_record, singular_message, solve_quasistatic
-  public :: node_stress, put_field_summary, put_probe_summary, set_snapshot_stress
+  public :: node_stress, node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
 
   !> Fields of a static solution.
   type :: static_solution_t
@@ -348,20 +348,43 @@ contains
     real(dp), intent(in) :: stress(:, :, :)
     integer, intent(in) :: node
     real(dp) :: value(4)
-    real(dp) :: extrapolation(4, 4)
-    integer :: e, a, count
-    extrapolation = gauss_to_node_extrapolation()
-    value = 0.0_dp
-    count = 0
+    value = corner_stress(stress, node_corners(mesh, node))
+  end function node_stress
+
+  !> The (corner, element) pairs of the elements that meet at a node: a
+  !> search over the mesh, done once so that corner_stress is O(1) per step.
+  pure function node_corners(mesh, node) result(corners)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: node
+    integer, allocatable :: corners(:, :)
+    integer :: e, a, number
+    number = count(mesh%connectivity == node)
+    allocate(corners(2, number))
+    number = 0
     do e = 1, mesh%nelem
       do a = 1, 4
         if (mesh%connectivity(a, e) /= node) cycle
-        value = value + matmul(stress(:, :, e), extrapolation(:, a))
-        count = count + 1
+        number = number + 1
+        corners(:, number) = [a, e]
       end do
     end do
-    value = value/max(count, 1)
-  end function node_stress
+  end function node_corners
+
+  !> The nodal stress at a node from its corners (node_corners): the bilinear
+  !> extrapolation of each element's Gauss stresses, averaged over the elements.
+  pure function corner_stress(stress, corners) result(value)
+    real(dp), intent(in) :: stress(:, :, :)
+    integer, intent(in) :: corners(:, :)
+    real(dp) :: value(4)
+    real(dp) :: extrapolation(4, 4)
+    integer :: k
+    extrapolation = gauss_to_node_extrapolation()
+    value = 0.0_dp
+    do k = 1, size(corners, 2)
+      value = value + matmul(stress(:, :, corners(2, k)), extrapolation(:, corners(1, k)))
+    end do
+    value = value/max(size(corners, 2), 1)
+  end function corner_stress
 
   !> The stress fields of a snapshot from Gauss-point stresses: the Gauss
   !> values, their nodal averages, and the nodal maximum shear and von Mises stress.

@@ -46,8 +46,7 @@ module visco2d_wilson
   use visco2d_dynamic_cards, only: theta_unconditional
   use visco2d_material, only: stress_from_strain, has_memory
   use visco2d_element, only: gauss_count
-  use visco2d_operators, only: operators_t, operators_create, operators_strains, operators_internal_force, &
-                               operators_element_force
+  use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_factor, band_solve, band_constrain_matrix, &
                             band_constrain_rhs
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
@@ -55,7 +54,7 @@ module visco2d_wilson
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
-  use visco2d_static, only: singular_message, node_stress, put_field_summary, put_probe_summary, set_snapshot_stress
+  use visco2d_static, only: singular_message, node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, &
                             history_define, history_append, record_add_snapshot, record_insert_snapshot
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, &
@@ -69,6 +68,20 @@ module visco2d_wilson
   private
 
   public :: solve_dynamic, energy_growth_limit
+
+  !> The (corner, element) pairs at a probe node (node_corners).
+  type :: corners_t
+    integer, allocatable :: pairs(:, :)
+  end type corners_t
+
+  !> The state at a running maximum, kept as plain copies (no conversion per
+  !> step): it becomes a snapshot once, at the end of the run.
+  type :: kept_state_t
+    logical :: kept = .false.
+    integer :: step = 0
+    real(dp) :: time = 0.0_dp
+    real(dp), allocatable :: u(:), v(:), a(:), stress(:, :, :)
+  end type kept_state_t
 
   !> The run stops as unstable when kinetic + internal energy exceeds this
   !> multiple of the energy put into the body (initial kinetic energy plus the
@@ -97,11 +110,13 @@ contains
     type(viscoelastic_state_t) :: state
     type(contact_t) :: contact
     type(impact_t) :: impact
-    type(snapshot_t) :: at_alpha_max, at_q_max
+    type(kept_state_t) :: at_alpha_max, at_q_max
+    type(corners_t), allocatable :: probe_corners(:)
+    real(dp), allocatable :: row(:)
     real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:), free(:)
     real(dp), allocatable :: mass(:), gravity(:), load(:), load_next(:), internal(:), internal_next(:)
     real(dp), allocatable :: reaction(:), reaction_next(:), target_now(:), target_next(:), reaction_tau(:)
-    real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :)
+    real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :), history_dt(:, :, :)
     real(dp), allocatable :: shear_dt(:), bulk_dt(:)
     logical, allocatable :: fixed(:), supports(:), held(:)
     logical :: memory, contact_on
@@ -119,7 +134,10 @@ contains
     do k = 1, size(materials)
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) memory = .true.
     end do
-    if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
+    if (memory) then
+      call viscoelastic_state_create(materials, mesh%element_material, state)
+      allocate(history_dt(4, gauss_count, mesh%nelem))
+    end if
     contact_on = deck%plate%line > 0
     allocate(over_tau(size(materials)), over_dt(size(materials)))
     supports = support_mask(deck)
@@ -173,6 +191,10 @@ contains
     balance = 0.0_dp
     next_field = 1
 
+    allocate(probe_corners(size(deck%probes)))
+    do k = 1, size(deck%probes)
+      probe_corners(k)%pairs = node_corners(mesh, deck%probes(k)%node)
+    end do
     call define_history()
     t = 0.0_dp
     call append_row()
@@ -243,8 +265,8 @@ contains
     if (contact_on) then
       call impact_summary(impact, deck, contact, record, whole_body_mass(), t)
       if (impact%t_contact >= 0.0_dp) then                     ! the fields at the maxima
-        call insert_maximum_snapshot(at_alpha_max)
-        call insert_maximum_snapshot(at_q_max)
+        call insert_maximum_snapshot(at_alpha_max, 'maximum deformation')
+        call insert_maximum_snapshot(at_q_max, 'maximum pressure')
       end if
     end if
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
@@ -361,6 +383,22 @@ contains
           end associate
         end do
       end if
+      if (memory) then                      ! the Prony part of eq. [23] over dt: the same for every repeat
+        call timer_start(phase_constitutive)
+        history_dt = 0.0_dp
+        do e = 1, deck%mesh%nelem
+          nterm = element_terms(state, e)
+          if (nterm == 0) cycle
+          associate (material => deck%materials(deck%mesh%element_material(e)), &
+                     c => over_dt(deck%mesh%element_material(e)))
+          do g = 1, gauss_count
+            slot = state%first(e) + (g - 1)*nterm
+            history_dt(:, g, e) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))
+          end do
+          end associate
+        end do
+        call timer_stop(phase_constitutive)
+      end if
       if (contact_on) then
         call contact_begin_increment(contact)
         touch_fraction = 1.0_dp
@@ -415,22 +453,12 @@ contains
 
         ! Trial stresses over dt: eqs. [13], [14], [23] (the history is updated once the increment stands).
         call timer_start(phase_constitutive)
-        call operators_strains(operators, du, increments)
-        do e = 1, deck%mesh%nelem
-          nterm = 0
-          if (memory) nterm = element_terms(state, e)
-          do g = 1, gauss_count
-            trial(:, g, e) = stress(:, g, e) + stress_from_strain(shear_dt(e), bulk_dt(e), increments(:, g, e))
-            if (nterm > 0) then
-              slot = state%first(e) + (g - 1)*nterm
-              associate (material => deck%materials(deck%mesh%element_material(e)), &
-                         c => over_dt(deck%mesh%element_material(e)))
-              trial(:, g, e) = trial(:, g, e) + history_stress(material, c, state%history(:, slot:slot + nterm - 1))
-              end associate
-            end if
-          end do
-        end do
-        call operators_internal_force(operators, trial, internal_next)
+        if (memory) then
+          call operators_trial_stress(operators, du, shear_dt, bulk_dt, stress, increments, trial, internal_next, &
+                                      history_dt)
+        else
+          call operators_trial_stress(operators, du, shear_dt, bulk_dt, stress, increments, trial, internal_next)
+        end if
         call timer_stop(phase_constitutive)
         reaction_next = merge(mass*(a + da) + internal_next - load_next - gravity, 0.0_dp, fixed)
         if (.not. contact_on) exit
@@ -560,32 +588,49 @@ contains
                           [centre_of_mass(u), centre_of_mass(v), centre_of_mass(a)], &
                           [centre_of_mass(u - du), centre_of_mass(v - dv)], reaction_tau, u, v, a, stress, &
                           new_alpha_max, new_q_max)
-      if (new_alpha_max) at_alpha_max = raw_snapshot('maximum deformation')
-      if (new_q_max) at_q_max = raw_snapshot('maximum pressure')
+      if (new_alpha_max) call keep_state(at_alpha_max)
+      if (new_q_max) call keep_state(at_q_max)
     end subroutine measure_impact
 
-    !> The fields now without their nodal stress recovery (stress_gauss only).
-    function raw_snapshot(label) result(snapshot)
+    !> Copy the state now (the arrays are allocated once, at the first copy).
+    subroutine keep_state(kept)
+      type(kept_state_t), intent(inout) :: kept
+      kept%kept = .true.
+      kept%step = step_count
+      kept%time = t
+      kept%u = u
+      kept%v = v
+      kept%a = a
+      kept%stress = stress
+    end subroutine keep_state
+
+    !> A kept state as a snapshot (nodal fields and stresses), inserted in time order.
+    subroutine insert_maximum_snapshot(kept, label)
+      type(kept_state_t), intent(in) :: kept
       character(*), intent(in) :: label
       type(snapshot_t) :: snapshot
-      character(len=16) :: digits
-      write(digits, '(i0.'//itoa(width)//')') step_count
-      snapshot%name = 'step_'//trim(digits)
-      snapshot%label = label
-      snapshot%time = t
-      snapshot%displacement = nodal_field(deck%mesh, u)
-      snapshot%velocity = nodal_field(deck%mesh, v)
-      snapshot%acceleration = nodal_field(deck%mesh, a)
-      snapshot%stress_gauss = stress
-    end function raw_snapshot
-
-    !> Complete a raw snapshot (nodal stresses) and keep it in time order.
-    subroutine insert_maximum_snapshot(snapshot)
-      type(snapshot_t), intent(inout) :: snapshot
-      if (.not. allocated(snapshot%name)) return
-      call set_snapshot_stress(deck%mesh, snapshot%stress_gauss, snapshot)
+      if (.not. kept%kept) return
+      snapshot = fields_snapshot(label, kept%step, kept%time, kept%u, kept%v, kept%a, kept%stress)
       call record_insert_snapshot(record, snapshot)
     end subroutine insert_maximum_snapshot
+
+    !> A snapshot named after its step: nodal displacement, velocity,
+    !> acceleration and the stresses (Gauss and recovered nodal values).
+    function fields_snapshot(label, at_step, time, u_now, v_now, a_now, stress_now) result(snapshot)
+      character(*), intent(in) :: label
+      integer, intent(in) :: at_step
+      real(dp), intent(in) :: time, u_now(:), v_now(:), a_now(:), stress_now(:, :, :)
+      type(snapshot_t) :: snapshot
+      character(len=16) :: digits
+      write(digits, '(i0.'//itoa(width)//')') at_step
+      snapshot%name = 'step_'//trim(digits)
+      snapshot%label = label
+      snapshot%time = time
+      snapshot%displacement = nodal_field(deck%mesh, u_now)
+      snapshot%velocity = nodal_field(deck%mesh, v_now)
+      snapshot%acceleration = nodal_field(deck%mesh, a_now)
+      call set_snapshot_stress(deck%mesh, stress_now, snapshot)
+    end function fields_snapshot
 
     !> Mass of the whole body, kg (2 pi times the mass per radian in axisymmetry).
     real(dp) function whole_body_mass()
@@ -665,22 +710,35 @@ contains
         end do
       end do
       call history_define(record, columns, total_steps(deck)/deck%output%every + 2)
+      allocate(row(size(columns)))
     end subroutine define_history
 
+    !> One history row (the columns of define_history), into the row kept for it.
     subroutine append_row()
-      real(dp), allocatable :: row(:)
-      integer :: p, node
+      integer :: p, node, first, columns_impact
+      real(dp) :: largest
       stored = stored_energy()
-      row = [real(step_count, dp), t, maxval(norm2(nodal_field(deck%mesh, u), dim=1)), centre_of_mass(u), centre_of_mass(v), &
-             centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
-             balance, sum(reaction(1::2)), sum(reaction(2::2))]
+      largest = 0.0_dp
+      do node = 1, deck%mesh%nnode
+        largest = max(largest, hypot(u(node_dof(deck%mesh, node, 1)), u(node_dof(deck%mesh, node, 2))))
+      end do
+      row(1:14) = [real(step_count, dp), t, largest, centre_of_mass(u), centre_of_mass(v), &
+                   centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
+                   balance, sum(reaction(1::2)), sum(reaction(2::2))]
+      first = 15
       ! t_ms and alpha_mm are filled in by impact_summary, once first contact is known.
-      if (contact_on) row = [row, impact_row(impact), contact_loss]
+      if (contact_on) then
+        columns_impact = size(impact_columns())
+        row(first:first + columns_impact - 1) = impact_row(impact)
+        row(first + columns_impact) = contact_loss
+        first = first + columns_impact + 1
+      end if
       do p = 1, size(deck%probes)
         node = deck%probes(p)%node
         associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
-        row = [row, u(r), u(z), v(r), v(z), a(r), a(z), node_stress(deck%mesh, stress, node)]
+        row(first:first + 9) = [u(r), u(z), v(r), v(z), a(r), a(z), corner_stress(stress, probe_corners(p)%pairs)]
         end associate
+        first = first + 10
       end do
       call history_append(record, row)
     end subroutine append_row
@@ -713,8 +771,7 @@ contains
     function snapshot_now(label) result(snapshot)
       character(*), intent(in) :: label
       type(snapshot_t) :: snapshot
-      snapshot = raw_snapshot(label)
-      call set_snapshot_stress(deck%mesh, stress, snapshot)
+      snapshot = fields_snapshot(label, step_count, t, u, v, a, stress)
     end function snapshot_now
   end subroutine solve_dynamic
 end module visco2d_wilson
