@@ -81,22 +81,22 @@ contains
     end do
   end function band_multiply
 
-  !> y = A x on the rows p with rows(p) (0 elsewhere), A the (unfactored)
-  !> symmetric band matrix: O(kd) per selected row.
+  !> (A x)(p) for the listed rows p (y(k) for rows(k)), A the (unfactored)
+  !> symmetric band matrix: O(kd) per row.
   pure function band_multiply_rows(matrix, x, rows) result(y)
     type(band_matrix_t), intent(in) :: matrix
     real(dp), intent(in) :: x(:)
-    logical, intent(in) :: rows(:)
-    real(dp) :: y(size(x))
-    integer :: i, j, p
-    y = 0.0_dp
-    do p = 1, matrix%n
-      if (.not. rows(p)) cycle
+    integer, intent(in) :: rows(:)
+    real(dp) :: y(size(rows))
+    integer :: i, j, k, p
+    do k = 1, size(rows)
+      p = rows(k)
+      y(k) = 0.0_dp
       do j = max(1, p - matrix%kd), p                      ! row p, left of and on the diagonal
-        y(p) = y(p) + matrix%ab(1 + p - j, j)*x(j)
+        y(k) = y(k) + matrix%ab(1 + p - j, j)*x(j)
       end do
       do i = p + 1, min(matrix%n, p + matrix%kd)           ! row p, right of the diagonal (column p below it)
-        y(p) = y(p) + matrix%ab(1 + i - p, p)*x(i)
+        y(k) = y(k) + matrix%ab(1 + i - p, p)*x(i)
       end do
     end do
   end function band_multiply_rows

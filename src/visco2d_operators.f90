@@ -10,7 +10,6 @@ module visco2d_operators
   use visco2d_deck, only: deck_t
   use visco2d_element, only: element_b_matrices, gauss_count
   use visco2d_assembly, only: element_dofs
-  use visco2d_material, only: stress_from_strain
   implicit none
   private
 
@@ -104,7 +103,7 @@ contains
     real(dp), intent(out) :: increments(:, :, :), trial(:, :, :)
     real(dp), intent(out) :: force(:)
     real(dp), intent(in), optional :: history(:, :, :)       !< (4, gauss_count, nelem)
-    real(dp) :: local(8), element_force(8), increment(4), sigma(4)
+    real(dp) :: local(8), element_force(8), increment(4), sigma(4), volumetric
     integer :: e, g, j
     force = 0.0_dp
     do e = 1, operators%nelem
@@ -115,7 +114,9 @@ contains
         do j = 1, 8
           increment = increment + operators%b(:, j, g, e)*local(j)
         end do
-        sigma = stress(:, g, e) + stress_from_strain(shear(e), bulk(e), increment)
+        volumetric = increment(1) + increment(2) + increment(3)     ! stress_from_strain, inlined: eqs. [1], [2], [8], [9]
+        sigma(1:3) = stress(1:3, g, e) + bulk(e)*volumetric + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
+        sigma(4) = stress(4, g, e) + shear(e)*increment(4)
         if (present(history)) sigma = sigma + history(:, g, e)
         increments(:, g, e) = increment
         trial(:, g, e) = sigma

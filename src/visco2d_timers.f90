@@ -120,12 +120,12 @@ contains
     integer :: phase
     real(dp) :: per_step
     write(unit, '(a)') 'timing: '//label
-    write(unit, '(a)') 'timing:   phase                  seconds     calls   share'
+    write(unit, '(a)') 'timing:   phase                    seconds     calls   share'
     do phase = 1, phase_count
-      write(unit, '(a, a20, f10.4, i10, f8.1, a)') 'timing:   ', names(phase), timer_seconds(phase), calls(phase), &
+      write(unit, '(a, a20, f12.6, i10, f8.1, a)') 'timing:   ', names(phase), timer_seconds(phase), calls(phase), &
         100.0_dp*timer_seconds(phase)/max(total_seconds, tiny(1.0_dp)), ' %'
     end do
-    write(unit, '(a, a20, f10.4)') 'timing:   ', 'whole run', total_seconds
+    write(unit, '(a, a20, f12.6)') 'timing:   ', 'whole run', total_seconds
     if (step_total > 0 .and. floor_seconds > 0.0_dp) then
       per_step = timer_seconds(phase_step_loop)/step_total
       write(unit, '(a, i0, a, es10.3, a, es10.3, a, f6.2)') 'timing:   steps ', step_total, &

@@ -119,6 +119,7 @@ contains
     real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :), history_dt(:, :, :)
     real(dp), allocatable :: shear_dt(:), bulk_dt(:)
     logical, allocatable :: fixed(:), supports(:), held(:)
+    integer, allocatable :: fixed_rows(:)
     logical :: memory, contact_on
     integer :: step, stage, k, factorizations, step_count, next_field, width
     real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
@@ -142,6 +143,7 @@ contains
     allocate(over_tau(size(materials)), over_dt(size(materials)))
     supports = support_mask(deck)
     fixed = supports
+    fixed_rows = pack([(k, k = 1, size(fixed))], fixed)
     mass = lumped_mass(deck)                                   ! eq. [32], row sums
     body_mass = sum(mass(2::2))
     gravity = gravity_load(deck)
@@ -436,8 +438,13 @@ contains
         ! M U''_tau of the held node itself: it is zero once a node is held, and
         ! in the step a node touches it is the impulse that stops the node's
         ! mass (reported as contact_loss_J), not a pressure on the plate.
-        if (contact_on) reaction_tau = merge(band_multiply_rows(effective, rhs, fixed) - base &
-          - mass*(6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 2.0_dp*a), 0.0_dp, fixed)
+        if (contact_on) then
+          reaction_tau = 0.0_dp
+          associate (p => fixed_rows)
+          reaction_tau(p) = band_multiply_rows(effective, rhs, p) - base(p) &
+            - mass(p)*(6.0_dp/tau**2*rhs(p) - 6.0_dp/tau*v(p) - 2.0_dp*a(p))
+          end associate
+        end if
         da = (6.0_dp/tau**2*rhs - 6.0_dp/tau*v - 3.0_dp*a)/theta        ! eq. [37]
         dv = a*dt + 0.5_dp*dt*da                                        ! eq. [38]
         du = v*dt + 0.5_dp*dt**2*a + dt**2/6.0_dp*da                    ! eq. [39]
@@ -470,6 +477,7 @@ contains
         touch_fraction = min(touch_fraction, fraction)
         held = contact_held_dofs(deck, contact)
         fixed = supports .or. held
+        fixed_rows = pack([(i, i = 1, size(fixed))], fixed)
         call hold_contact()
         if (allocated(error)) return
       end do
