@@ -299,7 +299,7 @@ def markdown(rows, refs, cases, levels, dts_ms, fast, version, cpu_model):
                 lines.append("| %s | — | a run the reference needs failed | | | | | | — |" % label)
                 continue
             cells = [label, fmt(r["finest"], 5), ", ".join(fmt(v, 5) for v in r["mesh_values"])]
-            for part, values_note in (("mesh", None), ("time", None)):
+            for part in ("mesh", "time"):
                 corr, p_obs, p_used, note = r[part]
                 if part == "time":
                     cells.append(", ".join(fmt(v, 5) for v in r["time_values"]))
