@@ -44,5 +44,22 @@ bless: build
 	done
 	@echo "reference_outputs/ regenerated for $(words $(DECKS)) decks: review 'git diff reference_outputs' and say why in the commit"
 
+# make study       what accuracy costs in time: the Table 1 and Table 2 impacts over mesh levels 1-5
+#                  and DT 0.04 ... 0.0025 ms into out/study/ (study.csv, study.md, study.png); long: the
+#                  level-5 runs dominate. STUDY_ARGS="--levels 1,2,3,4" (or --dts-ms, --cases, --reuse).
+# make study-fast  the same on levels 1-3 at DT 0.02 and 0.01 ms into out/study-fast/ (seconds)
+.PHONY: study study-fast
+study: build
+	@python3 scripts/study.py $(STUDY_ARGS)
+
+study-fast: build
+	@python3 scripts/study.py --fast $(STUDY_ARGS)
+
+# make bench       seconds per phase (visco2d --timing) of the Table 1 impact at levels 1, 4, 5 into
+#                  out/bench/ (bench.md, bench.csv); BENCH_ARGS="--levels 1,2,3" for a quick one.
+.PHONY: bench
+bench: build
+	@python3 scripts/bench.py $(BENCH_ARGS)
+
 clean:
 	rm -rf build out

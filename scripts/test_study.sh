@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# The fast variant of `make study` as a check (`make study-fast`, < 1 min):
+#
+#   bash scripts/test_study.sh [PATH/TO/visco2d]     (default build/install/bin/visco2d)
+#
+# Runs scripts/study.py --fast (the Table 1 and Table 2 impacts on mesh levels
+# 1-3 at DT 0.02 and 0.01 ms) into build/study-fast/ and prints one line per
+# check, `PASS name` or `FAIL name: detail`. Exit status 1 if any check failed.
+#
+# Checks: the script and every run succeeded; study.csv has 12 rows (2 cases x
+# 3 levels x 2 DT) and the documented columns; study.md and study.png exist;
+# alpha_m's observed order from levels 1-3 (p = log2((f2 - f1)/(f3 - f2)),
+# recomputed here from study.csv) is positive, i.e. the changes shrink with
+# refinement, at each DT; alpha_m's error against the extrapolated reference
+# falls with level at each DT; and the reference behind err_alpha_pct,
+# recomputed here from the csv values by the documented formula, agrees.
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+exe=${1:-$root/build/install/bin/visco2d}
+out=$root/build/study-fast
+rm -rf "$out"
+mkdir -p "$out"
+
+status=0
+if python3 "$root/scripts/study.py" --fast --out "$out" --exe "$exe" > "$out/study.log" 2>&1; then
+  echo "PASS study_fast_ran"
+else
+  echo "FAIL study_fast_ran: scripts/study.py --fast exited non-zero; see $out/study.log: $(tail -3 "$out/study.log" | tr '\n' '|')"
+  status=1
+fi
+
+python3 - "$out" <<'EOF' || status=1
+import csv, math, os, sys
+
+out = sys.argv[1]
+failed = False
+
+
+def check(name, ok, detail=""):
+    global failed
+    if ok:
+        print("PASS " + name)
+    else:
+        failed = True
+        print("FAIL %s: %s" % (name, detail))
+
+
+columns = ["case", "level", "elements", "dofs", "half_bandwidth", "dt_ms", "steps", "factorizations",
+           "alpha_max_mm", "t_alpha_max_ms", "q_max_MPa", "cpu_s", "wall_s",
+           "err_alpha_pct", "err_t_alpha_pct", "err_q_pct", "err_max_pct",
+           "hertz_alpha_max_mm", "hertz_t_alpha_max_ms", "hertz_q_max_MPa", "status"]
+cases = ["table1_elastic", "table2_viscoelastic"]
+levels = [1, 2, 3]
+dts = [0.02, 0.01]
+path = os.path.join(out, "study.csv")
+try:
+    with open(path, newline="") as handle:
+        reader = csv.DictReader(handle)
+        header = reader.fieldnames or []
+        rows = list(reader)
+except OSError as exc:
+    check("study_csv_exists", False, str(exc))
+    sys.exit(1)
+check("study_csv_columns", all(c in header for c in columns),
+      "missing: %s" % [c for c in columns if c not in header])
+keys = sorted((r.get("case"), int(r.get("level") or 0), float(r.get("dt_ms") or 0)) for r in rows)
+expected = sorted((c, lv, dt) for c in cases for lv in levels for dt in dts)
+check("study_csv_rows", keys == expected, "got %d rows %s, expected %d" % (len(rows), keys, len(expected)))
+bad = [(r.get("case"), r.get("level"), r.get("dt_ms")) for r in rows if r.get("status") != "ok"]
+check("every_run_succeeded", not bad, "failed runs: %s" % bad)
+elastic_hertz = [r for r in rows if r.get("case") == "table1_elastic" and not r.get("hertz_alpha_max_mm")]
+check("hertz_columns_filled_for_elastic", not elastic_hertz, "%d elastic rows without Hertz" % len(elastic_hertz))
+
+md = os.path.join(out, "study.md")
+text = open(md).read() if os.path.isfile(md) else ""
+check("study_md_exists", all("## " + c in text for c in cases) and "Richardson" in text,
+      "%s missing or without a section per case" % md)
+png = os.path.join(out, "study.png")
+magic = b""
+if os.path.isfile(png):
+    with open(png, "rb") as handle:
+        magic = handle.read(8)
+check("study_png_exists", magic == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 10000,
+      "%s missing or not a PNG of a plot" % png)
+
+good = {(r["case"], int(r["level"]), float(r["dt_ms"])): r for r in rows if r.get("status") == "ok"}
+for case in cases:
+    for dt in dts:
+        try:
+            f1, f2, f3 = (float(good[(case, lv, dt)]["alpha_max_mm"]) for lv in levels)
+            errs = [float(good[(case, lv, dt)]["err_alpha_pct"]) for lv in levels]
+        except (KeyError, ValueError) as exc:
+            check("alpha_order_positive_%s_dt%g" % (case, dt), False, "missing run or value %s" % exc)
+            continue
+        d1, d2 = f2 - f1, f3 - f2
+        # Positive observed order: the level 2->3 change is smaller than the 1->2 change and of the same sign.
+        order = math.log2(d1 / d2) if d1 * d2 > 0 else float("nan")
+        check("alpha_order_positive_%s_dt%g" % (case, dt), order > 0,
+              "alpha %.6g, %.6g, %.6g mm: observed order %.3g" % (f1, f2, f3, order))
+        check("alpha_error_falls_with_level_%s_dt%g" % (case, dt), errs[0] > errs[1] > errs[2],
+              "err_alpha_pct by level: %s" % errs)
+
+# The reference recomputed from the csv by the documented formula: mesh Richardson over levels 1-3 at
+# DT 0.01 ms (observed order, p = 2 if outside [0.5, 4] or non-monotone) plus the DT correction at level 3
+# from two steps (p = 2 assumed). The csv holds 6 significant digits, so agreement to 1e-3 % (absolute,
+# in the percentage) is what rounding allows for errors of a few percent.
+for case in cases:
+    try:
+        f1, f2, f3 = (float(good[(case, lv, 0.01)]["alpha_max_mm"]) for lv in levels)
+        g2 = float(good[(case, 3, 0.02)]["alpha_max_mm"])
+    except KeyError as exc:
+        check("reference_recomputed_%s" % case, False, "missing run %s" % exc)
+        continue
+    d1, d2 = f2 - f1, f3 - f2
+    p = math.log2(d1 / d2) if d1 * d2 > 0 else 2.0
+    if not 0.5 <= p <= 4.0:
+        p = 2.0
+    ref = f3 + d2 / (2.0**p - 1.0) + (f3 - g2) / 3.0
+    worst = max(abs(100.0 * abs(float(r["alpha_max_mm"]) - ref) / ref - float(r["err_alpha_pct"]))
+                for key, r in good.items() if key[0] == case)
+    check("reference_recomputed_%s" % case, worst < 1e-3,
+          "alpha* = %.6g mm; err_alpha_pct differs from the recomputed error by up to %.3g %%" % (ref, worst))
+sys.exit(1 if failed else 0)
+EOF
+exit $status
