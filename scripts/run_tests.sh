@@ -36,6 +36,11 @@ bash scripts/test_cli.sh "$exe" > "$log/cli.log" 2>&1
 count "$log/cli.log"
 echo "   $(grep -c '^PASS ' "$log/cli.log") checks passed"
 
+echo "== study (make study-fast)"
+bash scripts/test_study.sh "$exe" > "$log/study.log" 2>&1
+count "$log/study.log"
+echo "   $(grep -c '^PASS ' "$log/study.log") checks passed"
+
 echo "== reference outputs (rtol 1e-6)"
 rm -rf build/reference-check && mkdir -p build/reference-check
 for deck in inputs/*.inp; do
