@@ -523,14 +523,14 @@ def max_shear_figure(run, plate, path, written, zoom=(12.0, 10.0), vmax=None):
     close.set_ylim(-0.4, zoom[1])
     close.annotate(f"max τ (red star) = {n['tau_max_MPa']:.3f} MPa\nat r = {n['r_mm']:.2f} mm, z = {n['z_mm']:.2f} mm\n"
                    f"(undeformed: r = {n['r0_mm']:.2f} mm, z = {n['z0_mm']:.2f} mm)",
-                   (n["r_mm"], n["z_mm"]), textcoords="axes fraction", xytext=(0.42, 0.50), color="w", fontsize=10,
+                   (n["r_mm"], n["z_mm"]), textcoords="axes fraction", xytext=(0.36, 0.45), color="w", fontsize=10,
                    arrowprops=dict(arrowstyle="->", color="w"),
                    bbox=dict(boxstyle="round", fc="0.15", ec="none", alpha=0.75))
     hertz_depth = n["hertz_depth_mm"]
     close.plot([0.0], [hertz_depth], "wo", mfc="none", ms=11, mew=1.8, zorder=5)
-    close.annotate(f"Hertz (frictionless, half-space; white circle): max τ = {n['hertz_tau_MPa']:.3f} MPa\n"
-                   f"on the axis at depth {hertz_depth:.2f} mm (a = {n['hertz_a_mm']:.2f} mm)",
-                   (0.0, hertz_depth), textcoords="axes fraction", xytext=(0.42, 0.78), color="w", fontsize=10,
+    close.annotate(f"Hertz (white circle; frictionless half-space):\nmax τ = {n['hertz_tau_MPa']:.3f} MPa "
+                   f"on the axis at depth {hertz_depth:.2f} mm\n(contact radius a = {n['hertz_a_mm']:.2f} mm)",
+                   (0.0, hertz_depth), textcoords="axes fraction", xytext=(0.36, 0.72), color="w", fontsize=10,
                    arrowprops=dict(arrowstyle="->", color="w"),
                    bbox=dict(boxstyle="round", fc="0.15", ec="none", alpha=0.75))
     close.set_title(f"contact region, r < {zoom[0]:g} mm, z < {zoom[1]:g} mm (plate: black line z = 0)",
