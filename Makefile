@@ -2,6 +2,7 @@
 #   make run    install what is missing, build (release), run every deck in inputs/ into out/,
 #               then print the impact results beside the paper's (scripts/paper_table.py)
 #   make test   install what is missing, run the tests and the reference-output diffs
+#   make figures  pictures of the paper's figures into out/figures/ (scripts/figures.py)
 # and, on purpose only:
 #   make bless  regenerate reference_outputs/ from the current code (say why in the commit)
 
@@ -26,6 +27,13 @@ run: build
 	@$(EXE) -o out $(DECKS); status=$$?; \
 	  echo; python3 scripts/paper_table.py out; \
 	  exit $$status
+
+# make figures: PNGs of the paper's Figs. 2-6 and of the maximum shear at maximum
+# deformation into out/figures/ (runs any paper deck missing from out/, and Table 1 on a
+# level-4 mesh into out/figures/runs/); scripts/figures.py --help for options.
+.PHONY: figures
+figures: build
+	@python3 scripts/figures.py --out out --exe $(EXE)
 
 check: build
 	@$(EXE) check $(DECKS)

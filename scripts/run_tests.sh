@@ -41,6 +41,11 @@ bash scripts/test_study.sh "$exe" > "$log/study.log" 2>&1
 count "$log/study.log"
 echo "   $(grep -c '^PASS ' "$log/study.log") checks passed"
 
+echo "== figures (make figures smoke check)"
+bash scripts/test_figures.sh "$exe" > "$log/figures.log" 2>&1
+count "$log/figures.log"
+echo "   $(grep -c '^PASS ' "$log/figures.log") checks passed"
+
 echo "== reference outputs (rtol 1e-6)"
 rm -rf build/reference-check && mkdir -p build/reference-check
 for deck in inputs/*.inp; do
