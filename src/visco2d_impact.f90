@@ -33,6 +33,11 @@ module visco2d_impact
     real(dp) :: t_separation = -1.0_dp, v_separation = 0.0_dp
     integer :: contact_nodes = 0, contact_nodes_max = 0
     real(dp) :: alpha = 0.0_dp, alpha_max = 0.0_dp, t_alpha_max = 0.0_dp
+    !> alpha and time (since contact) at the step before the sampled maximum
+    !> and at the step after it (the parabola through the three, at the end)
+    real(dp) :: alpha_previous = 0.0_dp, t_previous = 0.0_dp
+    real(dp) :: alpha_before = 0.0_dp, t_before = 0.0_dp, alpha_after = 0.0_dp, t_after = 0.0_dp
+    logical :: have_before = .false., have_after = .false.
     real(dp) :: q = 0.0_dp, q_max = 0.0_dp, t_q_max = 0.0_dp
     real(dp) :: q_surface = 0.0_dp, q_surface_max = 0.0_dp, t_q_surface_max = 0.0_dp
     real(dp) :: force = 0.0_dp, force_max = 0.0_dp, t_force_max = 0.0_dp
@@ -108,12 +113,23 @@ contains
     m%contact_nodes_max = max(m%contact_nodes_max, m%contact_nodes)
     m%alpha = m%u_cm_contact - cm(1)
     if (m%alpha > m%alpha_max) then
+      m%have_before = m%t_alpha_max > 0.0_dp .or. m%alpha_max > 0.0_dp   ! a sample before this one since contact
+      m%alpha_before = m%alpha_previous
+      m%t_before = m%t_previous
+      m%have_after = .false.
       m%alpha_max = m%alpha
       m%t_alpha_max = since
       new_alpha_max = .true.
     else if (m%alpha_max > 0.0_dp) then
       m%alpha_passed = .true.
+      if (.not. m%have_after) then
+        m%have_after = .true.
+        m%alpha_after = m%alpha
+        m%t_after = since
+      end if
     end if
+    m%alpha_previous = m%alpha
+    m%t_previous = since
     if (m%q > m%q_max) then
       m%q_max = m%q
       m%t_q_max = since
@@ -184,6 +200,7 @@ contains
     type(record_t), intent(inout) :: record
     real(dp), intent(in) :: mass, t_end
     integer :: row, t_column, uz_column, t_ms_column, alpha_column
+    real(dp) :: alpha_peak, t_peak
     associate (m => impact)
     call record_put_real(record, 'plate_z_m', deck%plate%z)
     call record_put(record, 'plate', trim(merge('STICK', 'SLIP ', deck%plate%stick))// &
@@ -201,8 +218,11 @@ contains
       call record_put_real(record, 'impact_velocity_m_s', -m%v_cm_contact)
       call record_put_real(record, 't_stop_ms', 1.0e3_dp*(t_end - m%t_contact))
       if (m%paper_fired) call record_put_real(record, 't_paper_criterion_ms', 1.0e3_dp*m%t_paper)
-      call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*m%alpha_max)
-      call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*m%t_alpha_max)
+      call peak_of_parabola(m, alpha_peak, t_peak)
+      call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*alpha_peak)
+      call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*t_peak)
+      call record_put_real(record, 'alpha_max_step_mm', 1.0e3_dp*m%alpha_max)
+      call record_put_real(record, 't_alpha_max_step_ms', 1.0e3_dp*m%t_alpha_max)
       call record_put_real(record, 'q_max_MPa', 1.0e-6_dp*m%q_max)
       call record_put_real(record, 't_q_max_ms', 1.0e3_dp*m%t_q_max)
       call record_put_real(record, 'q_surface_max_MPa', 1.0e-6_dp*m%q_surface_max)
@@ -235,4 +255,34 @@ contains
     end do
     end associate
   end subroutine impact_summary
+
+  !> The maximum of alpha(t) between steps: the vertex of the parabola
+  !> through the largest sample and its two neighbours (alpha is smooth
+  !> there: the centre of mass decelerates). The sampled maximum is off by up
+  !> to dt/2 in time; the vertex by O(dt^2). Falls back to the sample when a
+  !> neighbour is missing or the three points are not concave.
+  pure subroutine peak_of_parabola(m, alpha_peak, t_peak)
+    type(impact_t), intent(in) :: m
+    real(dp), intent(out) :: alpha_peak, t_peak
+    real(dp) :: h1, h2, d1, d2, denominator, slope, curvature
+    alpha_peak = m%alpha_max
+    t_peak = m%t_alpha_max
+    if (.not. (m%have_before .and. m%have_after)) return
+    h1 = m%t_before - m%t_alpha_max                   ! < 0
+    h2 = m%t_after - m%t_alpha_max                    ! > 0
+    d1 = m%alpha_before - m%alpha_max                 ! <= 0
+    d2 = m%alpha_after - m%alpha_max                  ! < 0
+    denominator = h1*h2*(h2 - h1)
+    if (h1 >= 0.0_dp .or. h2 <= 0.0_dp .or. denominator == 0.0_dp) return
+    ! alpha = alpha_max + slope s + curvature s^2, s = t - t_alpha_max, through (h1, d1) and (h2, d2)
+    curvature = (d2*h1 - d1*h2)/denominator
+    slope = (d1*h2**2 - d2*h1**2)/denominator
+    if (curvature >= 0.0_dp) return
+    t_peak = m%t_alpha_max - slope/(2.0_dp*curvature)
+    if (t_peak < m%t_before .or. t_peak > m%t_after) then
+      t_peak = m%t_alpha_max
+      return
+    end if
+    alpha_peak = m%alpha_max - slope**2/(4.0_dp*curvature)
+  end subroutine peak_of_parabola
 end module visco2d_impact
