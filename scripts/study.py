@@ -461,7 +461,7 @@ def main():
             cells = []
             for column in COLUMNS:
                 value = row.get(column, "")
-                cells.append(("%.6g" % value) if isinstance(value, float) else value)
+                cells.append(("%.10g" % value) if isinstance(value, float) else value)
             writer.writerow(cells)
     text = markdown(rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast, version, cpu_model)
     with open(os.path.join(out, "study.md"), "w") as handle:

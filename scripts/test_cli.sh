@@ -551,8 +551,8 @@ with h5py.File(sys.argv[1], "r") as f:
 EOF
   check_rc contact_h5py_reads 0 $?
   t_snap=$(sed -n 's/^t_ms //p' drop_h5py.out)
-  t_key=$(value_of t_alpha_max_ms)
-  check contact_h5_max_deformation_time "snapshot at '$t_snap' ms, t_alpha_max_ms = '$t_key'" \
+  t_key=$(value_of t_alpha_max_step_ms)     # the step of the largest sample (t_alpha_max_ms is between steps)
+  check contact_h5_max_deformation_time "snapshot at '$t_snap' ms, t_alpha_max_step_ms = '$t_key'" \
     awk -v a="$t_snap" -v b="$t_key" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && b != "" && d <= 1e-6) }'
   check contact_h5_max_deformation_stress "h5py: $(first_lines drop_h5py.out)" grep -q '^has_stress True$' drop_h5py.out
 else
