@@ -12,6 +12,7 @@ program visco2d
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: itoa
   use visco2d_timers, only: timers_enable
+  use visco2d_progress, only: progress_configure, progress_auto, progress_on, progress_off
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   interface
@@ -23,12 +24,13 @@ program visco2d
   character(:), allocatable :: out_root, argument
   character(len=:), allocatable :: decks(:)
   integer :: i, count, failed, length
-  logical :: quiet, checking
+  logical :: quiet, checking, progress
   type(error_t), allocatable :: error
   type(record_t) :: record
 
   out_root = 'out'
   quiet = .false.
+  progress = .false.
   checking = .false.
   if (command_argument_count() >= 1) then
     call get_argument(1, argument)
@@ -52,6 +54,8 @@ program visco2d
       call get_argument(i, out_root)
     case ('-q', '--quiet')
       quiet = .true.
+    case ('--progress')
+      progress = .true.
     case ('--timing')
       call timers_enable(.true.)
     case ('check')
@@ -69,6 +73,7 @@ program visco2d
     i = i + 1
   end do
   if (count == 0) call usage_error('no deck given')
+  call configure_progress()
 
   failed = 0
   do i = 1, count
@@ -92,6 +97,35 @@ program visco2d
 
 contains
 
+  !> Progress on stderr: --progress forces it on; otherwise -q turns it off;
+  !> otherwise it shows when stderr is a terminal. VISCO2D_PROGRESS_DELAY
+  !> (seconds, default 2) is the wall time before the first line.
+  subroutine configure_progress()
+    character(:), allocatable :: text
+    real(dp) :: delay
+    integer :: n, status
+    logical :: ok
+    delay = 2.0_dp
+    call get_environment_variable('VISCO2D_PROGRESS_DELAY', length=n, status=status)
+    if (status == 0 .and. n > 0) then
+      allocate(character(len=n) :: text)
+      call get_environment_variable('VISCO2D_PROGRESS_DELAY', text)
+      call parse_real(text, delay, ok)
+      if (.not. ok .or. delay < 0.0_dp) then
+        write(0, '(a)') 'visco2d: warning: VISCO2D_PROGRESS_DELAY="'//text// &
+          '" is not a number of seconds >= 0; using 2'
+        delay = 2.0_dp
+      end if
+    end if
+    if (progress) then
+      call progress_configure(progress_on, delay)
+    else if (quiet) then
+      call progress_configure(progress_off, delay)
+    else
+      call progress_configure(progress_auto, delay)
+    end if
+  end subroutine configure_progress
+
   subroutine get_argument(position, value)
     integer, intent(in) :: position
     character(:), allocatable, intent(out) :: value
@@ -113,7 +147,7 @@ contains
       write(0, '(a)') 'usage: visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]   (Pa, 1/s; see visco2d --help)'
     else
       write(0, '(a)') 'visco2d: '//message
-      write(0, '(a)') 'usage: visco2d [-o DIR] [-q] DECK...   |   visco2d check DECK...   |   visco2d --help'
+      write(0, '(a)') 'usage: visco2d [-o DIR] [-q] [--progress] DECK...   |   visco2d check DECK...   |   visco2d --help'
     end if
     flush(0)
     call c_exit(2_c_int)
@@ -208,7 +242,12 @@ contains
     print '(a)', ''
     print '(a)', 'options:'
     print '(a)', '  -o, --out DIR   output root folder (default: out)'
-    print '(a)', '  -q, --quiet     do not print the one-line result of each deck'
+    print '(a)', '  -q, --quiet     do not print the one-line result of each deck (and no progress)'
+    print '(a)', '  --progress      show the progress of runs longer than 2 s on stderr (step,'
+    print '(a)', '                  t, alpha, ~time left) even with -q or when stderr is not a'
+    print '(a)', '                  terminal (whole lines, one a second, for logs); by default'
+    print '(a)', '                  it shows only when stderr is a terminal. The delay before'
+    print '(a)', '                  the first line: VISCO2D_PROGRESS_DELAY=<seconds> (default 2)'
     print '(a)', '  --timing        print the time of each phase of each run (make bench)'
     print '(a)', '  -h, --help      this text'
     print '(a)', '      --version   program version'

@@ -588,4 +588,69 @@ check contact_separation_energy_definition \
       'BEGIN { x = 0.5 * m * (w * w - v * v); if (q == "" || x == 0) exit 1; d = (q - x) / x; if (d < 0) d = -d; exit !(d <= 1e-6) }'
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- progress
+# Progress of long runs on stderr: `visco2d: <case>: step N, t = X ms[, alpha = Y mm], ~Z s left`,
+# a last `..., done in W s` line. VISCO2D_PROGRESS_DELAY=0 shows it from the
+# first step (runs here are far shorter than the default 2 s). By default it
+# shows only on a terminal; --progress forces it (whole lines when stderr is
+# not a terminal); -q turns it off unless --progress is given (either order).
+mkdir progress && cd progress || exit 0
+cp ../contact/drop.inp drop.inp
+progress_line='^visco2d: drop: step [0-9][0-9]*, t = [0-9][0-9.]* ms, alpha = [0-9][0-9.]* mm, ~\([0-9][0-9.]*\|?\) s left$'
+done_line='^visco2d: drop: step [0-9][0-9]*, t = [0-9][0-9.]* ms, alpha = [0-9][0-9.]* mm, done in [0-9][0-9.]* s$'
+VISCO2D_PROGRESS_DELAY=0 "$exe" --progress -o out drop.inp > forced.out 2> forced.err
+check_rc progress_forced_exit_0 0 $?
+check progress_forced_lines "stderr: $(first_lines forced.err)" grep -q "$progress_line" forced.err
+check progress_forced_done_last "last stderr line: $(tail -1 forced.err)" grep -q "$done_line" <(tail -1 forced.err)
+check progress_forced_whole_lines "a carriage return in stderr: $(first_lines forced.err | cat -A | head -c 200)" \
+  test "$(tr -cd '\r' < forced.err | wc -c)" = 0
+check progress_forced_only_progress "other stderr lines: $(grep -v -e "$progress_line" -e "$done_line" forced.err | head -3 | tr '\n' '|')" \
+  test -z "$(grep -v -e "$progress_line" -e "$done_line" forced.err)"
+check progress_forced_stdout_result "stdout: $(first_lines forced.out)" grep -q '^drop:' forced.out
+# The step and time of the done line are the run's last: summary steps and time_end_s.
+steps=$(sed -n 's/^steps = //p' out/drop/summary.txt 2>/dev/null)
+check progress_done_step_is_last "done line: $(tail -1 forced.err); summary steps = '$steps'" \
+  grep -q "^visco2d: drop: step $steps, " <(tail -1 forced.err)
+for order in "-q --progress" "--progress -q"; do
+  name="progress_quiet_forced_${order// /_}"
+  name=${name//-/}
+  # shellcheck disable=SC2086
+  VISCO2D_PROGRESS_DELAY=0 "$exe" $order -o out drop.inp > "$name.out" 2> "$name.err"
+  check_rc "${name}_exit_0" 0 $?
+  check "${name}_shows" "visco2d $order: stderr: $(first_lines "$name.err")" grep -q "$done_line" "$name.err"
+  check "${name}_stdout_empty" "stdout: $(first_lines "$name.out")" test ! -s "$name.out"
+done
+# Default (auto) with stderr into a file: quiet, even with no delay.
+VISCO2D_PROGRESS_DELAY=0 "$exe" -o out drop.inp > auto.out 2> auto.err
+check_rc progress_auto_file_exit_0 0 $?
+check progress_auto_file_quiet "stderr: $(first_lines auto.err)" test ! -s auto.err
+# Forced on, default delay (2 s): a run this short stays silent.
+"$exe" --progress -o out drop.inp > short.out 2> short.err
+check_rc progress_short_run_exit_0 0 $?
+check progress_short_run_quiet "stderr: $(first_lines short.err)" test ! -s short.err
+# A delay that is not a number: a warning, the default delay, the run goes on.
+VISCO2D_PROGRESS_DELAY=soon "$exe" --progress -o out drop.inp > baddelay.out 2> baddelay.err
+check_rc progress_bad_delay_exit_0 0 $?
+check progress_bad_delay_warns "stderr: $(first_lines baddelay.err)" \
+  grep -q '^visco2d: warning: VISCO2D_PROGRESS_DELAY="soon" is not a number' baddelay.err
+check progress_bad_delay_default "stderr: $(first_lines baddelay.err)" test "$(grep -c 'drop: step' baddelay.err)" = 0
+check progress_help "--help does not mention --progress" grep -q -- '--progress' ../usage/help.out
+check progress_help_delay "--help does not mention VISCO2D_PROGRESS_DELAY" grep -q VISCO2D_PROGRESS_DELAY ../usage/help.out
+# On a terminal (a pseudo-terminal from util-linux `script`; stdout and stderr
+# both go to it): one line overwritten in place with carriage returns, so the
+# estimate and the done line share a line; -q turns it off there.
+if command -v script > /dev/null && script -qefc true /dev/null > /dev/null 2>&1; then
+  VISCO2D_PROGRESS_DELAY=0 script -qefc "'$exe' -o out drop.inp" /dev/null > tty.out 2> tty.err
+  check_rc progress_tty_exit_0 0 $?
+  check progress_tty_overwrites "terminal output: $(head -c 300 tty.out | cat -A)" \
+    grep -q $'\rvisco2d: drop: step [0-9]*, .* s left *\rvisco2d: drop: step [0-9]*, .*done in [0-9.]* s' tty.out
+  check progress_tty_result "terminal output: $(head -c 300 tty.out | cat -A)" grep -q '^drop:' tty.out
+  VISCO2D_PROGRESS_DELAY=0 script -qefc "'$exe' -q -o out drop.inp" /dev/null > ttyq.out 2> ttyq.err
+  check_rc progress_tty_quiet_exit_0 0 $?
+  check progress_tty_quiet_silent "terminal output: $(head -c 300 ttyq.out | cat -A)" test ! -s ttyq.out
+else
+  echo "# script (util-linux) cannot make a terminal here: terminal progress checks skipped"
+fi
+cd "$work" || exit 0
+
 exit 0
