@@ -11,6 +11,7 @@ module visco2d_driver
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
   use visco2d_wilson, only: solve_dynamic
+  use visco2d_progress, only: progress_begin, progress_end
   use visco2d_contact, only: solve_static_contact
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
@@ -120,13 +121,17 @@ contains
       call record_put_integer(record, 'steps', total_steps(deck))
       call record_put_integer(record, 'time_stages', size(deck%stages))
       call record_put_real(record, 'dt_s', deck%stages(1)%dt)
+      call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
       call solve_quasistatic(deck, record, error)
+      call progress_end()
       if (allocated(error)) return
     case (analysis_dynamic)
       call record_put_integer(record, 'steps', total_steps(deck))
       call record_put_integer(record, 'time_stages', size(deck%stages))
       call record_put_real(record, 'dt_s', deck%stages(1)%dt)
+      call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
       call solve_dynamic(deck, record, error)
+      call progress_end()
       if (allocated(error)) return
     case default
       call set_error(error, 'no analysis to run', file=path)

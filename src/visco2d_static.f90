@@ -17,6 +17,7 @@ module visco2d_static
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa
   use visco2d_deck, only: deck_t, total_steps
+  use visco2d_progress, only: progress_step
   use visco2d_mesh, only: mesh_t
   use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
   use visco2d_element, only: element_strains, gauss_to_node_extrapolation
@@ -216,6 +217,7 @@ contains
           if (allocated(error)) return
         end if
         call advance(t)
+        if (stage > 0) call progress_step(sum(deck%stages(:stage - 1)%steps) + step, t, -1.0_dp)
       end do
       if (stage > 0) stage_start = deck%stages(stage)%end_time
       if (stage == 0) call keep_snapshot('step_000000', 'initial', 0.0_dp)

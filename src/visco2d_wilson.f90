@@ -42,7 +42,7 @@ module visco2d_wilson
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
-  use visco2d_deck, only: deck_t, total_steps, initial_velocity
+  use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
   use visco2d_dynamic_cards, only: theta_unconditional
   use visco2d_material, only: stress_from_strain, has_memory
   use visco2d_element, only: gauss_count
@@ -63,6 +63,7 @@ module visco2d_wilson
                             phase_assembly, phase_factorization, phase_solve, phase_constitutive, phase_contact, &
                             phase_output, phase_step_loop
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
+  use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row
   implicit none
   private
@@ -219,6 +220,7 @@ contains
         call timer_start(phase_contact)
         if (contact_on) call measure_impact()
         call timer_stop(phase_contact)
+        call progress_step(step_count, t, merge(1.0e3_dp*impact%alpha, -1.0_dp, impact%t_contact >= 0.0_dp))
         call timer_start(phase_output)
         if (mod(step_count, deck%output%every) == 0 .or. step_count == total_steps(deck) .or. impact%stopped) &
           call append_row()
@@ -592,10 +594,14 @@ contains
     !> nodal stresses are recovered once, at the end (insert_maximum_snapshot).
     subroutine measure_impact()
       logical :: new_alpha_max, new_q_max
-      call impact_measure(impact, deck, contact, t, dt, touch_fraction, &
-                          [centre_of_mass(u), centre_of_mass(v), centre_of_mass(a)], &
+      real(dp) :: cm(3)
+      cm = [centre_of_mass(u), centre_of_mass(v), centre_of_mass(a)]
+      call impact_measure(impact, deck, contact, t, dt, touch_fraction, cm, &
                           [centre_of_mass(u - du), centre_of_mass(v - dv)], reaction_tau, u, v, a, stress, &
                           new_alpha_max, new_q_max)
+      if (impact%t_contact >= 0.0_dp .and. deck%stop_at /= stop_at_tend) &       ! a better end for the estimate
+        call progress_expect_end(progress_impact_end(impact%t_contact, impact%alpha, cm(2), impact%v_cm_contact, &
+                                                     deck%stop_at == stop_at_separation))
       if (new_alpha_max) call keep_state(at_alpha_max)
       if (new_q_max) call keep_state(at_q_max)
     end subroutine measure_impact
