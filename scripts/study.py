@@ -280,8 +280,8 @@ def markdown(rows, refs, cases, levels, dts_ms, fast, version, cpu_model):
     lines += ["", REFERENCE_TEXT, "",
               "cpu_s is the solve's CPU time from summary.txt (files not included); wall_s is the whole "
               "process (start-up, reading the deck, writing history, HDF5 and listing), measured around it. "
-              "t at α_m is the time of the sampled maximum (resolved to DT until sub-step interpolation "
-              "lands). The finest runs are within the extrapolation's own correction of f* by construction: "
+              "t at α_m is the vertex of the parabola through the three steps around the sampled maximum "
+              "(not quantized by DT); t at q_m is sampled. The finest runs are within the extrapolation's own correction of f* by construction: "
               "their error is the size of that correction, not a measured error.", ""]
     for case in cases:
         ref = refs[case]
