@@ -120,7 +120,7 @@ contains
     real(dp), allocatable :: stress(:, :, :), strain(:, :, :), trial(:, :, :), increments(:, :, :), history_dt(:, :, :)
     real(dp), allocatable :: shear_dt(:), bulk_dt(:)
     logical, allocatable :: fixed(:), supports(:), held(:)
-    integer, allocatable :: fixed_rows(:)
+    integer, allocatable :: held_rows(:)     !< the equations held by the plate (their reactions at t + tau)
     logical :: memory, contact_on
     integer :: step, stage, k, factorizations, step_count, next_field, width
     real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
@@ -144,7 +144,7 @@ contains
     allocate(over_tau(size(materials)), over_dt(size(materials)))
     supports = support_mask(deck)
     fixed = supports
-    fixed_rows = pack([(k, k = 1, size(fixed))], fixed)
+    allocate(held_rows(0))
     mass = lumped_mass(deck)                                   ! eq. [32], row sums
     body_mass = sum(mass(2::2))
     gravity = gravity_load(deck)
@@ -442,7 +442,7 @@ contains
         ! mass (reported as contact_loss_J), not a pressure on the plate.
         if (contact_on) then
           reaction_tau = 0.0_dp
-          associate (p => fixed_rows)
+          associate (p => held_rows)
           reaction_tau(p) = band_multiply_rows(effective, rhs, p) - base(p) &
             - mass(p)*(6.0_dp/tau**2*rhs(p) - 6.0_dp/tau*v(p) - 2.0_dp*a(p))
           end associate
@@ -479,7 +479,7 @@ contains
         touch_fraction = min(touch_fraction, fraction)
         held = contact_held_dofs(deck, contact)
         fixed = supports .or. held
-        fixed_rows = pack([(i, i = 1, size(fixed))], fixed)
+        held_rows = pack([(i, i = 1, size(held))], held)
         call hold_contact()
         if (allocated(error)) return
       end do
