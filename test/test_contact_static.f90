@@ -413,7 +413,10 @@ contains
     alpha = 1.0e-3_dp*history_column(record, 'alpha_mm')
     force = history_column(record, 'force_N')
     peak = maxloc(alpha, dim=1)
-    call check_close(tag//': the history maximum of alpha_mm is alpha_max_mm', alpha(peak), dyn_alpha(k), 1.0e-9_dp)
+    ! alpha_max_mm is the parabola's vertex between steps; the largest sample is alpha_max_step_mm.
+    call check_close(tag//': the history maximum of alpha_mm is alpha_max_step_mm', alpha(peak), &
+                     1.0e-3_dp*value_of(record, 'alpha_max_step_mm'), 1.0e-9_dp)
+    call check(tag//': the vertex alpha_max_mm is at or above the largest sample', dyn_alpha(k) >= alpha(peak))
     dyn_work(k) = 0.0_dp
     do i = 1, peak - 1
       dyn_work(k) = dyn_work(k) + 0.5_dp*(force(i) + force(i + 1))*(alpha(i + 1) - alpha(i))
