@@ -117,20 +117,16 @@ contains
         call static_record(deck, static_solution, record)
         call record_put_integer(record, 'factorizations', 1)
       end if
-    case (analysis_quasistatic)
+    case (analysis_quasistatic, analysis_dynamic)                ! time stepping, with progress on stderr
       call record_put_integer(record, 'steps', total_steps(deck))
       call record_put_integer(record, 'time_stages', size(deck%stages))
       call record_put_real(record, 'dt_s', deck%stages(1)%dt)
       call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
-      call solve_quasistatic(deck, record, error)
-      call progress_end()
-      if (allocated(error)) return
-    case (analysis_dynamic)
-      call record_put_integer(record, 'steps', total_steps(deck))
-      call record_put_integer(record, 'time_stages', size(deck%stages))
-      call record_put_real(record, 'dt_s', deck%stages(1)%dt)
-      call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
-      call solve_dynamic(deck, record, error)
+      if (deck%analysis == analysis_quasistatic) then
+        call solve_quasistatic(deck, record, error)
+      else
+        call solve_dynamic(deck, record, error)
+      end if
       call progress_end()
       if (allocated(error)) return
     case default

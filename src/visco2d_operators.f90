@@ -13,8 +13,7 @@ module visco2d_operators
   implicit none
   private
 
-  public :: operators_t, operators_create, operators_strains, operators_internal_force, operators_element_force
-  public :: operators_trial_stress
+  public :: operators_t, operators_create, operators_element_force, operators_trial_stress
 
   !> B, |J| r and equation numbers of every element.
   type :: operators_t
@@ -43,24 +42,6 @@ contains
     end associate
   end subroutine operators_create
 
-  !> Strains B u at every Gauss point of every element (eq. [4]), u in band order.
-  pure subroutine operators_strains(operators, u, strains)
-    type(operators_t), intent(in) :: operators
-    real(dp), intent(in) :: u(:)
-    real(dp), intent(out) :: strains(:, :, :)     !< (4, gauss_count, nelem)
-    real(dp) :: local(8)
-    integer :: e, g, j
-    do e = 1, operators%nelem
-      local = u(operators%dofs(:, e))
-      do g = 1, gauss_count
-        strains(:, g, e) = 0.0_dp
-        do j = 1, 8
-          strains(:, g, e) = strains(:, g, e) + operators%b(:, j, g, e)*local(j)
-        end do
-      end do
-    end do
-  end subroutine operators_strains
-
   !> Internal nodal forces of one element, sum_g B^T sigma |J| r.
   pure function operators_element_force(operators, e, stress) result(force)
     type(operators_t), intent(in) :: operators
@@ -76,22 +57,8 @@ contains
     end do
   end function operators_element_force
 
-  !> Internal force vector F = sum_e sum_g B^T sigma |J| r in band order.
-  pure subroutine operators_internal_force(operators, stress, force)
-    type(operators_t), intent(in) :: operators
-    real(dp), intent(in) :: stress(:, :, :)       !< (4, gauss_count, nelem)
-    real(dp), intent(out) :: force(:)
-    real(dp) :: local(8)
-    integer :: e
-    force = 0.0_dp
-    do e = 1, operators%nelem
-      local = operators_element_force(operators, e, stress(:, :, e))
-      force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + local
-    end do
-  end subroutine operators_internal_force
-
   !> The step's constitutive pass in one sweep over the elements (each
-  !> element's B is read once): strain increments B du (eq. [4]), trial
+  !> element's B used while it is in cache): strain increments B du (eq. [4]), trial
   !> stresses stress + D(G, K) increments (eqs. [13], [14]) + history (the
   !> Prony part of eq. [23] over dt, precomputed; absent for elastic
   !> materials), and their internal forces F = sum B^T trial |J| r.
@@ -103,12 +70,11 @@ contains
     real(dp), intent(out) :: increments(:, :, :), trial(:, :, :)
     real(dp), intent(out) :: force(:)
     real(dp), intent(in), optional :: history(:, :, :)       !< (4, gauss_count, nelem)
-    real(dp) :: local(8), element_force(8), increment(4), sigma(4), volumetric
+    real(dp) :: local(8), increment(4), sigma(4), volumetric
     integer :: e, g, j
     force = 0.0_dp
     do e = 1, operators%nelem
       local = du(operators%dofs(:, e))
-      element_force = 0.0_dp
       do g = 1, gauss_count
         increment = 0.0_dp
         do j = 1, 8
@@ -120,11 +86,8 @@ contains
         if (present(history)) sigma = sigma + history(:, g, e)
         increments(:, g, e) = increment
         trial(:, g, e) = sigma
-        do j = 1, 8
-          element_force(j) = element_force(j) + operators%weight(g, e)*dot_product(operators%b(:, j, g, e), sigma)
-        end do
       end do
-      force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + element_force
+      force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + operators_element_force(operators, e, trial(:, :, e))
     end do
   end subroutine operators_trial_stress
 end module visco2d_operators

@@ -44,12 +44,12 @@ module visco2d_wilson
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
   use visco2d_dynamic_cards, only: theta_unconditional
-  use visco2d_material, only: stress_from_strain, has_memory
+  use visco2d_material, only: has_memory
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_factor, band_solve, band_constrain_matrix, &
                             band_constrain_rhs
-  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
+  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, &
                               prescribed_displacement, internal_force, scatter_add, lumped_mass, gravity_load, nodal_field
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
@@ -373,32 +373,24 @@ contains
       target_next = prescribed_displacement(deck, t_next)
       ! Right side of eqs. [34], [36] in residual form: R_tau - F(sigma_t + s0_tau) + M (6/tau v + 2 a).
       base = load + theta*(load_next - load) + gravity - internal + mass*(6.0_dp/tau*v + 2.0_dp*a)
+      ! The history stress of eq. [23] in one pass: over tau as a pseudo-load
+      ! on the solve (s0), over dt for the trial stresses (the same for every repeat).
       if (memory) then
-        do e = 1, deck%mesh%nelem
-          nterm = element_terms(state, e)
-          if (nterm == 0) cycle
-          associate (material => deck%materials(deck%mesh%element_material(e)), &
-                     c => over_tau(deck%mesh%element_material(e)))
-          do g = 1, gauss_count
-            slot = state%first(e) + (g - 1)*nterm
-            s0(:, g) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
-          end do
-          call scatter_add(deck%mesh, e, -operators_element_force(operators, e, s0), base)
-          end associate
-        end do
-      end if
-      if (memory) then                      ! the Prony part of eq. [23] over dt: the same for every repeat
         call timer_start(phase_constitutive)
         history_dt = 0.0_dp
         do e = 1, deck%mesh%nelem
           nterm = element_terms(state, e)
           if (nterm == 0) cycle
           associate (material => deck%materials(deck%mesh%element_material(e)), &
-                     c => over_dt(deck%mesh%element_material(e)))
+                     c_tau => over_tau(deck%mesh%element_material(e)), c_dt => over_dt(deck%mesh%element_material(e)))
           do g = 1, gauss_count
             slot = state%first(e) + (g - 1)*nterm
-            history_dt(:, g, e) = history_stress(material, c, state%history(:, slot:slot + nterm - 1))
+            associate (history => state%history(:, slot:slot + nterm - 1))
+            s0(:, g) = history_stress(material, c_tau, history)
+            history_dt(:, g, e) = history_stress(material, c_dt, history)
+            end associate
           end do
+          call scatter_add(deck%mesh, e, -operators_element_force(operators, e, s0), base)
           end associate
         end do
         call timer_stop(phase_constitutive)
