@@ -24,6 +24,8 @@ import re
 import subprocess
 import sys
 
+from deck_variants import set_card_value, set_card_word
+
 import h5py
 import numpy as np
 import matplotlib
@@ -101,13 +103,11 @@ def fine_table1_results(args, plate="STICK"):
         fail(f"deck {source} not found")
     with open(source) as handle:
         text = handle.read()
-    text, count = re.subn(r"(?im)^(\s*MESH\s+SPHERE\b[^#\n]*?\bLEVEL\s*=\s*)\d+",
-                          lambda m: m.group(1) + str(args.level), text)
-    if count != 1:
-        fail(f"{source}: expected one 'MESH SPHERE ... LEVEL=' card, found {count}")
-    text, count = re.subn(r"(?im)^(\s*PLATE\b[^#\n]*?)\bSTICK\b", lambda m: m.group(1) + plate, text)
-    if count != 1:
-        fail(f"{source}: expected one 'PLATE ... STICK' card, found {count}")
+    try:
+        text = set_card_value(text, r"MESH\s+SPHERE", "LEVEL", args.level)
+        text = set_card_word(text, "PLATE", "STICK", plate)
+    except ValueError as problem:
+        fail(f"{source}: {problem}")
     text = re.sub(r"(?im)^(\s*TITLE\s.*)$",
                   lambda m: m.group(1) + f" [figures.py: MESH SPHERE LEVEL={args.level}, PLATE {plate}]",
                   text, count=1)

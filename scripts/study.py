@@ -39,6 +39,8 @@ import subprocess
 import sys
 import time
 
+from deck_variants import cpu_model, set_card_value
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASES = {
     "table1_elastic": "inputs/table1_elastic.inp",
@@ -91,15 +93,12 @@ def make_deck(source_text, case, level, dt_ms):
     """The paper deck with LEVEL=, DT=, OUTPUT EVERY= substituted and PROBE lines dropped."""
     text = source_text
     every = max(1, round(HISTORY_INTERVAL_MS / dt_ms))
-    substitutions = [
-        (r"(?im)^(\s*MESH\s+SPHERE\b[^\n#]*?\bLEVEL=)\S+", r"\g<1>%d" % level, "MESH SPHERE ... LEVEL="),
-        (r"(?im)^(\s*TIME\b[^\n#]*?\bDT=)\S+", r"\g<1>%.10g" % (dt_ms * 1e-3), "TIME DT="),
-        (r"(?im)^(\s*OUTPUT\b[^\n#]*?\bEVERY=)\S+", r"\g<1>%d" % every, "OUTPUT EVERY="),
-    ]
-    for pattern, replacement, what in substitutions:
-        text, count = re.subn(pattern, replacement, text)
-        if count != 1:
-            sys.exit("study: %s: expected one %s card, found %d" % (CASES[case], what, count))
+    try:
+        text = set_card_value(text, r"MESH\s+SPHERE", "LEVEL", level)
+        text = set_card_value(text, "TIME", "DT", "%.10g" % (dt_ms * 1e-3))
+        text = set_card_value(text, "OUTPUT", "EVERY", every)
+    except ValueError as problem:
+        sys.exit("study: %s: %s" % (CASES[case], problem))
     text = re.sub(r"(?im)^\s*PROBE\b[^\n]*\n", "", text)
     text = re.sub(r"(?im)^(\s*TITLE\b[^\n]*)$", r"\g<1> [study: level %d, DT %g ms]" % (level, dt_ms),
                   text, count=1)
@@ -271,10 +270,10 @@ def thousands(value):
     return "{:,}".format(value) if isinstance(value, int) else fmt(value)
 
 
-def markdown(rows, refs, cases, levels, dts_ms, fast, version, cpu_model):
+def markdown(rows, refs, cases, levels, dts_ms, fast, version, machine):
     lines = ["# What accuracy costs: the paper's impacts over mesh level and time step", ""]
     lines.append("visco2d: %s; CPU: %s; one run at a time, one core. Levels %s, DT %s ms%s." % (
-        version, cpu_model, ", ".join(str(lv) for lv in levels), ", ".join("%g" % d for d in dts_ms),
+        version, machine, ", ".join(str(lv) for lv in levels), ", ".join("%g" % d for d in dts_ms),
         " (fast variant: the reference is extrapolated from these levels and steps only, "
         "so it is coarser than the full study's)" if fast else ""))
     lines += ["", REFERENCE_TEXT, "",
@@ -425,12 +424,7 @@ def main():
     os.makedirs(os.path.join(out, "decks"), exist_ok=True)
     os.makedirs(os.path.join(out, "runs"), exist_ok=True)
     version = subprocess.run([exe, "--version"], capture_output=True, text=True).stdout.strip() or "?"
-    cpu_model = "?"
-    try:
-        with open("/proc/cpuinfo") as handle:
-            cpu_model = next((l.split(":", 1)[1].strip() for l in handle if l.startswith("model name")), "?")
-    except OSError:
-        pass
+    machine = cpu_model()
 
     rows = []
     total = len(cases) * len(levels) * len(dts_ms)
@@ -463,7 +457,7 @@ def main():
                 value = row.get(column, "")
                 cells.append(("%.10g" % value) if isinstance(value, float) else value)
             writer.writerow(cells)
-    text = markdown(rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast, version, cpu_model)
+    text = markdown(rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast, version, machine)
     with open(os.path.join(out, "study.md"), "w") as handle:
         handle.write(text + "\n")
     plot(rows, cases, dts_ms, os.path.join(out, "study.png"))

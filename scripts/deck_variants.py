@@ -1,0 +1,34 @@
+"""Variants of a deck by text substitution, shared by scripts/study.py,
+scripts/bench.py and scripts/figures.py (a card value such as MESH SPHERE
+... LEVEL= or TIME DT=, or a word of a card such as PLATE ... STICK), and
+the machine's CPU model for their reports."""
+import re
+
+
+def set_card_value(text, card, key, value):
+    """Replace KEY=<value> on the one CARD line of a deck (comments untouched).
+
+    Raises ValueError naming the card when the deck has not exactly one such line."""
+    pattern = r"(?im)^(\s*%s\b[^\n#]*?\b%s\s*=\s*)\S+" % (card, key)
+    new, count = re.subn(pattern, lambda match: match.group(1) + str(value), text)
+    if count != 1:
+        raise ValueError("expected one '%s ... %s=' card, found %d" % (card, key, count))
+    return new
+
+
+def set_card_word(text, card, word, replacement):
+    """Replace the word WORD on the one CARD line that has it (e.g. PLATE ... STICK -> SLIP)."""
+    pattern = r"(?im)^(\s*%s\b[^\n#]*?)\b%s\b" % (card, word)
+    new, count = re.subn(pattern, lambda match: match.group(1) + replacement, text)
+    if count != 1:
+        raise ValueError("expected one '%s ... %s' card, found %d" % (card, word, count))
+    return new
+
+
+def cpu_model():
+    """The CPU model from /proc/cpuinfo ('?' when unknown)."""
+    try:
+        with open("/proc/cpuinfo") as handle:
+            return next((line.split(":", 1)[1].strip() for line in handle if line.startswith("model name")), "?")
+    except OSError:
+        return "?"
