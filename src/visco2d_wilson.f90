@@ -85,10 +85,21 @@ module visco2d_wilson
   end type kept_state_t
 
   !> The run stops as unstable when kinetic + internal energy exceeds this
-  !> multiple of the energy put into the body (initial kinetic energy plus the
-  !> gross work of loads, gravity and supports), widened by Wilson-theta's
-  !> transient overshoot (see `factor_for`).
+  !> multiple of the energy that can have been put into the body: the initial
+  !> kinetic energy plus the positive work of loads, gravity and prescribed
+  !> (FIX) motions, step by step. The plate's reactions are not counted: a
+  !> rigid fixed plate does no positive work on the body, so a diverging
+  !> solution cannot raise the bound through them. The multiple is widened by
+  !> Wilson-theta's transient overshoot (see `factor_for`).
   real(dp), parameter :: energy_growth_limit = 100.0_dp
+
+  !> The growth-rate test: the run also stops when the energy in excess of that
+  !> input has grown by at least `growth_rate_limit` in each of the last
+  !> `growth_window` steps and has passed the input itself (a stable step
+  !> cannot keep raising it: its spectral radius is below 1, and a first-step
+  !> overshoot decays after one or two steps).
+  integer, parameter :: growth_window = 3
+  real(dp), parameter :: growth_rate_limit = 1.5_dp
 
 contains
 
@@ -124,7 +135,10 @@ contains
     logical :: memory, contact_on
     integer :: step, stage, k, factorizations, step_count, next_field, width
     real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
-    real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, gross_input, contact_loss
+    real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, contact_loss
+    real(dp) :: positive_input            !< initial kinetic energy + positive work of loads, gravity, FIX motions
+    real(dp) :: excess(0:growth_window)   !< kinetic + internal energy - positive_input, the last steps
+    integer :: growth_steps               !< consecutive steps of excess growth by >= growth_rate_limit
     real(dp) :: stored, balance, balance_max, input_max, growth_limit, omega_max
     real(dp) :: touch_fraction
 
@@ -187,7 +201,9 @@ contains
     load_work = 0.0_dp
     support_work = 0.0_dp
     gravity_work = 0.0_dp
-    gross_input = kinetic0
+    positive_input = kinetic0
+    excess = 0.0_dp
+    growth_steps = 0
     balance_max = 0.0_dp
     input_max = kinetic0
     stored = 0.0_dp
@@ -509,13 +525,17 @@ contains
       ! Energy balance: trapezoidal work of every force over du (exact for
       ! forces linear in u, as the elastic internal force is).
       internal_work = internal_work + 0.5_dp*dot_product(internal + internal_next, du)
+      ! The supports' work splits into that of the FIX supports (prescribed
+      ! motions: an input) and that of the plate (held, not supports).
       associate (load_increment => 0.5_dp*dot_product(load + load_next, du), &
+                 fix_increment => 0.5_dp*sum(merge(reaction + reaction_next, 0.0_dp, supports)*du), &
                  support_increment => 0.5_dp*dot_product(reaction + reaction_next, du), &
                  gravity_increment => dot_product(gravity, du))
       load_work = load_work + load_increment
       support_work = support_work + support_increment
       gravity_work = gravity_work + gravity_increment
-      gross_input = gross_input + abs(load_increment) + abs(support_increment) + abs(gravity_increment)
+      positive_input = positive_input + max(0.0_dp, load_increment) + max(0.0_dp, fix_increment) + &
+                       max(0.0_dp, gravity_increment)
       end associate
       kinetic = 0.5_dp*dot_product(mass, v**2)
       balance = kinetic + internal_work + contact_loss - (kinetic0 + load_work + support_work + gravity_work)
@@ -525,17 +545,39 @@ contains
       if (.not. ieee_is_finite(energy) .or. .not. all(ieee_is_finite(stress))) then
         call unstable('the energy or a stress is not finite (NaN or Inf)'); return
       end if
-      if (energy > growth_limit*gross_input .and. energy > 0.0_dp) then
-        call unstable('the kinetic + internal energy ('//gtoa(energy)//' J) has grown past '// &
-          rtoa(growth_limit)//' times the energy put into the body ('//gtoa(gross_input)//' J)')
-        return
-      end if
+      call check_growth(energy)
+      if (allocated(error)) return
       load = load_next
       internal = internal_next
       reaction = reaction_next
       target_now = target_next
       t = t_next
     end subroutine advance
+
+    !> The instability test after a step (kinetic + internal energy `energy`):
+    !> the bound energy_growth_limit (widened by the overshoot, factor_for)
+    !> times the positive input, and the growth rate of the excess over it.
+    subroutine check_growth(energy)
+      real(dp), intent(in) :: energy
+      excess(0:growth_window - 1) = excess(1:growth_window)
+      excess(growth_window) = energy - positive_input
+      if (excess(growth_window) >= growth_rate_limit*excess(growth_window - 1) .and. &
+          excess(growth_window - 1) > 0.0_dp) then
+        growth_steps = growth_steps + 1
+      else
+        growth_steps = 0
+      end if
+      if (energy > growth_limit*positive_input .and. energy > 0.0_dp) then
+        call unstable('the kinetic + internal energy ('//gtoa(energy)//' J) has grown past '// &
+          rtoa(growth_limit)//' times the energy put into the body ('//gtoa(positive_input)//' J: the initial '// &
+          'kinetic energy and the positive work of loads, gravity and prescribed motions)')
+      else if (growth_steps >= growth_window .and. excess(growth_window) > positive_input) then
+        call unstable('the kinetic + internal energy ('//gtoa(energy)//' J) exceeds the energy put into the '// &
+          'body ('//gtoa(positive_input)//' J) and has grown by '//rtoa(growth_rate_limit)//' or more in each of '// &
+          'the last '//itoa(growth_window)//' steps (by '// &
+          rtoa(excess(growth_window)/max(excess(0), tiny(1.0_dp)))//' in all)')
+      end if
+    end subroutine check_growth
 
     !> The floor of the step loop for `--timing`: the seconds of one dpbtrs
     !> back-substitution with the run's factor (the best of a few repeats).
