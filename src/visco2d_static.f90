@@ -13,9 +13,10 @@
 !> from accumulating into drift. S_n depends on dt only, so its factor is
 !> reused while dt is constant (elastic bodies: one factorization in all).
 module visco2d_static
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, total_steps
   use visco2d_progress, only: progress_step
   use visco2d_mesh, only: mesh_t
@@ -35,6 +36,7 @@ module visco2d_static
   private
 
   public :: static_solution_t, solve_static, static_record, singular_message, solve_quasistatic
+  public :: singular_error, node_text, card_at_line, not_finite_error
   public :: node_stress, node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
 
   !> Fields of a static solution.
@@ -79,10 +81,14 @@ contains
     call band_constrain(constrained, fixed, zero, u)
     call band_factor(constrained, info)
     if (info > 0) then
-      call set_error(error, singular_message(deck, info), file=deck%cards%file)
+      call singular_error(deck, info, error)
       return
     end if
     call band_solve(constrained, u)
+    if (.not. all(ieee_is_finite(u))) then
+      call not_finite_error(deck, 'the static displacement', error)
+      return
+    end if
 
     solution%displacement = nodal_field(mesh, u)
     associate (residual => band_multiply(stiffness, u) - load)
@@ -100,6 +106,9 @@ contains
       end do
     end do
     solution%nodal_stress = nodal_average(mesh, solution%stress)
+    if (.not. all(ieee_is_finite(solution%stress)) .or. .not. all(ieee_is_finite(solution%reaction)) .or. &
+        .not. ieee_is_finite(solution%strain_energy) .or. .not. ieee_is_finite(solution%external_work)) &
+      call not_finite_error(deck, 'the static stress, reaction or energy', error)
     end associate
   end subroutine solve_static
 
@@ -108,20 +117,102 @@ contains
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: equation
     character(:), allocatable :: message
-    integer :: node, position
-    character(len=3) :: component
-    position = (equation - 1)/2 + 1
-    component = merge('u_r', 'u_z', mod(equation, 2) == 1)
-    message = 'the stiffness matrix is singular or not positive definite'
-    do node = 1, deck%mesh%nnode
-      if (deck%mesh%equation(node) == position) then
-        message = message//' at node '//itoa(deck%mesh%node_id(node))//' ('//component//')'
-        exit
-      end if
-    end do
-    message = message//': the body can probably move freely (a rigid-body mode); add FIX cards'// &
+    message = 'the stiffness matrix is singular or not positive definite'//node_text(deck, equation)// &
+      ': the body can probably move freely (a rigid-body mode); add FIX cards'// &
       ' that stop it, or check the material constants'
   end function singular_message
+
+  !> The error of a static factorization failure at band equation `equation`,
+  !> located at the card that defined an element holding that node.
+  subroutine singular_error(deck, equation, error)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: equation
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: line
+    line = equation_line(deck, equation)
+    call set_error(error, singular_message(deck, equation), file=deck%cards%file, line=line, &
+                   card=card_at_line(deck, line))
+  end subroutine singular_error
+
+  !> ' at node N (u_z)' for band equation `equation` ('' if not found).
+  function node_text(deck, equation) result(text)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: equation
+    character(:), allocatable :: text
+    integer :: node
+    text = ''
+    node = equation_node(deck, equation)
+    if (node > 0) text = ' at node '//itoa(deck%mesh%node_id(node))//' ('// &
+                         trim(merge('u_r', 'u_z', mod(equation, 2) == 1))//')'
+  end function node_text
+
+  !> The node (index) of band equation `equation` (0 if none).
+  pure integer function equation_node(deck, equation) result(node)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: equation
+    integer :: k
+    node = 0
+    do k = 1, deck%mesh%nnode
+      if (deck%mesh%equation(k) == (equation - 1)/2 + 1) then
+        node = k
+        return
+      end if
+    end do
+  end function equation_node
+
+  !> The deck line of the first element holding the node of band equation
+  !> `equation` (its ELEMENT or MESH card; 0 if not known).
+  pure integer function equation_line(deck, equation) result(line)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: equation
+    integer :: node, e
+    line = 0
+    node = equation_node(deck, equation)
+    if (node == 0 .or. .not. allocated(deck%mesh%element_line)) return
+    do e = 1, deck%mesh%nelem
+      if (any(deck%mesh%connectivity(:, e) == node)) then
+        line = deck%mesh%element_line(e)
+        return
+      end if
+    end do
+  end function equation_line
+
+  !> The keyword of the card at deck line `line` ('' if none).
+  pure function card_at_line(deck, line) result(keyword)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    character(:), allocatable :: keyword
+    integer :: k
+    keyword = ''
+    if (.not. allocated(deck%cards%cards)) return
+    do k = 1, size(deck%cards%cards)
+      if (deck%cards%cards(k)%line == line) then
+        keyword = deck%cards%cards(k)%keyword
+        return
+      end if
+    end do
+  end function card_at_line
+
+  !> The error when a result is not finite (NaN or Inf): located at the
+  !> ANALYSIS card, naming what overflowed, so no such value reaches an output.
+  subroutine not_finite_error(deck, what, error)
+    type(deck_t), intent(in) :: deck
+    character(*), intent(in) :: what
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, line
+    line = 0
+    if (allocated(deck%cards%cards)) then
+      do k = 1, size(deck%cards%cards)
+        if (deck%cards%cards(k)%keyword == 'ANALYSIS') then
+          line = deck%cards%cards(k)%line
+          exit
+        end if
+      end do
+    end if
+    call set_error(error, what//' is not finite (NaN or Inf): the loads, moduli or prescribed values '// &
+      'overflow double precision; check their magnitudes. No results were written.', file=deck%cards%file, &
+      line=line, card='ANALYSIS')
+  end subroutine not_finite_error
 
   !> Summary, one-row history and the final snapshot of a static solution.
   subroutine static_record(deck, solution, record)
@@ -211,12 +302,15 @@ contains
       end if
       do step = first_step, merge(0, deck%stages(max(stage, 1))%steps, stage == 0)
         t = stage_start + step*dt
-        if (stage > 0 .and. step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
+        if (stage > 0) then                                ! (no stages(0): Fortran's .and. does not short-circuit)
+          if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
+        end if
         if (coefficients(1)%dt /= dt .and. (memory .or. factorizations == 0)) then
           call factor_for(dt)
           if (allocated(error)) return
         end if
         call advance(t)
+        if (allocated(error)) return
         if (stage > 0) call progress_step(sum(deck%stages(:stage - 1)%steps) + step, t, -1.0_dp)
       end do
       if (stage > 0) stage_start = deck%stages(stage)%end_time
@@ -251,7 +345,7 @@ contains
       call band_constrain_matrix(factor, fixed)
       call band_factor(factor, info)
       factorizations = factorizations + 1
-      if (info > 0) call set_error(error, singular_message(deck, info), file=deck%cards%file)
+      if (info > 0) call singular_error(deck, info, error)
     end subroutine factor_for
 
     !> One increment to time t: pseudo-load, solve, stress and history update.
@@ -300,6 +394,10 @@ contains
         end do
       end do
       internal = internal_force(deck, stress)
+      if (.not. all(ieee_is_finite(u)) .or. .not. all(ieee_is_finite(stress))) then
+        call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)
+        return
+      end if
       equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
                               max(maxval(abs(internal)), tiny(1.0_dp)))
       call append_row(t, internal - load)

@@ -54,7 +54,8 @@ module visco2d_wilson
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
-  use visco2d_static, only: singular_message, node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
+  use visco2d_static, only: singular_error, node_text, node_corners, corner_stress, put_field_summary, &
+                            put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, &
                             history_define, history_append, record_add_snapshot, record_insert_snapshot
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, &
@@ -353,8 +354,7 @@ contains
       call timer_stop(phase_factorization)
       factorizations = factorizations + 1
       if (info > 0) then
-        call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive '// &
-          'definite: '//singular_message(deck, info), file=deck%cards%file)
+        call effective_singular(info)
         return
       end if
       if (.not. by_refactoring) then
@@ -362,6 +362,29 @@ contains
         if (contact_on) call hold_contact()
       end if
     end subroutine refactor
+
+    !> S~ = S + 6/(theta dt)^2 M with a positive lumped mass is positive
+    !> definite in exact arithmetic: it fails only when the mass term is lost
+    !> in round-off against S (a DT far too large, and a body free to move),
+    !> or when S itself is not positive (a modulus). Located at the TIME card
+    !> when the mass term is below round-off of the diagonal, else at the card
+    !> of an element at the failing node.
+    subroutine effective_singular(equation)
+      integer, intent(in) :: equation
+      real(dp) :: mass_term, diagonal
+      mass_term = 6.0_dp/(theta*dt)**2*minval(mass, mask=.not. supports)
+      diagonal = maxval(abs(effective%ab(1, :)))
+      if (.not. (mass_term > epsilon(1.0_dp)*diagonal)) then
+        call set_error(error, 'the effective stiffness S + 6/(theta dt)^2 M is not positive definite'// &
+          node_text(deck, equation)//': with DT = '//rtoa(dt)//' s the mass term 6/(theta DT)^2 M ('// &
+          rtoa(mass_term)//') is lost in round-off against S (diagonal up to '//rtoa(diagonal)// &
+          '), so a body free to move has no stiffness against that motion; use a DT of the order of the '// &
+          'duration of the event', file=deck%cards%file, line=deck%stages(stage)%line, card='TIME')
+      else
+        call singular_error(deck, equation, error)
+        error%message = 'the effective stiffness S + 6/(theta dt)^2 M is not positive definite: '//error%message
+      end if
+    end subroutine effective_singular
 
     !> The contact set has changed: the held equations (not supports) into
     !> the capacitance system, or S~ refactored with them eliminated.

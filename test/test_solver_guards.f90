@@ -1,0 +1,139 @@
+!> The solvers' own guards, the last line of defence behind the deck's range
+!> checks: a result that is not finite never leaves STATIC or QUASISTATIC
+!> (located error at the ANALYSIS card), a singular stiffness names the node
+!> and the card of an element holding it, and a dynamic step so large that
+!> the mass term of S~ = S + 6/(theta dt)^2 M (eq. [35]) is lost in round-off
+!> is reported at the TIME card as what it is (not as a missing FIX card).
+!>
+!> The overflowing moduli are set in memory after the deck is read: the card
+!> reader refuses them, so no deck can reach the solvers with them; these
+!> tests check that the solvers would still not return a NaN.
+program test_solver_guards
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, error_text
+  use visco2d_deck, only: deck_t, read_deck
+  use visco2d_static, only: static_solution_t, solve_static, solve_quasistatic
+  use visco2d_wilson, only: solve_dynamic
+  use visco2d_record, only: record_t
+  use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
+  implicit none
+
+  character(*), parameter :: folder = 'build/test-tmp/test_solver_guards'
+  character(len=100), allocatable :: lines(:)
+
+  call execute_command_line('mkdir -p '//folder)
+
+  call overflowing_static()
+  call overflowing_quasistatic()
+  call singular_static()
+  call huge_dynamic_step()
+  call test_summary('test_solver_guards')
+
+contains
+
+  !> A clamped block under a top pressure (4 x 8 elements, plane strain).
+  function block_deck(analysis) result(lines)
+    character(*), intent(in) :: analysis
+    character(len=100), allocatable :: lines(:)
+    lines = [character(len=100) :: 'TITLE block', 'ANALYSIS '//analysis, &
+             'MATERIAL flesh ELASTIC E=1e7 NU=0.3 RHO=800', &
+             'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.02 NR=4 NZ=8', 'FIX BOTTOM RZ', 'PRESSURE TOP P=1e5']
+    if (analysis == 'QUASISTATIC') lines = [character(len=100) :: lines, 'TIME DT=0.1 TEND=1']
+    lines = [character(len=100) :: lines, 'END']
+  end function block_deck
+
+  !> STATIC with moduli of 1e308 (set in memory): the solve overflows; the
+  !> result must be an error at the ANALYSIS card (line 2), not NaN.
+  subroutine overflowing_static()
+    type(deck_t) :: deck
+    type(static_solution_t) :: solution
+    type(error_t), allocatable :: error
+    call write_deck(folder//'/static.inp', block_deck('STATIC'))
+    call read_deck(folder//'/static.inp', deck, error)
+    call check('static block reads', .not. allocated(error))
+    if (allocated(error)) return
+    call solve_static(deck, solution, error)
+    call check('static block solves (moduli as read)', .not. allocated(error))
+    if (allocated(error)) deallocate(error)
+    deck%materials(1)%shear = 1.0e308_dp
+    deck%materials(1)%bulk = 1.0e308_dp
+    call solve_static(deck, solution, error)
+    call check('static, moduli 1e308: an error, not a NaN result', allocated(error))
+    if (.not. allocated(error)) return
+    call check_text_contains('static, moduli 1e308: located at the ANALYSIS card', error_text(error), &
+                             'static.inp:2: ANALYSIS: ')
+    call check_text_contains('static, moduli 1e308: says "not finite"', error_text(error), 'not finite')
+  end subroutine overflowing_static
+
+  !> QUASISTATIC with moduli of 1e308 (set in memory): stopped at step 0.
+  subroutine overflowing_quasistatic()
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    call write_deck(folder//'/quasistatic.inp', block_deck('QUASISTATIC'))
+    call read_deck(folder//'/quasistatic.inp', deck, error)
+    call check('quasi-static block reads', .not. allocated(error))
+    if (allocated(error)) return
+    call solve_quasistatic(deck, record, error)
+    call check('quasi-static block runs (moduli as read)', .not. allocated(error))
+    if (.not. allocated(error)) call check('quasi-static block: every history value is finite', &
+                                          all(ieee_is_finite(record%history(:, 1:record%nrow))))
+    if (allocated(error)) deallocate(error)
+    deck%materials(1)%shear = 1.0e308_dp
+    deck%materials(1)%bulk = 1.0e308_dp
+    call solve_quasistatic(deck, record, error)
+    call check('quasi-static, moduli 1e308: an error, not a NaN result', allocated(error))
+    if (.not. allocated(error)) return
+    call check_text_contains('quasi-static, moduli 1e308: located at the ANALYSIS card', error_text(error), &
+                             'quasistatic.inp:2: ANALYSIS: ')
+    call check_text_contains('quasi-static, moduli 1e308: says "not finite"', error_text(error), 'not finite')
+  end subroutine overflowing_quasistatic
+
+  !> A block with no support: the rigid-body modes make S singular; the
+  !> error names a node and the MESH card (line 4) that made its elements.
+  subroutine singular_static()
+    type(deck_t) :: deck
+    type(static_solution_t) :: solution
+    type(error_t), allocatable :: error
+    lines = block_deck('STATIC')
+    lines = [lines(1:4), lines(7:)]                            ! no FIX, no PRESSURE
+    call write_deck(folder//'/free.inp', lines)
+    call read_deck(folder//'/free.inp', deck, error)
+    call check('unsupported block reads', .not. allocated(error))
+    if (allocated(error)) return
+    call solve_static(deck, solution, error)
+    call check('unsupported block: singular stiffness is an error', allocated(error))
+    if (.not. allocated(error)) return
+    call check_text_contains('unsupported block: located at the MESH card', error_text(error), 'free.inp:4: MESH: ')
+    call check_text_contains('unsupported block: names a node', error_text(error), 'singular or not positive '// &
+                             'definite at node ')
+    call check_text_contains('unsupported block: suggests FIX cards', error_text(error), 'add FIX cards')
+  end subroutine singular_static
+
+  !> DYNAMIC, an unsupported sphere, DT = 1e150 s: 6/(theta DT)^2 M underflows
+  !> against S. The error is at the TIME card (line 6) and says why; it does
+  !> not advise FIX cards.
+  subroutine huge_dynamic_step()
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    lines = [character(len=100) :: 'TITLE huge step', 'ANALYSIS DYNAMIC', &
+             'MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=1', &
+             'INITIAL VZ=-1', 'TIME DT=1e150 TEND=1e151', 'END']
+    call write_deck(folder//'/huge_dt.inp', lines)
+    call read_deck(folder//'/huge_dt.inp', deck, error)
+    if (allocated(error)) then
+      ! The card reader may refuse such a DT itself; then that is the located error.
+      call check_text_contains('DT = 1e150: refused at the TIME card when read', error_text(error), &
+                               'huge_dt.inp:6')
+      return
+    end if
+    call solve_dynamic(deck, record, error)
+    call check('DT = 1e150: an error', allocated(error))
+    if (.not. allocated(error)) return
+    call check_text_contains('DT = 1e150: located at the TIME card', error_text(error), 'huge_dt.inp:6: TIME: ')
+    call check_text_contains('DT = 1e150: says the mass term is lost', error_text(error), 'lost in round-off')
+    call check('DT = 1e150: no advice to add FIX cards', index(error_text(error), 'add FIX') == 0, error_text(error))
+  end subroutine huge_dynamic_step
+end program test_solver_guards
