@@ -14,6 +14,7 @@ module visco2d_driver
   use visco2d_progress, only: progress_begin, progress_end
   use visco2d_contact, only: solve_static_contact
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real
+  use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
@@ -41,8 +42,10 @@ contains
     character(*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: error
     type(deck_t) :: deck
+    type(time_scales_t) :: scales
     call read_deck(path, deck, error)
     if (allocated(error)) return
+    call time_step_warnings(deck)
     call print_warnings(deck)
     print '(a)', path//': ok'
     print '(a)', '  title           '//deck%title
@@ -61,6 +64,14 @@ contains
         trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
       if (deck%analysis == analysis_dynamic) print '(a)', '  stop at         '//stop_name(deck%stop_at)
     end if
+    scales = time_scales(deck)
+    if (scales%contact_duration > 0.0_dp) print '(a)', '  contact time    '//rtoa(scales%contact_duration)// &
+      ' s (Hertz, eqs. [43]-[44]): '//rtoa(scales%contact_duration/deck%stages(1)%dt)//' steps of the first DT'
+    if (scales%pole_transit > 0.0_dp) print '(a)', '  pole transit    '//rtoa(scales%pole_transit)// &
+      ' s (wave transit of the pole element at c_p = '//rtoa(scales%wave_speed)//' m/s): DT = '// &
+      rtoa(deck%stages(1)%dt/scales%pole_transit)//' transits'
+    if (scales%body_transit > 0.0_dp) print '(a)', '  body transit    '//rtoa(scales%body_transit)// &
+      ' s (wave transit of the body): DT = '//rtoa(deck%stages(1)%dt/scales%body_transit)//' transits'
     print '(a)', '  formulation     '//formulation_name(deck%formulation)
     print '(a)', '  geometry        '//geometry_name(deck%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
@@ -90,6 +101,7 @@ contains
     case_name = case_name_of(path)
     call read_deck(path, deck, error)
     if (allocated(error)) return
+    call time_step_warnings(deck)
     call print_warnings(deck)
     effects = scene_effects(deck)
 
@@ -135,6 +147,7 @@ contains
     end select
     call check_expectations(deck, record, error)
     if (allocated(error)) return
+    if (deck%analysis == analysis_dynamic) call warn_energy_balance()
     call record_put_integer(record, 'warnings', size(deck%warnings))
     call cpu_time(cpu_end)
     call record_put(record, 'cpu_s', rtoa(real(cpu_end - cpu_start, dp)))
@@ -174,6 +187,19 @@ contains
     end if
 
   contains
+
+    !> The energy-balance warning after a dynamic run (printed now, counted).
+    subroutine warn_energy_balance()
+      real(dp) :: relative
+      integer :: ios, before
+      character(:), allocatable :: text
+      text = summary_value(record, 'balance_error_max_rel')
+      read(text, *, iostat=ios) relative
+      if (ios /= 0) return
+      before = size(deck%warnings)
+      call energy_balance_warning(deck, relative)
+      if (size(deck%warnings) > before) write(0, '(a)') 'visco2d: warning: '//deck%warnings(size(deck%warnings))%text
+    end subroutine warn_energy_balance
 
     subroutine write_all(error)
       type(error_t), allocatable, intent(inout) :: error

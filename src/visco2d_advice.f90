@@ -1,0 +1,210 @@
+!> Warnings about a deck that runs but whose answer may be poor: the time
+!> step against the shortest physical times of the scene (before the run),
+!> and the energy balance of a dynamic run (after it). They are counted in
+!> the summary's `warnings` with the deck's own warnings.
+!>
+!> The physical times of a scene:
+!> - the Hertz contact duration of an impact on the plate, eqs. [43], [44]:
+!>   t_c = 2 x 1.4716 alpha_m/V with alpha_m = (15 M V^2/(16 E* sqrt(R)))^(2/5),
+!>   E* = E/(1 - nu^2) (instantaneous constants), for a generated sphere of one
+!>   material (MESH SPHERE: R is known) moving at V toward the plate;
+!> - the wave transit of the pole element (the element at the point of first
+!>   contact): its smallest side over the dilatational wave speed
+!>   c_p = sqrt((K + 4 G/3)/rho) (instantaneous moduli);
+!> - the wave transit of the body: its height over c_p, the order of the
+!>   period of its lowest vibration modes.
+!>
+!> The warnings and their levels, measured on the Table 1 impact (level 1):
+!> - fewer than `contact_steps_minimum` = 20 steps in the Hertz contact: at 16
+!>   steps (DT = 0.2 ms) alpha_m is 0.3 %, t_m 0.8 %, q_m 5 % off the
+!>   DT = 0.01 ms values and the energy balance is off by 2.8 % of the input;
+!>   at 3 steps (DT = 1 ms) alpha_m is +29 %, t_m +31 %, balance 116 %.
+!>   The study of accuracy against cost finds alpha, t and q within 1 % at
+!>   80 steps (DT = 0.04 ms), the cheapest accurate choice.
+!> - DT above the wave transit of the body: the body's own lowest modes are
+!>   not resolved (Wilson-theta damps them away), so stresses and
+!>   accelerations in time are filtered, whatever the mesh.
+!> - the energy-balance error above `balance_warning_level` = 5 % of the
+!>   energy put in (stable runs at a resolved DT: 1e-14 to 8e-4; DT = 0.4 ms:
+!>   11 %; DT = 1 ms: 116 %).
+!> The pole element's transit is reported (`visco2d check`, the listing) but
+!> does not warn: Wilson-theta is unconditionally stable for theta >= 1.37,
+!> and a DT of many pole transits is the accurate and cheap choice of an
+!> impact on a fine mesh (level 5 at DT = 0.04 ms: about 40 transits, alpha,
+!> t and q within 1 %); only the stress wave the first contact sends into the
+!> body is smoothed.
+module visco2d_advice
+  use visco2d_kinds, only: dp, pi, geometry_axisymmetric
+  use visco2d_strings, only: itoa, rtoa
+  use visco2d_deck, only: deck_t, warning_t, analysis_dynamic, initial_velocity
+  use visco2d_contact, only: hertz_impact, hertz_t
+  implicit none
+  private
+
+  public :: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
+  public :: contact_steps_minimum, balance_warning_level
+
+  !> Fewer steps than this in the Hertz contact duration warn.
+  integer, parameter :: contact_steps_minimum = 20
+  !> An energy-balance error above this fraction of the energy put in warns.
+  real(dp), parameter :: balance_warning_level = 0.05_dp
+
+  !> The physical times of a scene, s (0 when the scene does not have one).
+  type :: time_scales_t
+    real(dp) :: contact_duration = 0.0_dp  !< Hertz contact duration of the impact
+    real(dp) :: pole_transit = 0.0_dp      !< wave transit of the pole element
+    real(dp) :: body_transit = 0.0_dp      !< wave transit of the body (its height)
+    real(dp) :: wave_speed = 0.0_dp        !< c_p, m/s, of the pole element's material
+  end type time_scales_t
+
+contains
+
+  !> The physical times of a dynamic scene with a plate (all 0 otherwise;
+  !> body_transit also without a plate).
+  function time_scales(deck) result(scales)
+    type(deck_t), intent(in) :: deck
+    type(time_scales_t) :: scales
+    type(hertz_t) :: hertz
+    real(dp) :: speed, height, radius
+    integer :: pole_element
+    if (deck%analysis /= analysis_dynamic .or. deck%mesh%nelem == 0) return
+    height = maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :))
+    pole_element = first_contact_element(deck)
+    scales%wave_speed = wave_speed(deck, max(pole_element, 1))
+    if (scales%wave_speed > 0.0_dp) scales%body_transit = height/scales%wave_speed
+    if (deck%plate%line == 0 .or. pole_element == 0) return
+    if (scales%wave_speed > 0.0_dp) scales%pole_transit = smallest_side(deck, pole_element)/scales%wave_speed
+    if (.not. allocated(deck%mesh%source)) return
+    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1) return
+    associate (velocity => initial_velocity(deck))
+    speed = -velocity(2)                                 ! toward the plate below
+    end associate
+    if (.not. (speed > 0.0_dp)) return
+    radius = 0.5_dp*height
+    associate (material => deck%materials(1))
+    hertz = hertz_impact(material%young, material%poisson, radius, body_mass(deck), speed)
+    end associate
+    if (hertz%duration > 0.0_dp .and. hertz%duration < huge(1.0_dp)) scales%contact_duration = hertz%duration
+  end function time_scales
+
+  !> Warnings about DT against the scene's physical times, into deck%warnings
+  !> (located at the TIME card of each stage concerned).
+  subroutine time_step_warnings(deck)
+    type(deck_t), intent(inout) :: deck
+    type(time_scales_t) :: scales
+    integer :: k
+    real(dp) :: steps
+    scales = time_scales(deck)
+    if (.not. allocated(deck%stages)) return
+    do k = 1, size(deck%stages)
+      associate (dt => deck%stages(k)%dt, line => deck%stages(k)%line)
+      if (scales%contact_duration > 0.0_dp) then
+        steps = scales%contact_duration/dt
+        if (steps < real(contact_steps_minimum, dp)) call add(line, 'DT = '//rtoa(dt)//' s leaves only '// &
+          itoa(int(steps))//' steps in the Hertz contact duration of this impact ('//rtoa(scales%contact_duration)// &
+          ' s): use at least '//itoa(contact_steps_minimum)//' (DT <= '// &
+          rtoa(scales%contact_duration/contact_steps_minimum)//' s); fewer overestimate alpha_m and t_m '// &
+          '(+29 % at 3 steps on the Table 1 sphere)')
+      end if
+      if (scales%body_transit > 0.0_dp .and. dt > scales%body_transit) call add(line, 'DT = '//rtoa(dt)// &
+        ' s is longer than the time a stress wave takes to cross the body ('//rtoa(scales%body_transit)// &
+        ' s at c_p = '//rtoa(scales%wave_speed)//' m/s): its lowest vibration modes are not resolved '// &
+        '(Wilson-theta damps them), so stresses and accelerations in time are filtered')
+      end associate
+    end do
+  contains
+    subroutine add(line, message)
+      integer, intent(in) :: line
+      character(*), intent(in) :: message
+      type(warning_t) :: warning
+      warning%text = deck%cards%file//':'//itoa(line)//': TIME: '//message
+      deck%warnings = [deck%warnings, warning]
+    end subroutine add
+  end subroutine time_step_warnings
+
+  !> After a dynamic run: a warning when the largest energy-balance error
+  !> (`relative`, of the energy put in) exceeds balance_warning_level.
+  subroutine energy_balance_warning(deck, relative)
+    type(deck_t), intent(inout) :: deck
+    real(dp), intent(in) :: relative
+    type(warning_t) :: warning
+    integer :: line
+    if (.not. (relative > balance_warning_level)) return
+    line = 0
+    if (allocated(deck%stages)) then
+      if (size(deck%stages) > 0) line = deck%stages(1)%line
+    end if
+    warning%text = deck%cards%file//':'//itoa(line)//': TIME: the energy balance is off by '// &
+      rtoa(100.0_dp*relative)//' % of the energy put into the body (above '// &
+      rtoa(100.0_dp*balance_warning_level)//' %): the time integration is inaccurate; a smaller DT '// &
+      'brings it down (stable runs at a resolved DT stay below 0.1 %)'
+    deck%warnings = [deck%warnings, warning]
+  end subroutine energy_balance_warning
+
+  !> The element holding the node nearest the plate (the point of first contact); 0 if none.
+  integer function first_contact_element(deck) result(element)
+    type(deck_t), intent(in) :: deck
+    integer :: node
+    element = 0
+    if (deck%plate%line == 0) then
+      node = minloc(deck%mesh%xy(2, :), dim=1)
+    else
+      node = minloc(abs(deck%mesh%xy(2, :) - deck%plate%z) + abs(deck%mesh%xy(1, :))*epsilon(1.0_dp), dim=1)
+    end if
+    do element = 1, deck%mesh%nelem
+      if (any(deck%mesh%connectivity(:, element) == node)) return
+    end do
+    element = 0
+  end function first_contact_element
+
+  !> c_p = sqrt((K + 4 G/3)/rho) of an element's material (instantaneous), m/s.
+  real(dp) function wave_speed(deck, element)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: element
+    wave_speed = 0.0_dp
+    associate (material => deck%materials(deck%mesh%element_material(element)))
+    if (material%density > 0.0_dp) &
+      wave_speed = sqrt((material%bulk + 4.0_dp/3.0_dp*material%shear)/material%density)
+    end associate
+  end function wave_speed
+
+  !> The shortest side of an element, m.
+  real(dp) function smallest_side(deck, element)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: element
+    integer :: k
+    smallest_side = huge(1.0_dp)
+    do k = 1, 4
+      associate (a => deck%mesh%connectivity(k, element), b => deck%mesh%connectivity(mod(k, 4) + 1, element))
+      smallest_side = min(smallest_side, norm2(deck%mesh%xy(:, a) - deck%mesh%xy(:, b)))
+      end associate
+    end do
+  end function smallest_side
+
+  !> The mass of the whole body, kg: rho times each element's volume (Pappus:
+  !> 2 pi r_centroid A in axisymmetry, A per metre in plane strain).
+  real(dp) function body_mass(deck)
+    type(deck_t), intent(in) :: deck
+    real(dp) :: area, moment, x(4), y(4)
+    integer :: e, k, next
+    body_mass = 0.0_dp
+    do e = 1, deck%mesh%nelem
+      x = deck%mesh%xy(1, deck%mesh%connectivity(:, e))
+      y = deck%mesh%xy(2, deck%mesh%connectivity(:, e))
+      area = 0.0_dp
+      moment = 0.0_dp
+      do k = 1, 4
+        next = mod(k, 4) + 1
+        area = area + 0.5_dp*(x(k)*y(next) - x(next)*y(k))
+        moment = moment + (x(k) + x(next))*(x(k)*y(next) - x(next)*y(k))/6.0_dp
+      end do
+      associate (density => deck%materials(deck%mesh%element_material(e))%density)
+      if (deck%geometry == geometry_axisymmetric) then
+        body_mass = body_mass + density*2.0_dp*pi*moment
+      else
+        body_mass = body_mass + density*area
+      end if
+      end associate
+    end do
+  end function body_mass
+end module visco2d_advice
