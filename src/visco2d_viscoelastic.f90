@@ -8,7 +8,7 @@
 !>   s0    = 2 sum_m G_m (exp(-x_m) - 1) C_m                     eq. [23], corrected
 !>   ds    = 2 mu de + s0,   dsigma = K dtheta                   eqs. [13], [14]
 !>   C_m  <- exp(-x_m) C_m + J_m de                              eq. [24]
-!> As printed, eq. [23] has lost the "- 1" (DESIGN.md, errata): without it a
+!> As printed, eq. [23] has lost the "- 1" (doc/equations.md, errata): without it a
 !> step strain would not relax. C_m is the history of term m, one vector
 !> (e_r, e_z, e_theta, gamma_rz) per Gauss point, stored only for elements
 !> whose material has memory (beta > 0). Shear components carry the

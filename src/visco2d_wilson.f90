@@ -4,7 +4,7 @@
 !> visco2d_viscoelastic. The static base does not use this module.
 !>
 !> One step from t to t + dt, tau = theta dt (the printed typos corrected as
-!> in DESIGN.md: [26] is M dU'' + S dU = dR, [37]'s left side is dU'',
+!> in doc/equations.md: [26] is M dU'' + S dU = dR, [37]'s left side is dU'',
 !> [38] is dU' = U''_t dt + (dt/2) dU''):
 !>   S~ = S(mu_tau) + 6/tau^2 M                                        eq. [35]
 !>   S~ dU_tau = R_tau - F(sigma_t + s0_tau) + M (6/tau U'_t + 2 U''_t)  eqs. [34], [36]
@@ -22,20 +22,26 @@
 !> then advanced over dt (eqs. [13], [14], [23], [24]).
 !>
 !> S~ depends on dt and on the supports only: it is factored once per TIME
-!> stage, and again only when the contact set changes.
+!> stage. The equations the plate holds go through a capacitance (Schur-
+!> complement) system on that factor (module visco2d_capacitance), so a
+!> change of the contact set costs one back-substitution per new equation,
+!> not a refactorization.
 !>
 !> Contact (a PLATE card, module visco2d_contact): after the solve, a free
 !> boundary node that went through the plate gets an adjusted-displacement
 !> condition (its u_z puts it on the plate at t + dt; theta times that at
-!> t + tau) and the same increment is repeated with S~ refactored; from then
+!> t + tau) and the same increment is repeated with it held; from then
 !> on its held components have U'' = U' = dU = 0. The kinetic energy those
 !> components had is lost in the impact of the node on the plate: it is
 !> reported (contact_loss_J) and kept in the energy balance. What the impact
 !> reports (alpha, q, maxima, stop criteria) is measured by visco2d_impact.
 !>
-!> An energy balance is kept every step; the run stops with an
-!> error if a value is not finite or the energy grows far beyond the work
-!> done on the body (an unstable integration), so no NaN reaches the results.
+!> An energy balance is kept every step; the run stops with an error located
+!> at the TIME card if a value is not finite, or if kinetic + internal energy
+!> grows far beyond what can have been put into the body (the initial kinetic
+!> energy and the positive work of loads, gravity and prescribed motions, not
+!> the plate's reactions), or keeps growing past it step after step: an
+!> unstable integration. No NaN and no blown-up value reaches the results.
 module visco2d_wilson
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: int64
