@@ -12,6 +12,7 @@
 !> built in as the analytic reference.
 module visco2d_contact
   use, intrinsic :: iso_fortran_env, only: int64
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric, geometry_tolerance
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa
@@ -24,7 +25,7 @@ module visco2d_contact
   use visco2d_banded, only: band_matrix_t, band_constrain_matrix, band_constrain_rhs, band_factor, band_solve_many, &
                             band_multiply
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress, singular_message
-  use visco2d_record, only: record_t, record_put_real, record_put_integer
+  use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer
   implicit none
   private
 
@@ -119,17 +120,48 @@ contains
   !> summary (hertz_* keys), when the body is a generated sphere (MESH SPHERE)
   !> of one material: E and nu are the material's instantaneous values (its
   !> elastic constants for an elastic material), R = half the pole-to-pole height.
+  !> Left out, with the key hertz_reference saying why, when it would mean
+  !> nothing: V not small against the bar wave speed sqrt(E/rho) (Hertz's
+  !> theory is quasi-static; this also keeps V^2 from overflowing), a value
+  !> that is not a finite number, a maximum approach alpha_m below the
+  !> round-off of the node positions (geometry_tolerance R; V = 4.9e-324 m/s
+  !> gives alpha_m = 0 and t_m = 0/V), or alpha_m not below R (Hertz's
+  !> contact radius sqrt(R alpha_m) must be small against R).
   subroutine put_hertz_summary(deck, record, mass, speed)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     real(dp), intent(in) :: mass, speed
     type(hertz_t) :: hertz
-    real(dp) :: radius
+    real(dp) :: radius, wave_speed
     if (.not. allocated(deck%mesh%source)) return
-    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1 .or. speed == 0.0_dp) return
+    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1) return
+    if (speed == 0.0_dp) then
+      call record_put(record, 'hertz_reference', 'none: the body touched the plate at rest (V = 0)')
+      return
+    end if
     radius = 0.5_dp*(maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :)))
     associate (material => deck%materials(1))
+    wave_speed = sqrt(material%young/max(material%density, tiny(1.0_dp)))
+    if (.not. abs(speed) < wave_speed) then
+      call record_put(record, 'hertz_reference', 'none: V = '//gtoa(abs(speed))//' m/s is not small against the '// &
+                      'wave speed sqrt(E/rho) = '//gtoa(wave_speed)//' m/s (Hertz impact is quasi-static)')
+      return
+    end if
     hertz = hertz_impact(material%young, material%poisson, radius, mass, speed)
+    if (.not. hertz_finite(hertz)) then
+      call record_put(record, 'hertz_reference', 'none: not a finite number at V = '//gtoa(abs(speed))//' m/s')
+      return
+    end if
+    if (hertz%alpha_max <= geometry_tolerance*radius) then
+      call record_put(record, 'hertz_reference', 'none: V = '//gtoa(abs(speed))//' m/s is too small (alpha_m = '// &
+                      gtoa(hertz%alpha_max)//' m, below the round-off of the node positions)')
+      return
+    end if
+    if (hertz%alpha_max >= radius) then
+      call record_put(record, 'hertz_reference', 'none: alpha_m = '//gtoa(hertz%alpha_max)//' m is not small '// &
+                      'against R = '//gtoa(radius)//' m')
+      return
+    end if
     call record_put_real(record, 'hertz_young_Pa', material%young)
     call record_put_real(record, 'hertz_poisson', material%poisson)
     end associate
@@ -143,6 +175,15 @@ contains
     call record_put_real(record, 'hertz_contact_radius_mm', 1.0e3_dp*hertz%contact_radius)
     call record_put_real(record, 'hertz_contact_duration_ms', 1.0e3_dp*hertz%duration)
   end subroutine put_hertz_summary
+
+  !> Every value of a Hertz reference, and its values in the summary's units, are finite numbers.
+  pure logical function hertz_finite(hertz) result(finite)
+    type(hertz_t), intent(in) :: hertz
+    real(dp) :: values(6)
+    values = [hertz%alpha_max, hertz%t_alpha_max, hertz%q_max, hertz%force_max, hertz%contact_radius, hertz%duration]
+    finite = all(ieee_is_finite(values)) .and. all(ieee_is_finite(values*1.0e3_dp)) .and. &
+             all(ieee_is_finite(values*1.0e-6_dp))
+  end function hertz_finite
 
   !> The candidate nodes and edges (element sides that belong to one element
   !> only, except those on the axis r = 0 of an axisymmetric body), the plate,
