@@ -752,10 +752,10 @@ contains
   subroutine held_system_create(deck, system)
     type(deck_t), intent(in) :: deck
     type(held_system_t), intent(out) :: system
-    associate (mesh => deck%mesh)
-    call assemble_stiffness(deck, deck%materials(mesh%element_material)%shear, &
-                            deck%materials(mesh%element_material)%bulk, system%stiffness)
-    end associate
+    real(dp), allocatable :: shear(:), bulk(:)
+    shear = deck%materials(deck%mesh%element_material)%shear
+    bulk = deck%materials(deck%mesh%element_material)%bulk
+    call assemble_stiffness(deck, shear, bulk, system%stiffness)
     system%load = external_load(deck, 0.0_dp) + gravity_load(deck)
     system%supports = support_mask(deck)
     system%prescribed = prescribed_displacement(deck, 0.0_dp)
