@@ -277,25 +277,21 @@ contains
   end subroutine contact_begin_increment
 
   !> After a trial increment du from u: put on the plate every free candidate
-  !> that went through it, and (RELEASE=YES, or `always_release`) free every
-  !> contact node whose plate reaction (z, per radian) is tensile. A node
+  !> that went through it, and (RELEASE=YES) free every contact node whose
+  !> plate reaction (z, per radian) is tensile. A node
   !> changes state at most once per increment, so the repetition ends.
   !> `fraction` is the earliest crossing of the plate within the increment
   !> (0..1, linear in time), 1 if nothing touched.
-  subroutine contact_search(deck, contact, u, du, reaction, changed, fraction, always_release)
+  subroutine contact_search(deck, contact, u, du, reaction, changed, fraction)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(inout) :: contact
     real(dp), intent(in) :: u(:), du(:), reaction(:)
     logical, intent(out) :: changed
     real(dp), intent(out) :: fraction
-    logical, intent(in), optional :: always_release
     real(dp) :: start, finish, force_scale
     integer :: i, node
-    logical :: release
     changed = .false.
     fraction = 1.0_dp
-    release = contact%release
-    if (present(always_release)) release = release .or. always_release
     force_scale = 0.0_dp
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
@@ -304,7 +300,7 @@ contains
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
       if (contact%active(node)) then
-        if (.not. release .or. contact%touched(node)) cycle
+        if (.not. contact%release .or. contact%touched(node)) cycle
         if (reaction(node_dof(deck%mesh, node, 2)) < -1.0e-9_dp*force_scale) then
           contact%active(node) = .false.
           contact%let_go(node) = .true.
@@ -477,7 +473,8 @@ contains
   !> with STICK, u_r = its u_r at that moment (it keeps the tangential
   !> position it touched at, as in the dynamic STICK: the incremental no-slip
   !> contact of Mossakovskii and Spence). A contact node is freed only when
-  !> its reaction turns tensile. A stuck node freed at some lambda that goes
+  !> its reaction turns tensile (whatever RELEASE says: a static contact set
+  !> must push everywhere). A stuck node freed at some lambda that goes
   !> through the plate at the same lambda slides from then on (u_z held, u_r
   !> free): at zero normal force it can carry no tangential force, and with
   !> u_z alone held the reaction and the approach of a node have opposite
