@@ -559,9 +559,13 @@ contains
                              path%reaction_rate, error)
       path%solves = path%solves + 1
       if (allocated(error)) then
-        error%message = error%message//' (with '//itoa(count(contact%active))//' node(s) on the plate: '// &
-          'a body that only rests on the plate needs a load that presses it on, and supports that stop it '// &
-          'from turning or sliding)'
+        error%message = error%message//' (with '//itoa(count(contact%active))//' node(s) on the plate at '// &
+          gtoa(100.0_dp*path%load_factor)//' % of the load: a body that only rests on the plate needs a load '// &
+          'that presses it on, and supports that stop it from turning or sliding)'
+        if (error%line == 0) then                       ! located at the PLATE card, which holds the body
+          error%line = deck%plate%line
+          error%card = 'PLATE'
+        end if
         return
       end if
       change_at = change_factors(deck, contact, path)

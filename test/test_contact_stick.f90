@@ -374,5 +374,29 @@ contains
       'FORCE 105 FZ=-10', 'END'])
     call press(file, 'disc SLIP lifted at a degenerate start', record, nodes, r_out, ok)
     if (ok) call check('disc SLIP: it rests on its rim (2 nodes)', nodes == 2, itoa(nodes))
+    call lifted_off()
   end subroutine regressions
+
+  !> A block pulled off the plate: nothing holds it once every bottom node is
+  !> freed at lambda = 0. The singular stiffness is reported at the PLATE card
+  !> (line 6), with the advice about a body that only rests on the plate.
+  subroutine lifted_off()
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(:), allocatable :: file, text
+    file = folder//'/lifted.inp'
+    call write_deck(file, [character(len=80) :: 'TITLE lifted', 'ANALYSIS STATIC', 'GEOMETRY PLANESTRAIN', &
+      'MATERIAL m ELASTIC E=5.0e6 NU=0.3', 'MESH RECT R0=0 R1=0.02 Z0=0 Z1=0.01 NR=4 NZ=2', 'PLATE Z=0 SLIP', &
+      'FORCE 15 FZ=5', 'FIX AXIS R', 'END'])
+    call read_deck(file, deck, error)
+    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
+    call check('lifted block: refused', allocated(error))
+    if (.not. allocated(error)) return
+    text = error_text(error)
+    print '(a)', text
+    call check('lifted block: located at the PLATE card', index(text, file//':6: PLATE: ') == 1, text)
+    call check('lifted block: says why', index(text, '0 node(s) on the plate') > 0 .and. &
+               index(text, 'only rests on the plate') > 0, text)
+  end subroutine lifted_off
 end program test_contact_stick
