@@ -62,6 +62,9 @@ module visco2d_contact
   !> Block changes at one load factor that may fail to lower the count of
   !> violating nodes before they change one at a time (Judice and Pires).
   integer, parameter :: strikes_allowed = 10
+  !> The error of a static contact solution that overflowed.
+  character(*), parameter :: not_finite_message = 'the static contact solution is not a finite number (it '// &
+    'overflowed): the moduli, loads or sizes of the deck are out of any physical range; no results were written'
   !> Two load factors closer than this are the same point of the static path.
   real(dp), parameter :: same_factor = 1.0e-12_dp
 
@@ -506,6 +509,10 @@ contains
     if (allocated(error)) return
     u = band_vector(mesh, solution%displacement)
     reaction = band_vector(mesh, solution%reaction)
+    if (.not. (all(ieee_is_finite(u)) .and. all(ieee_is_finite(reaction)) .and. all(ieee_is_finite(solution%stress)))) then
+      call set_error(error, not_finite_message, file=deck%cards%file)
+      return
+    end if
     call check_settled(deck, contact, u, reaction, error)
     if (allocated(error)) return
     call static_record(deck, solution, record)
@@ -566,6 +573,11 @@ contains
           error%line = deck%plate%line
           error%card = 'PLATE'
         end if
+        return
+      end if
+      if (.not. (all(ieee_is_finite(path%base)) .and. all(ieee_is_finite(path%rate)) .and. &
+                 all(ieee_is_finite(path%reaction_base)) .and. all(ieee_is_finite(path%reaction_rate)))) then
+        call set_error(error, not_finite_message, file=deck%cards%file)
         return
       end if
       change_at = change_factors(deck, contact, path)
