@@ -375,7 +375,28 @@ contains
     call press(file, 'disc SLIP lifted at a degenerate start', record, nodes, r_out, ok)
     if (ok) call check('disc SLIP: it rests on its rim (2 nodes)', nodes == 2, itoa(nodes))
     call lifted_off()
+    call overflowed()
   end subroutine regressions
+
+  !> E = 1e308: the stiffness overflows. Refused (when the deck is read, or
+  !> by the solver: "not a finite number"), never "did not settle" nor NaN results.
+  subroutine overflowed()
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(:), allocatable :: file, text
+    file = folder//'/overflow.inp'
+    call write_deck(file, [character(len=80) :: 'TITLE overflow', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
+      'MATERIAL m ELASTIC E=1e308 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=2', 'PLATE Z=0 STICK', &
+      'GRAVITY G=300', 'END'])
+    call read_deck(file, deck, error)
+    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
+    call check('E = 1e308: refused', allocated(error))
+    if (.not. allocated(error)) return
+    text = error_text(error)
+    print '(a)', text
+    call check('E = 1e308: not reported as a contact set that did not settle', index(text, 'did not settle') == 0, text)
+  end subroutine overflowed
 
   !> A block pulled off the plate: nothing holds it once every bottom node is
   !> freed at lambda = 0. The singular stiffness is reported at the PLATE card
