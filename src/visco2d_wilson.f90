@@ -71,7 +71,8 @@ module visco2d_wilson
                             phase_output, phase_step_loop
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
-  use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row
+  use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row, &
+                            impact_surface_stress
   implicit none
   private
 
@@ -521,6 +522,7 @@ contains
         if (allocated(error)) return
       end do
 
+      if (contact_on) call impact_surface_stress(impact, deck, contact, stress, rhs, over_tau, memory, state)
       ! The increment stands: strains, stresses and history (eq. [24]).
       call timer_start(phase_constitutive)
       do e = 1, deck%mesh%nelem
