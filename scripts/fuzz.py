@@ -237,10 +237,11 @@ def mutate_duplicate_line(m):
     index = m.pick_card()
     if index is None:
         return False
+    line = m.lines[index]
     target = m.rng.choice([index + 1, m.rng.randrange(len(m.lines) + 1)])
-    m.lines.insert(target, m.lines[index])
-    m.notes.append('duplicated line %d to %d: %.60s' % (index + 1, target + 1, m.lines[index]))
-    if not m.kinds and keyword(m.lines[index]) in ('MESH', 'ELEMENT') and target <= end_index(m.lines):
+    m.lines.insert(target, line)
+    m.notes.append('duplicated line %d to %d: %.60s' % (index + 1, target + 1, line))
+    if not m.kinds and keyword(line) in ('MESH', 'ELEMENT') and target <= end_index(m.lines):
         m.must_fail = True   # a second copy of the mesh or of an element: coincident elements
     return True
 
@@ -888,6 +889,8 @@ class Case:
         self.stderr = ''
         self.error_form = ''
         self.error_has_column = None
+        self.reference = {}
+        self.differing = []
 
 
 def limit_memory(megabytes):
@@ -938,19 +941,41 @@ def add(case, name, reason):
 
 
 def crash_signature(stderr):
-    """Where a crash happened, from the runtime's or the sanitizer's report."""
-    for pattern in [r'(src/[\w./]+\.f90:\d+)', r'At line (\d+ of file [\w./]+)',
-                    r'(app/[\w./]+\.f90:\d+)', r'(Error allocating \d+ bytes)']:
-        match = re.search(pattern, stderr)
+    """Where a crash happened, from the runtime's or the sanitizer's report: 'file:line | what'."""
+    # gfortran's run-time warnings (array temporaries) come as 'At line N of file F' too: drop them
+    text = re.sub(r'At line \d+ of file [^\n]*\nFortran runtime warning:[^\n]*\n?', '', stderr)
+    frame = r'((?:src|app|test)/[\w./-]+\.f90:\d+)'
+    what, where = '', ''
+    runtime = re.search(r'(?:At line (\d+) of file ([^\s(]+)[^\n]*\n)?(Fortran runtime error: [^\n]*)', text)
+    sanitizer = re.search(r'ERROR: (\w+Sanitizer: [\w-]+)', text)
+    undefined = re.search(r'([\w./-]+\.f90:\d+):\d+: runtime error: ([^\n]*)', text)
+    if undefined:
+        where, what = undefined.group(1), 'runtime error: ' + undefined.group(2)
+    elif sanitizer:
+        what = sanitizer.group(1)
+        found = re.search(frame, text[sanitizer.end():])
+        where = found.group(1) if found else ''
+    elif runtime:
+        what = runtime.group(3)
+        where = '%s:%s' % (runtime.group(2), runtime.group(1)) if runtime.group(1) else ''
+        if not where:
+            found = re.search(frame, text)
+            where = found.group(1) if found else ''
+    elif re.search(r"In file '([^']+)', around line (\d+): (Error allocating)", text):
+        match = re.search(r"In file '([^']+)', around line (\d+): (Error allocating)", text)
+        where, what = '%s:%s' % (match.group(1), match.group(2)), match.group(3)
+    else:
+        match = re.search(r'(Error allocating \d+ bytes|Program received signal \w+|Operating system error[^\n]*)',
+                          text)
         if match:
-            where = re.sub(r'\./', '', match.group(1))
-            kind = re.search(r'(Fortran runtime error: [^\n]{0,80}|runtime error: [^\n]{0,60}|'
-                             r'ERROR: \w+Sanitizer: [\w-]+|Error allocating|Program received signal \w+)', stderr)
-            text = kind.group(1) if kind else ''
-            text = re.sub(r'\d+', 'N', text)
-            return '%s | %s' % (where, text)
-    match = re.search(r'(Program received signal \w+|ERROR: \w+Sanitizer: [\w-]+)', stderr)
-    return match.group(1) if match else ''
+            what = match.group(1)
+            found = re.search(frame, text)
+            where = found.group(1) if found else ''
+    if not what:
+        return ''
+    where = re.sub(r'^(\./)+', '', where.replace('/./', '/'))
+    what = re.sub(r"'\d+'|\b\d+\b", 'N', what)[:100]
+    return '%s | %s' % (where, what)
 
 
 def message_form(message, deck):
@@ -980,7 +1005,7 @@ def classify(case, hung, work, out_root, options, seed_summaries):
         add(case, 'SILENT', 'exit status %d, this deck expects %s' % (status, sorted(case.exits)))
         case.signature = case.signature or 'SILENT exit %d' % status
     # leftovers in the output root
-    if os.path.isdir(out_root):
+    if os.path.isdir(out_root) and not hung:   # a run killed at the bound cannot clean up
         leftovers = [name for name in os.listdir(out_root) if '.partial.' in name or '.old.' in name]
         if leftovers:
             add(case, 'PARTIAL', 'left in the output root: %s' % ', '.join(leftovers[:3]))
@@ -1029,21 +1054,40 @@ def locate(case, stderr):
     case.error_has_column = where.group(2) is not None
 
 
+def generic_key(key):
+    """A summary key or column name with the deck's own names and numbers taken out."""
+    key = re.sub(r'^expect_.*_(value|rel_error|within_rtol)$', r'expect_*_\1', key)
+    key = re.sub(r'^probe_[^ ]*?_(ur|uz|vr|vz|ar|az|sr|sz|st|trz|r|z)(_\w+)?$', r'probe_*_\1\2', key)
+    return re.sub(r'\d+', 'N', key)
+
+
+def where_in(text, position, name):
+    """The summary key, the history column or the listing section at a position of a text output."""
+    start = text.rfind('\n', 0, position) + 1
+    line = text[start:text.find('\n', position) if text.find('\n', position) >= 0 else len(text)]
+    if '=' in line and not line.lstrip().startswith(('-', '+')) and ' = ' in line:
+        return line, generic_key(line.split('=')[0].strip())
+    if name == 'history.csv':
+        header = text.split('\n', 1)[0].split(',')
+        column = text[start:position].count(',')
+        return line, 'column ' + generic_key(header[column].strip()) if column < len(header) else 'row'
+    sections = re.findall(r'^ ([A-Z][A-Z0-9 (),./-]{3,})$', text[:start], re.M)
+    return line, 'section ' + (sections[-1].split('(')[0].strip() if sections else 'head')
+
+
 def scan_text(text, case, where):
     """Non-finite and unreadable numbers in a text output (not its echo of the deck)."""
     bad = NONFINITE_TOKEN.search(text)
     if bad:
-        line = text[max(0, text.rfind('\n', 0, bad.start()) + 1):text.find('\n', bad.start())]
-        add(case, 'NONFINITE', '%s: %.120s' % (where, line.strip()))
-        key = line.split('=')[0].strip() if '=' in line else line.strip()[:30]
-        case.signature = case.signature or 'NONFINITE %s %s' % (where, re.sub(r'\d+', 'N', key))
+        line, key = where_in(text, bad.start(), where)
+        add(case, 'NONFINITE', '%s: %.160s' % (where, line.strip()))
+        case.signature = case.signature or 'NONFINITE %s %s' % (where, key)
     for pattern, what in ((STARS, 'a field of *'), (NO_EXPONENT_LETTER, 'an exponent without its letter')):
         bad = pattern.search(text)
         if bad:
-            line = text[max(0, text.rfind('\n', 0, bad.start()) + 1):text.find('\n', bad.start())]
-            add(case, 'UNREADABLE', '%s: %s: %.120s' % (where, what, line.strip()))
-            key = line.split('=')[0].strip() if '=' in line else what
-            case.signature = case.signature or 'UNREADABLE %s %s' % (where, re.sub(r'\d+', 'N', key))
+            line, key = where_in(text, bad.start(), where)
+            add(case, 'UNREADABLE', '%s: %s (%s): %.160s' % (where, what, bad.group(0), line.strip()))
+            case.signature = case.signature or 'UNREADABLE %s %s: %s' % (where, key, what)
 
 
 def listing_without_echo(text):
@@ -1057,7 +1101,7 @@ def listing_without_echo(text):
             if line.strip() == '':
                 echo = False
             continue
-        if line.startswith((' title:', ' deck:', ' case:')):
+        if re.match(r'\s*(title|deck|case)\s*[:=]', line):
             continue
         kept.append(line)
     return '\n'.join(kept)
@@ -1175,6 +1219,7 @@ def check_oracles(case, case_dir, seed_summaries):
         ignore = ('cpu_s', 'case', 'title')
         differing = sorted(key for key in set(reference) | set(summary) if key not in ignore
                            and reference.get(key) != summary.get(key))
+        case.reference, case.differing = reference, differing
         if reference and differing:
             add(case, 'SILENT', 'a change of layout only (%s) changed the summary: %s' % (
                 '; '.join(case.notes), ', '.join(differing[:4])))
@@ -1225,13 +1270,26 @@ def seed_reference_summaries(seeds, options, work_root):
     return summaries
 
 
+def oracle_directives(case):
+    """'# fuzz:' lines that carry a mutant's oracle into the saved deck (for --decks and --shrink)."""
+    lines = []
+    if case.must_fail:
+        lines.append('# fuzz: exit 1 2')
+    if case.same_as_seed and case.reference:
+        lines.append('# fuzz: exit 0 1 2')
+        for key in case.differing[:6]:
+            if key in case.reference:
+                lines.append('# fuzz: summary %s = %s' % (key, case.reference[key]))
+    return ''.join(line + '\n' for line in lines)
+
+
 def save_failure(case, out):
     for name in case.classes:
         folder = os.path.join(out, 'failures', name)
         os.makedirs(folder, exist_ok=True)
         stem = os.path.join(folder, case.id)
         with open(stem + '.inp', 'wb') as handle:
-            handle.write(case.text.encode('latin-1'))
+            handle.write((oracle_directives(case) + case.text).encode('latin-1'))
         with open(stem + '.stderr', 'wb') as handle:
             handle.write(case.stderr.encode('latin-1'))
         with open(stem + '.reason', 'w') as handle:
@@ -1327,9 +1385,10 @@ def run_all(cases, options, seed_summaries):
                         failed += 1
                         save_failure(case, options.out)
                         if options.verbose:
-                            print('FAIL %s: %s' % (case.id, '; '.join(case.reasons)[:300]), flush=True)
+                            print('FAIL %s%s: %s (%s)' % (options.label, case.id, '; '.join(case.reasons)[:300],
+                                                          case.signature[:200]), flush=True)
                     elif options.verbose:
-                        print('PASS %s' % case.id, flush=True)
+                        print('PASS %s%s' % (options.label, case.id), flush=True)
                     progress(done, len(cases), failed, start, options.quiet or options.verbose)
     finally:
         shutil.rmtree(work_root, ignore_errors=True)
@@ -1356,6 +1415,10 @@ def shrink(path, options):
             print('shrink: %s does not fail (exit %s); nothing to shrink' % (path, target.status))
             return 1
         signature = target.signature
+        if 'SILENT' in target.classes:
+            print('shrink: %s fails as SILENT (%s): not shrunk, that oracle holds for the mutation, not for '
+                  'a smaller deck' % (path, target.reasons[0]))
+            return 1
         print('shrink: target signature: %s' % signature)
         tests = [0]
 
@@ -1364,8 +1427,12 @@ def shrink(path, options):
             return run('\n'.join(lines) + '\n').signature == signature
 
         lines = split_lines(text.rstrip('\n'))
+        kept = [line for line in lines if re.match(r'\s*#\s*fuzz:', line)]   # '# fuzz:' lines stay
+        lines = [line for line in lines if line not in kept]
+        run_plain = run
+        run = lambda candidate: run_plain(''.join(line + '\n' for line in kept) + candidate)  # noqa: E731
         # first drop comment and blank lines at once, then each line
-        stripped = [line for line in lines if is_card(line) or re.match(r'\s*#\s*fuzz:', line)]
+        stripped = [line for line in lines if is_card(line)]
         if failing(stripped):
             lines = stripped
         granularity = 2
@@ -1390,7 +1457,7 @@ def shrink(path, options):
                 lines[index] = body
         output = options.shrink_out or re.sub(r'\.inp$', '', path) + '.min.inp'
         with open(output, 'wb') as handle:
-            handle.write(('\n'.join(lines) + '\n').encode('latin-1'))
+            handle.write(('\n'.join(kept + lines) + '\n').encode('latin-1'))
         print('shrink: %d -> %d lines in %d runs: %s' % (len(split_lines(text.rstrip('\n'))), len(lines), tests[0],
                                                           output))
         return 0
@@ -1417,11 +1484,16 @@ def main():
                         help='mutation kinds to use, comma-separated (default all: %(default)s)')
     parser.add_argument('--only', type=int, nargs='+', help='run only these deck numbers of the campaign')
     parser.add_argument('--decks', nargs='+', help='run these decks as they are (no mutation), e.g. test/fuzz/*.inp')
+    parser.add_argument('--expect-exit', type=int, nargs='+', metavar='STATUS',
+                        help='with --decks: the allowed exit statuses of decks without a "# fuzz: exit" line '
+                        '(default 0 1 2; inputs/ decks must exit 0)')
+    parser.add_argument('--label', default='', help='prefix of the deck names in PASS/FAIL lines (with -v)')
     parser.add_argument('--shrink', metavar='DECK', help='minimize a failing deck by deleting lines, keeping '
                         'its failure signature; writes DECK.min.inp (or --shrink-out)')
     parser.add_argument('--shrink-out', help='where --shrink writes the minimized deck')
-    parser.add_argument('--mem-mb', type=int, default=4096,
-                        help='address-space limit per run in MB, 0 for none (default 4096; use 0 under ASan)')
+    parser.add_argument('--mem-mb', type=int, default=None,
+                        help='address-space limit per run in MB, 0 for none (default 4096, none for an '
+                        'AddressSanitizer build)')
     parser.add_argument('--write', metavar='DIR', help='only write the mutated decks into DIR, run nothing')
     parser.add_argument('--keep-work', action='store_true', help='keep each run folder (for debugging)')
     parser.add_argument('-v', '--verbose', action='store_true', help='a PASS/FAIL line per deck')
@@ -1429,9 +1501,12 @@ def main():
     options = parser.parse_args()
     options.exe = os.path.abspath(options.exe)
     options.out = os.path.abspath(options.out)
+    if options.mem_mb is None:   # no address-space limit under AddressSanitizer (it reserves terabytes)
+        with open(options.exe, 'rb') as handle:
+            options.mem_mb = 0 if b'libasan' in handle.read() else 4096
     options.env = dict(os.environ, VISCO2D_PROGRESS_DELAY='1e9')
-    options.env.setdefault('ASAN_OPTIONS', 'halt_on_error=1:abort_on_error=0:detect_leaks=1')
-    options.env.setdefault('UBSAN_OPTIONS', 'halt_on_error=1:print_stacktrace=1')
+    options.env.setdefault('ASAN_OPTIONS', 'halt_on_error=1:detect_leaks=1:exitcode=86')
+    options.env.setdefault('UBSAN_OPTIONS', 'halt_on_error=1:print_stacktrace=1:exitcode=87')
     kinds = [k for k in options.kinds.split(',') if k]
     unknown = [k for k in kinds if k not in MUTATIONS]
     if unknown:
@@ -1451,6 +1526,8 @@ def main():
             text = read_deck(path)
             exits, summary_lines = directives(text)
             name = re.sub(r'[^\w.-]', '_', os.path.splitext(os.path.basename(path))[0])
+            if exits is None and options.expect_exit:
+                exits = set(options.expect_exit)
             cases.append(Case(name, text, seed_name=os.path.relpath(path, ROOT), exits=exits,
                               summary_lines=summary_lines))
         seed_summaries = {}
