@@ -29,7 +29,9 @@ and classifies the run.  A run passes when it exits 0, 1 or 2 and none of these 
               blanks past column 4096 or given a long comment (same meaning) ran to a
               different summary; a keyword turned into a non-keyword (near miss) or a
               duplicated MESH/ELEMENT card ran with exit 0; a run with exit 0 whose
-              summary reports fewer EXPECT results than the deck's EXPECT cards
+              summary reports fewer EXPECT results than the deck's EXPECT cards; a run with
+              exit 0 whose energy-balance error (balance_error_max_rel) is above 10 % of the
+              energy put in without a 'visco2d: warning:' about the energy
 
 The report goes to OUT (default out/fuzz/): summary.md (counts per class and per
 mutation kind, the error forms without a column), cases.csv (one row per deck),
@@ -103,6 +105,7 @@ ERROR_LINE = re.compile(r'^visco2d: error: (.*)$', re.M)
 NONFINITE_TOKEN = re.compile(r'(?<![A-Za-z0-9_])[-+]?(?:nan|inf|infinity)(?![A-Za-z0-9_])', re.I)
 STARS = re.compile(r'\*{2,}')
 NO_EXPONENT_LETTER = re.compile(r'(?<![A-Za-z0-9_.])[-+]?\d+\.\d+[-+]\d{2,}(?![\w.])')
+BALANCE_LIMIT = 0.1   # balance_error_max_rel above this needs a warning that names the energy
 CRASH_TEXT = ['Fortran runtime error', 'Backtrace', 'Error termination', 'Segmentation',
               'runtime error:', 'AddressSanitizer', 'LeakSanitizer', 'UndefinedBehaviorSanitizer',
               'Program received signal', 'Floating point exception', 'Illegal instruction',
@@ -1211,6 +1214,15 @@ def check_oracles(case, case_dir, seed_summaries):
     if given and len(reported) < len(given):
         add(case, 'SILENT', 'the deck has %d EXPECT key(s), summary.txt reports %d' % (len(given), len(reported)))
         case.signature = case.signature or 'SILENT EXPECT count'
+    try:
+        balance = float(summary.get('balance_error_max_rel', '0'))
+    except ValueError:
+        balance = 0.0
+    energy_warning = re.search(r'^visco2d: warning:.*energ', case.stderr, re.M | re.I)
+    if balance > BALANCE_LIMIT and not energy_warning:
+        add(case, 'SILENT', 'exit 0 with an energy-balance error %.3g times the energy put in and no warning '
+            'about it' % balance)
+        case.signature = case.signature or 'SILENT energy balance unwarned'
     if case.must_fail:
         add(case, 'SILENT', 'accepted (exit 0) a deck that must be refused: %s' % '; '.join(case.notes))
         case.signature = case.signature or 'SILENT accepted %s' % case.kinds[0]
