@@ -27,7 +27,7 @@ and classifies the run.  A run passes when it exits 0, 1 or 2 and none of these 
   MISSING_OUTPUT   exit 0 without each of listing.txt, summary.txt, history.csv, results.h5
   SILENT      a change that must not go unnoticed was accepted: a card padded with
               blanks past column 4096 or given a long comment (same meaning) ran to a
-              different summary; a keyword turned into a non-keyword (near miss) or a
+              different summary, or to an error that is not about the line's length; a keyword turned into a non-keyword (near miss) or a
               duplicated MESH/ELEMENT card ran with exit 0; a run with exit 0 whose
               summary reports fewer EXPECT results than the deck's EXPECT cards; a run with
               exit 0 whose energy-balance error (balance_error_max_rel) is above 10 % of the
@@ -1022,6 +1022,12 @@ def classify(case, hung, work, out_root, options, seed_summaries):
         case.signature = case.signature or 'OUTPUT_ON_ERROR ' + message_form(first_error(stderr), case.file_name)
     if status == 1 and 'CRASH' not in case.classes:
         locate(case, stderr)
+        reference = seed_summaries.get(case.seed_name) if case.same_as_seed else None
+        message = first_error(stderr)
+        if reference and not re.search(r'long|characters|column', message):
+            add(case, 'SILENT', 'a change of layout only (%s) of a deck that runs made it fail with another '
+                'error: %.200s' % ('; '.join(case.notes), message))
+            case.signature = case.signature or 'SILENT layout change misread: ' + message_form(message, case.file_name)
     if status == 0:
         missing = [name for name in ('listing.txt', 'summary.txt', 'history.csv', 'results.h5')
                    if not (os.path.isfile(os.path.join(case_dir, name))
@@ -1517,7 +1523,7 @@ def main():
         with open(options.exe, 'rb') as handle:
             options.mem_mb = 0 if b'libasan' in handle.read() else 4096
     options.env = dict(os.environ, VISCO2D_PROGRESS_DELAY='1e9')
-    options.env.setdefault('ASAN_OPTIONS', 'halt_on_error=1:detect_leaks=1:exitcode=86')
+    options.env.setdefault('ASAN_OPTIONS', 'halt_on_error=1:detect_leaks=1:exitcode=86:max_allocation_size_mb=4096')
     options.env.setdefault('UBSAN_OPTIONS', 'halt_on_error=1:print_stacktrace=1:exitcode=87')
     kinds = [k for k in options.kinds.split(',') if k]
     unknown = [k for k in kinds if k not in MUTATIONS]

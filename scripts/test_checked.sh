@@ -13,7 +13,9 @@
 # and no runtime-error, sanitizer or leak report in stderr (scripts/fuzz.py's CRASH
 # class), no non-finite output, no partial folder, a located error on exit 1.
 # Any sanitizer report is an error: halt_on_error=1 and exitcode 86 (ASan, LSan) /
-# 87 (UBSan); leaks are checked at exit (detect_leaks=1), with no suppressions.
+# 87 (UBSan); an allocation above 4 GB is one too (max_allocation_size_mb=4096, as the
+# release runs of scripts/fuzz.py get a 4 GB address-space limit); leaks are checked
+# at exit (detect_leaks=1), with no suppressions.
 # -fcheck=all minus array-temps (a performance note, not a defect; the debug
 # profile's own -fcheck=array-temps comes after our flags, so its run-time
 # warnings may appear in stderr: they are not counted).
@@ -37,7 +39,7 @@ else
 fi
 exe=$prefix/bin/visco2d
 
-export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:exitcode=86}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:exitcode=86:max_allocation_size_mb=4096}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1:exitcode=87}
 bound=${CHECKED_BOUND:-300}
 
