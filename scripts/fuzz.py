@@ -894,6 +894,7 @@ class Case:
         self.error_has_column = None
         self.reference = {}
         self.differing = []
+        self.signatures = {}            # class -> its first signature
 
 
 def limit_memory(megabytes):
@@ -935,6 +936,12 @@ def run_case(case, options, work_root, seed_summaries):
     if not options.keep_work:
         shutil.rmtree(work, ignore_errors=True)
     return case
+
+
+def sign(case, signature):
+    """Record a failure signature ('CLASS what where'): the first one per class is kept."""
+    case.signatures.setdefault(signature.split(' ', 1)[0], signature)
+    case.signature = case.signature or signature
 
 
 def add(case, name, reason):
@@ -996,30 +1003,30 @@ def classify(case, hung, work, out_root, options, seed_summaries):
     stderr = case.stderr
     if hung:
         add(case, 'HANG', 'still running after %g s' % options.bound)
-        case.signature = 'HANG %s %s' % (case.seed_name, '+'.join(case.kinds))
+        sign(case, 'HANG %s %s' % (case.seed_name, '+'.join(case.kinds)))
     elif status < 0 or status not in (0, 1, 2):
         add(case, 'CRASH', 'exit status %d%s' % (status, ' (signal %d)' % -status if status < 0 else ''))
     found = [text for text in CRASH_TEXT if text in stderr]
     if found:
         add(case, 'CRASH', 'stderr holds %s' % ', '.join(repr(t) for t in found[:3]))
     if 'CRASH' in case.classes:
-        case.signature = 'CRASH ' + (crash_signature(stderr) or 'exit %d' % status)
+        sign(case, 'CRASH ' + (crash_signature(stderr) or 'exit %d' % status))
     if case.exits is not None and not hung and status not in case.exits and 'CRASH' not in case.classes:
         add(case, 'SILENT', 'exit status %d, this deck expects %s' % (status, sorted(case.exits)))
-        case.signature = case.signature or 'SILENT exit %d' % status
+        sign(case, 'SILENT exit %d' % status)
     # leftovers in the output root
     if os.path.isdir(out_root) and not hung:   # a run killed at the bound cannot clean up
         leftovers = [name for name in os.listdir(out_root) if '.partial.' in name or '.old.' in name]
         if leftovers:
             add(case, 'PARTIAL', 'left in the output root: %s' % ', '.join(leftovers[:3]))
-            case.signature = case.signature or 'PARTIAL'
+            sign(case, 'PARTIAL')
     case_name = os.path.splitext(case.file_name)[0]
     case_dir = os.path.join(out_root, case_name)
     if hung:
         return
     if status in (1, 2) and os.path.isdir(case_dir):
         add(case, 'OUTPUT_ON_ERROR', 'exit %d with %s/ left behind' % (status, case_name))
-        case.signature = case.signature or 'OUTPUT_ON_ERROR ' + message_form(first_error(stderr), case.file_name)
+        sign(case, 'OUTPUT_ON_ERROR ' + message_form(first_error(stderr), case.file_name))
     if status == 1 and 'CRASH' not in case.classes:
         locate(case, stderr)
         reference = seed_summaries.get(case.seed_name) if case.same_as_seed else None
@@ -1027,14 +1034,14 @@ def classify(case, hung, work, out_root, options, seed_summaries):
         if reference and not re.search(r'long|characters|column', message):
             add(case, 'SILENT', 'a change of layout only (%s) of a deck that runs made it fail with another '
                 'error: %.200s' % ('; '.join(case.notes), message))
-            case.signature = case.signature or 'SILENT layout change misread: ' + message_form(message, case.file_name)
+            sign(case, 'SILENT layout change misread: ' + message_form(message, case.file_name))
     if status == 0:
         missing = [name for name in ('listing.txt', 'summary.txt', 'history.csv', 'results.h5')
                    if not (os.path.isfile(os.path.join(case_dir, name))
                            and os.path.getsize(os.path.join(case_dir, name)) > 0)]
         if missing:
             add(case, 'MISSING_OUTPUT', 'exit 0 without %s' % ', '.join(missing))
-            case.signature = case.signature or 'MISSING_OUTPUT ' + ','.join(missing)
+            sign(case, 'MISSING_OUTPUT ' + ','.join(missing))
     if os.path.isdir(case_dir):
         check_outputs(case, case_dir)
         if status == 0:
@@ -1051,14 +1058,14 @@ def locate(case, stderr):
     deck = case.file_name
     if not match:
         add(case, 'UNLOCATED', 'exit 1 without a "visco2d: error:" line: %.120s' % stderr.strip().replace('\n', '|'))
-        case.signature = case.signature or 'UNLOCATED no error line'
+        sign(case, 'UNLOCATED no error line')
         return
     message = match.group(1)
     case.error_form = message_form(message, deck)
     where = re.match(re.escape(deck) + r':(\d+)(?::(\d+))?: ', message)
     if not where:
         add(case, 'UNLOCATED', 'the error names no line of %s: %.160s' % (deck, message))
-        case.signature = case.signature or 'UNLOCATED ' + case.error_form
+        sign(case, 'UNLOCATED ' + case.error_form)
         return
     case.error_has_column = where.group(2) is not None
 
@@ -1090,13 +1097,13 @@ def scan_text(text, case, where):
     if bad:
         line, key = where_in(text, bad.start(), where)
         add(case, 'NONFINITE', '%s: %.160s' % (where, line.strip()))
-        case.signature = case.signature or 'NONFINITE %s %s' % (where, key)
+        sign(case, 'NONFINITE %s %s' % (where, key))
     for pattern, what in ((STARS, 'a field of *'), (NO_EXPONENT_LETTER, 'an exponent without its letter')):
         bad = pattern.search(text)
         if bad:
             line, key = where_in(text, bad.start(), where)
             add(case, 'UNREADABLE', '%s: %s (%s): %.160s' % (where, what, bad.group(0), line.strip()))
-            case.signature = case.signature or 'UNREADABLE %s %s: %s' % (where, key, what)
+            sign(case, 'UNREADABLE %s %s: %s' % (where, key, what))
 
 
 def listing_without_echo(text):
@@ -1184,11 +1191,11 @@ def check_hdf5(case, path):
     except Exception as error:  # an unreadable file after exit 0 is a broken output
         if case.status == 0:
             add(case, 'MISSING_OUTPUT', 'results.h5 unreadable: %s' % error)
-            case.signature = case.signature or 'MISSING_OUTPUT results.h5 unreadable'
+            sign(case, 'MISSING_OUTPUT results.h5 unreadable')
         return
     for kind, text in problems[:1]:
         add(case, kind, 'results.h5: %s' % text)
-        case.signature = case.signature or '%s results.h5 %s' % (kind, re.sub(r'\d+', 'N', text.split(' ')[0]))
+        sign(case, '%s results.h5 %s' % (kind, re.sub(r'\d+', 'N', text.split(' ')[0])))
 
 
 def read_summary(case_dir):
@@ -1219,7 +1226,7 @@ def check_oracles(case, case_dir, seed_summaries):
     reported = {key for key in summary if key.startswith('expect_') and key.endswith('_within_rtol')}
     if given and len(reported) < len(given):
         add(case, 'SILENT', 'the deck has %d EXPECT key(s), summary.txt reports %d' % (len(given), len(reported)))
-        case.signature = case.signature or 'SILENT EXPECT count'
+        sign(case, 'SILENT EXPECT count')
     try:
         balance = float(summary.get('balance_error_max_rel', '0'))
     except ValueError:
@@ -1228,10 +1235,10 @@ def check_oracles(case, case_dir, seed_summaries):
     if balance > BALANCE_LIMIT and not energy_warning:
         add(case, 'SILENT', 'exit 0 with an energy-balance error %.3g times the energy put in and no warning '
             'about it' % balance)
-        case.signature = case.signature or 'SILENT energy balance unwarned'
+        sign(case, 'SILENT energy balance unwarned')
     if case.must_fail:
         add(case, 'SILENT', 'accepted (exit 0) a deck that must be refused: %s' % '; '.join(case.notes))
-        case.signature = case.signature or 'SILENT accepted %s' % case.kinds[0]
+        sign(case, 'SILENT accepted %s' % case.kinds[0])
     if case.same_as_seed and case.seed_name in seed_summaries:
         reference = seed_summaries[case.seed_name]
         ignore = ('cpu_s', 'case', 'title')
@@ -1241,12 +1248,12 @@ def check_oracles(case, case_dir, seed_summaries):
         if reference and differing:
             add(case, 'SILENT', 'a change of layout only (%s) changed the summary: %s' % (
                 '; '.join(case.notes), ', '.join(differing[:4])))
-            case.signature = case.signature or 'SILENT layout changed the summary'
+            sign(case, 'SILENT layout changed the summary')
     for line in case.summary_lines:
         key, value = line.split(' = ', 1)
         if summary.get(key) != value:
             add(case, 'SILENT', 'summary.txt has %s = %s, this deck expects %s' % (key, summary.get(key), value))
-            case.signature = case.signature or 'SILENT summary ' + key
+            sign(case, 'SILENT summary ' + key)
 
 
 # ---------------------------------------------------------------------------- campaign
@@ -1315,7 +1322,7 @@ def save_failure(case, out):
                 '; '.join(case.reasons), case.seed_name, '+'.join(case.kinds) or 'none', case.status, case.seconds))
             for note in case.notes:
                 handle.write('  %s\n' % note)
-            handle.write('signature: %s\n' % case.signature)
+            handle.write('signature: %s\n' % case.signatures.get(name, case.signature))
 
 
 def write_report(cases, out, options, elapsed):
@@ -1323,12 +1330,13 @@ def write_report(cases, out, options, elapsed):
     with open(os.path.join(out, 'cases.csv'), 'w', newline='') as handle:
         writer = csv.writer(handle)
         writer.writerow(['id', 'seed', 'mutations', 'exit', 'seconds', 'classes', 'signature', 'error_form',
-                         'column', 'notes'])
+                         'column', 'notes', 'signatures'])
         for case in cases:
             writer.writerow([case.id, case.seed_name, '+'.join(case.kinds), case.status, '%.3f' % case.seconds,
                              ' '.join(case.classes), case.signature, case.error_form,
                              '' if case.error_has_column is None else int(case.error_has_column),
-                             ' | '.join(case.notes)[:400]])
+                             ' | '.join(case.notes)[:400],
+                             ' || '.join(case.signatures.get(name, name) for name in case.classes)])
     failing = [c for c in cases if c.classes]
     lines = ['# visco2d fuzz report', '',
              'exe `%s`, %d decks, seed %s, bound %g s, %d jobs, %.1f s wall' % (

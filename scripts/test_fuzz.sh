@@ -37,7 +37,8 @@ for name in FAIL_CLASSES:
         continue
     signatures = {}
     for r in bad:
-        signatures.setdefault(r['signature'], []).append(r['id'])
+        mine = [s for s in r['signatures'].split(' || ') if s.split(' ', 1)[0] == name]
+        signatures.setdefault(mine[0] if mine else r['signature'], []).append(r['id'])
     examples = '; '.join('%d x %s (e.g. %s)' % (len(ids), s[:110], ids[0])
                          for s, ids in sorted(signatures.items(), key=lambda kv: -len(kv[1]))[:3])
     print('FAIL fuzz_no_%s: %d of %d decks: %s; decks in %s/failures/%s/' % (
