@@ -5,10 +5,13 @@
     python3 scripts/fuzz.py --decks DECK...        run decks as they are (regression decks)
     python3 scripts/fuzz.py --shrink DECK          minimize a failing deck (line delta debugging)
 
-Takes the seed decks (inputs/*.inp and test/fuzz/*.inp), makes N mutated decks from
-them (deterministically: deck i depends only on --seed and i, not on --jobs), runs
-each with the visco2d executable into a fresh output root under a wall-time bound,
-and classifies the run.  A run passes when it exits 0, 1 or 2 and none of these holds:
+Takes the seed decks (inputs/*.inp and test/fuzz/*.inp; LEVEL=1 meshes and at most 1000
+steps per TIME stage, so that most runs take well under a second), makes N mutated decks
+from them (deterministically: deck i depends only on --seed, i and the seed decks, not on
+--jobs), runs each with the visco2d executable into a fresh output root under a wall-time
+bound and a 4 GB address-space limit (a tenth of the decks go to 'visco2d check DECK'
+instead), and classifies the run.  A run passes when it exits 0, 1 or 2 and none of
+these holds:
 
   CRASH       a signal, an exit status other than 0/1/2, or runtime-error text in
               stderr ('Fortran runtime error', 'Backtrace', 'Error termination',
@@ -27,7 +30,8 @@ and classifies the run.  A run passes when it exits 0, 1 or 2 and none of these 
   MISSING_OUTPUT   exit 0 without each of listing.txt, summary.txt, history.csv, results.h5
   SILENT      a change that must not go unnoticed was accepted: a card padded with
               blanks past column 4096 or given a long comment (same meaning) ran to a
-              different summary, or to an error that is not about the line's length; a keyword turned into a non-keyword (near miss) or a
+              different summary, or to an error that is not about the line's length; a
+              keyword turned into a non-keyword (near miss) or a
               duplicated MESH/ELEMENT card ran with exit 0; a run with exit 0 whose
               summary reports fewer EXPECT results than the deck's EXPECT cards; a run with
               exit 0 whose energy-balance error (balance_error_max_rel) is above 10 % of the
@@ -105,6 +109,7 @@ ERROR_LINE = re.compile(r'^visco2d: error: (.*)$', re.M)
 NONFINITE_TOKEN = re.compile(r'(?<![A-Za-z0-9_])[-+]?(?:nan|inf|infinity)(?![A-Za-z0-9_])', re.I)
 STARS = re.compile(r'\*{2,}')
 NO_EXPONENT_LETTER = re.compile(r'(?<![A-Za-z0-9_.])[-+]?\d+\.\d+[-+]\d{2,}(?![\w.])')
+CHECK_SHARE = 0.1     # the share of mutated decks given to 'visco2d check' instead of a run
 BALANCE_LIMIT = 0.1   # balance_error_max_rel above this needs a warning that names the energy
 CRASH_TEXT = ['Fortran runtime error', 'Backtrace', 'Error termination', 'Segmentation',
               'runtime error:', 'AddressSanitizer', 'LeakSanitizer', 'UndefinedBehaviorSanitizer',
@@ -466,8 +471,8 @@ def mutate_degenerate_mesh(m):
         elif choice == 3:
             # a second element on the same nodes (coincident elements)
             number = m.rng.choice(['9999', '500', str(int(words[1]) + 1) if words[1].isdigit() else '2'])
-            m.lines.insert(index + 1, ' '.join(['ELEMENT', number] + corners + [w for w in rest
-                                                                           if not w.upper().startswith(('GEN', 'INC', 'NINC'))]))
+            single = [w for w in rest if not w.upper().startswith(('GEN', 'INC', 'NINC'))]
+            m.lines.insert(index + 1, ' '.join(['ELEMENT', number] + corners + single))
             m.notes.append('coincident element %s on line %d' % (number, index + 2))
             if not [kind for kind in m.kinds if kind != 'explicit']:
                 m.must_fail = True
@@ -866,13 +871,14 @@ def make_mutant(seed, index, seeds, pool, kinds):
             m.lines, m.must_fail, m.same_as_seed = before
     if not m.solo():              # the oracles hold only for a single mutation
         m.must_fail = m.same_as_seed = False
+    m.command = 'check' if rng.random() < CHECK_SHARE else 'run'
     return m
 
 
 # ---------------------------------------------------------------------------- running
 class Case:
     def __init__(self, identifier, text, seed_name='', kinds=(), notes=(), must_fail=False, same_as_seed=False,
-                 exits=None, summary_lines=(), file_name=None):
+                 exits=None, summary_lines=(), file_name=None, command='run'):
         self.id = identifier
         self.text = text
         self.seed_name = seed_name
@@ -883,6 +889,7 @@ class Case:
         self.exits = exits
         self.summary_lines = list(summary_lines)
         self.file_name = file_name or '%s.inp' % identifier
+        self.command = command          # 'run' or 'check' (visco2d check DECK)
         # results
         self.status = None
         self.seconds = 0.0
@@ -915,7 +922,8 @@ def run_case(case, options, work_root, seed_summaries):
     out_root = os.path.join(work, 'out')
     with open(os.path.join(work, 'stdout'), 'wb') as out, open(os.path.join(work, 'stderr'), 'wb') as err:
         start = time.monotonic()
-        process = subprocess.Popen([options.exe, '-q', '-o', 'out', case.file_name], cwd=work, stdout=out,
+        arguments = ['check', case.file_name] if case.command == 'check' else ['-q', '-o', 'out', case.file_name]
+        process = subprocess.Popen([options.exe] + arguments, cwd=work, stdout=out,
                                    stderr=err, stdin=subprocess.DEVNULL, preexec_fn=limit_memory(options.mem_mb),
                                    env=options.env)
         hung = False
@@ -1035,6 +1043,11 @@ def classify(case, hung, work, out_root, options, seed_summaries):
             add(case, 'SILENT', 'a change of layout only (%s) of a deck that runs made it fail with another '
                 'error: %.200s' % ('; '.join(case.notes), message))
             sign(case, 'SILENT layout change misread: ' + message_form(message, case.file_name))
+    if case.command == 'check':
+        if os.path.exists(out_root):
+            add(case, 'OUTPUT_ON_ERROR', '"visco2d check" wrote into the output root')
+            sign(case, 'OUTPUT_ON_ERROR check wrote output')
+        return
     if status == 0:
         missing = [name for name in ('listing.txt', 'summary.txt', 'history.csv', 'results.h5')
                    if not (os.path.isfile(os.path.join(case_dir, name))
@@ -1318,8 +1331,9 @@ def save_failure(case, out):
         with open(stem + '.stderr', 'wb') as handle:
             handle.write(case.stderr.encode('latin-1'))
         with open(stem + '.reason', 'w') as handle:
-            handle.write('%s (seed %s; mutations %s; exit %s; %.2f s)\n' % (
-                '; '.join(case.reasons), case.seed_name, '+'.join(case.kinds) or 'none', case.status, case.seconds))
+            handle.write('%s (seed %s; mutations %s; %s; exit %s; %.2f s)\n' % (
+                '; '.join(case.reasons), case.seed_name, '+'.join(case.kinds) or 'none',
+                'visco2d check' if case.command == 'check' else 'run', case.status, case.seconds))
             for note in case.notes:
                 handle.write('  %s\n' % note)
             handle.write('signature: %s\n' % case.signatures.get(name, case.signature))
@@ -1329,10 +1343,11 @@ def write_report(cases, out, options, elapsed):
     os.makedirs(out, exist_ok=True)
     with open(os.path.join(out, 'cases.csv'), 'w', newline='') as handle:
         writer = csv.writer(handle)
-        writer.writerow(['id', 'seed', 'mutations', 'exit', 'seconds', 'classes', 'signature', 'error_form',
+        writer.writerow(['id', 'command', 'seed', 'mutations', 'exit', 'seconds', 'classes', 'signature', 'error_form',
                          'column', 'notes', 'signatures'])
         for case in cases:
-            writer.writerow([case.id, case.seed_name, '+'.join(case.kinds), case.status, '%.3f' % case.seconds,
+            writer.writerow([case.id, case.command, case.seed_name, '+'.join(case.kinds), case.status,
+                             '%.3f' % case.seconds,
                              ' '.join(case.classes), case.signature, case.error_form,
                              '' if case.error_has_column is None else int(case.error_has_column),
                              ' | '.join(case.notes)[:400],
@@ -1342,13 +1357,17 @@ def write_report(cases, out, options, elapsed):
              'exe `%s`, %d decks, seed %s, bound %g s, %d jobs, %.1f s wall' % (
                  options.exe, len(cases), options.seed, options.bound, options.jobs, elapsed), '']
     counts = {name: sum(1 for c in cases if name in c.classes) for name in FAIL_CLASSES}
+    checks = [c for c in cases if c.command == 'check']
     exits = {}
     for case in cases:
         exits[case.status] = exits.get(case.status, 0) + 1
     lines += ['## Classes', '', '| class | decks |', '|---|---|']
     lines += ['| %s | %d |' % (name, counts[name]) for name in FAIL_CLASSES]
     lines += ['| (passed) | %d |' % (len(cases) - len(failing)), '',
-              'exit statuses: ' + ', '.join('%s: %d' % (k, v) for k, v in sorted(exits.items(), key=lambda kv: str(kv[0]))),
+              '%d of the decks ran as "visco2d check DECK" (%d failing), the others as runs.' % (
+                  len(checks), sum(1 for c in checks if c.classes)), '',
+              'exit statuses: ' + ', '.join('%s: %d' % (k, v) for k, v in sorted(exits.items(),
+                                                                                  key=lambda kv: str(kv[0]))),
               '']
     kinds = sorted({k for c in cases for k in c.kinds})
     if kinds:
@@ -1364,7 +1383,8 @@ def write_report(cases, out, options, elapsed):
     signatures = {}
     for case in failing:
         signatures.setdefault(case.signature, []).append(case)
-    lines += ['## Distinct failures (by signature)', '', '| decks | signature | example | reason |', '|---|---|---|---|']
+    lines += ['## Distinct failures (by signature)', '', '| decks | signature | example | reason |',
+              '|---|---|---|---|']
     for signature, group in sorted(signatures.items(), key=lambda kv: -len(kv[1])):
         example = group[0]
         lines.append('| %d | `%s` | %s/%s | %s |' % (len(group), signature.replace('|', '/'), example.classes[0],
@@ -1493,6 +1513,7 @@ def shrink(path, options):
 
 # ---------------------------------------------------------------------------- main
 def main():
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)   # quiet when piped into head
     parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0], epilog=__doc__.split('\n\n', 2)[2],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('-n', '--count', type=int, default=1000, help='number of mutated decks (default 1000)')
@@ -1568,7 +1589,7 @@ def main():
             m = make_mutant(options.seed, number, seeds, pool, kinds)
             cases.append(Case('d%06d' % number, m.text() + ('\n' if m.lines and m.lines[-1] != '' else ''),
                               seed_name=m.seed_name, kinds=m.kinds, notes=m.notes, must_fail=m.must_fail,
-                              same_as_seed=m.same_as_seed))
+                              same_as_seed=m.same_as_seed and m.command == 'run', command=m.command))
         if options.write:
             os.makedirs(options.write, exist_ok=True)
             for case in cases:
