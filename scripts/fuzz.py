@@ -890,6 +890,7 @@ class Case:
         self.summary_lines = list(summary_lines)
         self.file_name = file_name or '%s.inp' % identifier
         self.command = command          # 'run' or 'check' (visco2d check DECK)
+        self.disk_kb = 0                # > 0: the output root on a tmpfs of this size (--disk-full)
         # results
         self.status = None
         self.seconds = 0.0
@@ -920,9 +921,20 @@ def run_case(case, options, work_root, seed_summaries):
     with open(deck, 'wb') as handle:
         handle.write(case.text.encode('latin-1'))
     out_root = os.path.join(work, 'out')
+    mounted = None
+    if case.disk_kb:   # a full disk: the output root on a tmpfs of that size
+        mounted = os.path.join(work, 'disk')
+        os.makedirs(mounted)
+        if subprocess.run(['mount', '-t', 'tmpfs', '-o', 'size=%dk' % case.disk_kb, 'tmpfs', mounted],
+                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode != 0:
+            mounted = None
+            case.disk_kb = 0
+        else:
+            out_root = os.path.join(mounted, 'out')
     with open(os.path.join(work, 'stdout'), 'wb') as out, open(os.path.join(work, 'stderr'), 'wb') as err:
         start = time.monotonic()
-        arguments = ['check', case.file_name] if case.command == 'check' else ['-q', '-o', 'out', case.file_name]
+        arguments = ['check', case.file_name] if case.command == 'check' else [
+            '-q', '-o', os.path.relpath(out_root, work), case.file_name]
         process = subprocess.Popen([options.exe] + arguments, cwd=work, stdout=out,
                                    stderr=err, stdin=subprocess.DEVNULL, preexec_fn=limit_memory(options.mem_mb),
                                    env=options.env)
@@ -941,6 +953,8 @@ def run_case(case, options, work_root, seed_summaries):
     with open(os.path.join(work, 'stderr'), 'rb') as handle:
         case.stderr = handle.read(200000).decode('latin-1')
     classify(case, hung, work, out_root, options, seed_summaries)
+    if mounted:
+        subprocess.run(['umount', '-l', mounted], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     if not options.keep_work:
         shutil.rmtree(work, ignore_errors=True)
     return case
@@ -993,7 +1007,7 @@ def crash_signature(stderr):
         return ''
     where = re.sub(r'^(\./)+', '', where.replace('/./', '/'))
     what = re.sub(r"'\d+'|\b\d+\b", 'N', what)[:100]
-    return '%s | %s' % (where, what)
+    return '%s | %s' % (where, what) if where else what
 
 
 def message_form(message, deck):
@@ -1035,7 +1049,9 @@ def classify(case, hung, work, out_root, options, seed_summaries):
     if status in (1, 2) and os.path.isdir(case_dir):
         add(case, 'OUTPUT_ON_ERROR', 'exit %d with %s/ left behind' % (status, case_name))
         sign(case, 'OUTPUT_ON_ERROR ' + message_form(first_error(stderr), case.file_name))
-    if status == 1 and 'CRASH' not in case.classes:
+    if status == 1 and 'CRASH' not in case.classes and case.disk_kb and ERROR_LINE.search(stderr):
+        pass   # a write failure names the output file, not a line of the deck
+    elif status == 1 and 'CRASH' not in case.classes:
         locate(case, stderr)
         reference = seed_summaries.get(case.seed_name) if case.same_as_seed else None
         message = first_error(stderr)
@@ -1541,6 +1557,9 @@ def main():
     parser.add_argument('--mem-mb', type=int, default=None,
                         help='address-space limit per run in MB, 0 for none (default 4096, none for an '
                         'AddressSanitizer build)')
+    parser.add_argument('--disk-full', type=float, default=0, metavar='SHARE',
+                        help='that share of the runs (0-1) write into a tmpfs of 16-400 kB, a full disk '
+                        '(needs root: mount -t tmpfs; not used by make test)')
     parser.add_argument('--write', metavar='DIR', help='only write the mutated decks into DIR, run nothing')
     parser.add_argument('--keep-work', action='store_true', help='keep each run folder (for debugging)')
     parser.add_argument('-v', '--verbose', action='store_true', help='a PASS/FAIL line per deck')
@@ -1590,6 +1609,13 @@ def main():
             cases.append(Case('d%06d' % number, m.text() + ('\n' if m.lines and m.lines[-1] != '' else ''),
                               seed_name=m.seed_name, kinds=m.kinds, notes=m.notes, must_fail=m.must_fail,
                               same_as_seed=m.same_as_seed and m.command == 'run', command=m.command))
+        for case in cases:
+            rng = random.Random('disk:%d:%s' % (options.seed, case.id))
+            if case.command == 'run' and rng.random() < options.disk_full:
+                case.disk_kb = rng.choice([16, 32, 64, 100, 200, 300, 400])
+                case.kinds.append('disk_full')
+                case.notes.append('output root on a %d kB tmpfs' % case.disk_kb)
+                case.same_as_seed = False
         if options.write:
             os.makedirs(options.write, exist_ok=True)
             for case in cases:
