@@ -233,6 +233,8 @@ class Mutant:
 
 
 def mutate_delete_line(m):
+    if not m.lines:
+        return False
     index = m.pick_card() if m.rng.random() < 0.9 else m.rng.randrange(len(m.lines))
     if index is None:
         return False
@@ -306,6 +308,8 @@ def mutate_number_scale(m):
         value = float(text.replace('d', 'e').replace('D', 'e'))
     except ValueError:
         return False
+    if not math.isfinite(value) or abs(value) > 1e300:
+        return False
     choice = m.rng.random()
     if choice < 0.25:
         new = -value
@@ -313,7 +317,7 @@ def mutate_number_scale(m):
         new = int(value) + m.rng.choice([-2, -1, 1, 2])
     else:
         new = value * 10.0 ** m.rng.choice([-6, -3, -2, -1, 1, 2, 3])
-    if isinstance(new, int) or (re.fullmatch(r'[+-]?\d+', text) and new == int(new)):
+    if isinstance(new, int) or (re.fullmatch(r'[+-]?\d+', text) and math.isfinite(new) and new == int(new)):
         new_text = str(int(new))
     else:
         new_text = '%.6g' % new
@@ -731,6 +735,8 @@ def mutate_physics(m):
         note = 'theta = 1, SLIP RELEASE=YES, DT = 0.2 ms'
     elif choice in (1, 2) and 'TIME' in word:
         index = m.pick_card(lambda line: keyword(line) == 'TIME')
+        if index is None:
+            return False
         match = re.search(r'(?i)DT=(\S+)', m.lines[index])
         try:
             dt = float(match.group(1))
@@ -758,6 +764,8 @@ def mutate_physics(m):
         note = 'overload on line %d' % (index + 1)
     elif choice == 5 and 'MATERIAL' in word:
         index = m.pick_card(lambda line: keyword(line) in ('MATERIAL', 'PRONY'))
+        if index is None:
+            return False
         fields = re.findall(r'([A-Za-z]+)=', card_part(m.lines[index]))
         if not fields:
             return False
@@ -765,6 +773,8 @@ def mutate_physics(m):
         note = 'extreme material constant on line %d' % (index + 1)
     elif choice == 6 and 'PLATE' in word:
         index = m.pick_card(lambda line: keyword(line) == 'PLATE')
+        if index is None:
+            return False
         m.replace_field(index, 'Z', m.rng.choice(['0.01', '0.0366', '-1', '1e-9', '0.1']))
         note = 'plate moved (initial penetration or no contact)'
     elif choice == 7:
