@@ -71,7 +71,8 @@ bench: build
 
 # make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
 #                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);
-#                  exit 1 on any crash, hang, partial or non-finite output, unlocated error.
+#                  exit 1 on any failing deck: a crash, a hang, a partial folder, a NaN/Inf output,
+#                  an error without a line, ... (the classes: scripts/fuzz.py --help).
 #                  FUZZ_ARGS="--seed 2 --bound 5 -j 4" (scripts/fuzz.py --help).
 .PHONY: fuzz
 N ?= 1000
