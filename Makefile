@@ -69,5 +69,24 @@ study-fast: build
 bench: build
 	@python3 scripts/bench.py $(BENCH_ARGS)
 
+# make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
+#                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);
+#                  exit 1 on any failing deck: a crash, a hang, a partial folder, a NaN/Inf output,
+#                  an error without a line, ... (the classes: scripts/fuzz.py --help).
+#                  FUZZ_ARGS="--seed 2 --bound 5 -j 4" (scripts/fuzz.py --help).
+.PHONY: fuzz
+N ?= 1000
+fuzz: build
+	@python3 scripts/fuzz.py -n $(N) --exe $(EXE) $(FUZZ_ARGS)
+
+# make checked     the checked build (fpm --profile debug with -fcheck=all and the address and
+#                  undefined-behaviour sanitizers, installed in build/checked/) running every deck in
+#                  inputs/ and test/fuzz/, clean or FAIL (scripts/test_checked.sh);
+#                  CHECKED_N=200 adds that many mutated decks.
+.PHONY: checked
+CHECKED_N ?= 0
+checked: setup
+	@mkdir -p build && bash scripts/test_checked.sh $(CHECKED_N) | tee build/checked.log; ! grep -q "^FAIL " build/checked.log
+
 clean:
 	rm -rf build out

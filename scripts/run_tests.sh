@@ -70,5 +70,15 @@ done
 count "$log/reference.log"
 echo "   $(grep -c '^PASS ' "$log/reference.log") files match"
 
+echo "== fuzz (scripts/fuzz.py: mutated decks and the regression decks of test/fuzz/)"
+bash scripts/test_fuzz.sh "$exe" > "$log/fuzz.log" 2>&1
+count "$log/fuzz.log"
+echo "   $(grep -c '^PASS ' "$log/fuzz.log") checks passed; $(grep '^# ' "$log/fuzz.log" | tr '\n' ' ')"
+
+echo "== checked build (-fcheck=all, address and undefined-behaviour sanitizers)"
+bash scripts/test_checked.sh > "$log/checked.log" 2>&1
+count "$log/checked.log"
+echo "   $(grep -c '^PASS ' "$log/checked.log") checks passed; $(grep '^# ' "$log/checked.log" | tr '\n' ' ')"
+
 echo "${passed} passed, ${failed} failed"
 [ "$failed" -eq 0 ]
