@@ -367,7 +367,7 @@ program test_bad_decks
   lines = dynamic()
   lines(10) = 'OUTPUT FIELDS=2e-3'
   call expect_read_error('output_fields_after_end', lines, 10, 0, 'OUTPUT', &
-                         'FIELDS time 0.2E-2 s is after the end of the run (TEND = 0.1E-2 s)')
+                         'FIELDS time 0.002 s is after the end of the run (TEND = 0.001 s)')
 
   lines = creep()
   call expect_read_error('output_in_quasistatic', [lines(1:10), 'OUTPUT EVERY=2', lines(11:)], 11, 0, 'OUTPUT', &
