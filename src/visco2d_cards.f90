@@ -50,18 +50,22 @@ module visco2d_cards
     type(card_t), allocatable :: cards(:)
     integer :: count = 0
     logical :: has_end = .false.
+    integer :: lines = 0                   !< lines read (up to END)
   end type card_deck_t
 
 contains
 
-  !> Read a deck file into cards. Reading stops after the END card. Lines of
-  !> any length up to max_line_length are read whole (never cut); a missing
-  !> file, a directory, an unreadable file and a binary file (control bytes)
-  !> are located errors.
-  subroutine read_cards(file, deck, error)
+  !> Read a deck file into cards. The cards end at the END card; text after
+  !> it is not read as cards, but a line there that starts with one of the
+  !> `known` keywords is an error (a card moved past END would be lost).
+  !> Lines of any length up to max_line_length are read whole (never cut); a
+  !> missing file, a directory, an unreadable file and a binary file (control
+  !> bytes) are located errors.
+  subroutine read_cards(file, deck, error, known)
     character(*), intent(in) :: file
     type(card_deck_t), intent(out) :: deck
     type(error_t), allocatable, intent(out) :: error
+    character(*), intent(in), optional :: known(:)   !< card keywords
     integer :: unit, ios, line_number
     character(len=512) :: message
     character(:), allocatable :: line
@@ -94,13 +98,45 @@ contains
       if (deck%count == size(deck%cards)) call grow(deck%cards)
       deck%count = deck%count + 1
       call move_card(card, deck%cards(deck%count))
+      deck%lines = line_number
       if (deck%cards(deck%count)%keyword == 'END') then
         deck%has_end = .true.
         exit
       end if
     end do
+    deck%lines = line_number
+    if (deck%has_end .and. present(known)) call check_after_end(unit, deck, line_number, known, error)
     close(unit)
   end subroutine read_cards
+
+  !> After END: free text is allowed, a line that starts with a card keyword
+  !> (a card moved or duplicated past END) is an error.
+  subroutine check_after_end(unit, deck, line_number, known, error)
+    integer, intent(in) :: unit
+    type(card_deck_t), intent(in) :: deck
+    integer, intent(in) :: line_number
+    character(*), intent(in) :: known(:)
+    type(error_t), allocatable, intent(inout) :: error
+    character(len=512) :: message
+    character(:), allocatable :: line
+    type(card_t) :: card
+    type(error_t), allocatable :: ignored
+    integer :: ios, number
+    number = line_number
+    do
+      call read_line(unit, line, ios, message)
+      if (ios /= 0) exit
+      number = number + 1
+      call split_line(line, number, card, ignored)
+      if (allocated(ignored)) deallocate(ignored)
+      if (.not. allocated(card%keyword)) cycle
+      if (.not. any(known == card%keyword) .or. card%keyword == 'END') cycle
+      call set_error(error, 'this card comes after END (line '//itoa(deck%cards(deck%count)%line)// &
+                     ') and would be ignored: END must be the last card', file=deck%file, line=number, &
+                     column=card%column, card=card%keyword)
+      return
+    end do
+  end subroutine check_after_end
 
   !> Open a deck for reading; a missing file, a directory or an unreadable
   !> file is an error that says which.

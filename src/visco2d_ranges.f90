@@ -21,7 +21,7 @@ module visco2d_ranges
   public :: range_t, range_text, in_range
   public :: modulus_range, density_range, rate_range, speed_range, acceleration_range, gravity_range
   public :: length_range, drop_height_range, pressure_range, force_range, time_range, time_step_range
-  public :: curve_factor_range, expected_value_range, tolerance_range
+  public :: curve_factor_range, expected_value_range, tolerance_range, bulk_shear_ratio_limit
 
   !> Accepted values: lower <= value <= upper and, if floor > 0, |value| >= floor
   !> or (if zero) value = 0.
@@ -59,6 +59,9 @@ module visco2d_ranges
   type(range_t), parameter :: time_step_range = range_t(1.0e-12_dp, 1.0e9_dp, 0.0_dp, 's')
   !> Values of a CURVE (a factor on the card's load or displacement).
   type(range_t), parameter :: curve_factor_range = range_t(-1.0e6_dp, 1.0e6_dp, 0.0_dp, '')
+  !> Largest K/G (and G/K) of a material at t = 0: nu within 5e-7 of 0.5 (or
+  !> 1e-6 of -1) would drown the shear stiffness in the round-off of the bulk one.
+  real(dp), parameter :: bulk_shear_ratio_limit = 1.0e6_dp
   !> The value of EXPECT: a relative error divides by it, so not 0.
   type(range_t), parameter :: expected_value_range = range_t(-1.0e200_dp, 1.0e200_dp, 1.0e-200_dp, '', .false.)
   !> RTOL of EXPECT: from round-off to a factor 1000.

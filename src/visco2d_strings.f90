@@ -4,7 +4,7 @@ module visco2d_strings
   implicit none
   private
 
-  public :: itoa, rtoa, gtoa, short_real, compact_real, to_upper, to_lower
+  public :: itoa, rtoa, gtoa, short_real, compact_real, to_upper, to_lower, nearest_word
 
 contains
 
@@ -158,6 +158,53 @@ contains
       if (shorter(1:2) == '-.') shorter = '-0'//shorter(2:)
     end if
   end function trailing_zeros_removed
+
+  !> The candidate nearest to a mistyped word (at most 2 edits: a letter
+  !> dropped, added, changed or two swapped; fewer than half its letters), '' if none.
+  pure function nearest_word(word, candidates) result(nearest)
+    character(*), intent(in) :: word
+    character(*), intent(in) :: candidates(:)
+    character(:), allocatable :: nearest
+    integer :: k, distance, best
+    nearest = ''
+    best = 3
+    do k = 1, size(candidates)
+      if (trim(candidates(k)) == trim(word)) cycle
+      distance = edit_distance(trim(word), trim(candidates(k)))
+      if (distance < best .and. 2*distance < len_trim(word)) then
+        best = distance
+        nearest = trim(candidates(k))
+      end if
+    end do
+  end function nearest_word
+
+  !> Optimal string alignment distance (insertions, deletions, substitutions,
+  !> adjacent transpositions), capped at 3 for words too far apart in length.
+  pure integer function edit_distance(a, b) result(distance)
+    character(*), intent(in) :: a, b
+    integer :: d(0:len(a), 0:len(b))
+    integer :: i, j, cost
+    if (abs(len(a) - len(b)) > 2 .or. len(a) > 64 .or. len(b) > 64) then
+      distance = 3
+      return
+    end if
+    do i = 0, len(a)
+      d(i, 0) = i
+    end do
+    do j = 0, len(b)
+      d(0, j) = j
+    end do
+    do i = 1, len(a)
+      do j = 1, len(b)
+        cost = merge(0, 1, a(i:i) == b(j:j))
+        d(i, j) = min(d(i - 1, j) + 1, d(i, j - 1) + 1, d(i - 1, j - 1) + cost)
+        if (i > 1 .and. j > 1) then
+          if (a(i:i) == b(j - 1:j - 1) .and. a(i - 1:i - 1) == b(j:j)) d(i, j) = min(d(i, j), d(i - 2, j - 2) + 1)
+        end if
+      end do
+    end do
+    distance = d(len(a), len(b))
+  end function edit_distance
 
   !> Upper-case copy of a string.
   pure function to_upper(text) result(upper)
