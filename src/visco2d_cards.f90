@@ -216,7 +216,7 @@ contains
   end subroutine read_line
 
   !> A deck is text: a control byte other than the tab (a NUL of a binary
-  !> file, a lone carriage return of old line endings) is an error at its column.
+  !> file) is an error at its column. (The runtime ends a line at LF, CR LF or CR.)
   subroutine check_text(line, line_number, error)
     character(*), intent(in) :: line
     integer, intent(in) :: line_number
@@ -226,13 +226,8 @@ contains
       code = iachar(line(i:i))
       if (code >= 32 .and. code /= 127) cycle
       if (code == 9) cycle
-      if (code == 13) then
-        call set_error(error, 'a carriage return (byte 13) inside the line: the deck must have one card per '// &
-                       'line with LF or CR LF line ends', line=line_number, column=i)
-      else
-        call set_error(error, 'a control byte ('//itoa(code)//') where text was expected: '// &
-                       'a deck is a plain text file (is this a binary file?)', line=line_number, column=i)
-      end if
+      call set_error(error, 'a control byte ('//itoa(code)//') where text was expected: '// &
+                     'a deck is a plain text file (is this a binary file?)', line=line_number, column=i)
       return
     end do
   end subroutine check_text
