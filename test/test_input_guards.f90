@@ -41,6 +41,7 @@ program test_input_guards
   call card_structure()
 
   call execute_command_line('rm -rf '//out_root)
+  deallocate(lines)
   call test_summary('test_input_guards')
 
 contains
@@ -464,8 +465,12 @@ contains
     call expect_read_error('card_after_end', [character(len=120) :: lines(1:10), lines(12), lines(11)], 12, 1, 'FIX', &
                            'this card comes after END (line 11) and would be ignored')
     ! Free text after END is still allowed (notes).
-    lines = square()
-    call expect_valid('notes_after_end', [character(len=120) :: lines, 'notes: measured on 3 May', '  1 2 3'])
+    block
+      character(len=120) :: notes(14)
+      notes(1:12) = square()
+      notes(13:14) = [character(len=120) :: 'notes: measured on 3 May', '  1 2 3']
+      call expect_valid('notes_after_end', notes)
+    end block
     lines = creep()
     lines(3) = 'GEOMETRY AXISYMETRIC'
     call expect_read_error('geometry_column', lines, 3, 10, 'GEOMETRY', 'geometry must be AXISYMMETRIC or PLANESTRAIN')
