@@ -322,8 +322,10 @@ contains
         call read_pressure(cards, card, deck%pressures, word, error); if (allocated(error)) return
         pressure_curves = [character(len=32) :: pressure_curves, word]
         pressure_cards = [pressure_cards, i]
+        call check_repeated_pressure(); if (allocated(error)) return
       case ('FORCE')
         call read_force(cards, card, i, forces, error); if (allocated(error)) return
+        call check_repeated_force(); if (allocated(error)) return
       case ('PROBE')
         call read_probe(cards, card, i, probes, error); if (allocated(error)) return
       case ('EXPECT')
@@ -392,6 +394,35 @@ contains
       call card_error(error, deck%cards, deck%cards%cards(i), 'only one '//deck%cards%cards(i)%keyword// &
         ' card is allowed (first on line '//itoa(first_line)//')')
     end subroutine duplicate_card
+
+    !> The same pressure twice (same set, value and curve) is a duplicated
+    !> line, not a load meant to be doubled.
+    subroutine check_repeated_pressure()
+      integer :: k, n
+      n = size(deck%pressures)
+      do k = 1, n - 1
+        if (deck%pressures(k)%edge_set /= deck%pressures(n)%edge_set) cycle
+        if (deck%pressures(k)%value /= deck%pressures(n)%value .or. pressure_curves(k) /= pressure_curves(n)) cycle
+        call card_error(error, deck%cards, deck%cards%cards(i), 'the same pressure as on line '// &
+          itoa(deck%pressures(k)%line)//' (a duplicated line?): give the total on one card', &
+          field_column(deck%cards%cards(i), 'P'))
+        return
+      end do
+    end subroutine check_repeated_pressure
+
+    !> The same point load twice (same node, values and curve): a duplicated line.
+    subroutine check_repeated_force()
+      integer :: k, n
+      n = size(forces)
+      do k = 1, n - 1
+        if (forces(k)%target /= forces(n)%target .or. forces(k)%curve /= forces(n)%curve) cycle
+        if (any(forces(k)%values /= forces(n)%values)) cycle
+        call card_error(error, deck%cards, deck%cards%cards(i), 'the same force as on line '// &
+          itoa(deck%cards%cards(forces(k)%card)%line)//' (a duplicated line?): give the total on one card', &
+          forces(n)%column)
+        return
+      end do
+    end subroutine check_repeated_force
 
     !> True if card k (a PRONY) directly follows a MATERIAL or PRONY card.
     logical function follows_material(k)

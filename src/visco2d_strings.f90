@@ -4,7 +4,7 @@ module visco2d_strings
   implicit none
   private
 
-  public :: itoa, rtoa, gtoa, short_real, compact_real, to_upper, to_lower, nearest_word
+  public :: itoa, rtoa, gtoa, es_field, short_real, compact_real, to_upper, to_lower, nearest_word
 
 contains
 
@@ -27,6 +27,27 @@ contains
     write(buffer, '(es13.4e3)') value
     text = two_digit_exponent(trim(adjustl(buffer)))
   end function rtoa
+
+  !> A real right-aligned in exactly `width` characters like the edit
+  !> descriptor ES<width>.<digits> (1.00000000E+07 for width 16, digits 8),
+  !> but with the E kept for a three-digit exponent (one digit fewer:
+  !> 1.0000000E-300), where ES<w>.<d> would print 1.00000000-300. For tables.
+  pure function es_field(value, width, digits) result(text)
+    real(dp), intent(in) :: value
+    integer, intent(in) :: width, digits
+    character(len=width) :: text
+    character(len=64) :: buffer
+    write(buffer, '(es64.'//digit_text(digits)//'e3)') value
+    buffer = adjustl(buffer)
+    if (index(buffer, 'E') > 0 .and. buffer(index(buffer, 'E') + 2:index(buffer, 'E') + 2) == '0') then
+      buffer = two_digit_exponent(trim(buffer))                      ! the usual E+07: as ES<w>.<d>
+    else if (index(buffer, 'E') > 0) then
+      write(buffer, '(es64.'//digit_text(digits - 1)//'e3)') value   ! E+100 and beyond: one digit fewer
+      buffer = adjustl(buffer)
+    end if
+    text = adjustr(buffer(1:width))
+    if (len_trim(buffer) > width) text = repeat('*', width)
+  end function es_field
 
   !> Real as text with 10 significant digits (for summaries and tables).
   pure function gtoa(value) result(text)

@@ -444,6 +444,7 @@ program test_bad_decks
   ! The contact decks themselves are valid and parse to the intended settings.
   call expect_valid_contact()
 
+  deallocate(lines)
   call test_summary('test_bad_decks')
 
 contains

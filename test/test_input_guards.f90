@@ -16,7 +16,7 @@ program test_input_guards
   use visco2d_driver, only: run_deck, summary_value
   use visco2d_record, only: record_t
   use visco2d_cards, only: parse_real, max_line_length
-  use visco2d_strings, only: itoa, rtoa, gtoa, short_real, compact_real
+  use visco2d_strings, only: itoa, rtoa, gtoa, es_field, short_real, compact_real
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
   implicit none
 
@@ -392,6 +392,10 @@ contains
     call check_text('short_real_plain', short_real(0.002_dp), '0.002')
     call check_text('short_real_integer', short_real(18.11e6_dp), '18110000.0')
     call check_text('short_real_shortest', short_real(0.1_dp + 0.2_dp), '0.30000000000000004')
+    call check_text('es_field_usual', es_field(1.811e7_dp, 16, 8), '  1.81100000E+07')
+    call check_text('es_field_negative', es_field(-2.5e-3_dp, 16, 8), ' -2.50000000E-03')
+    call check_text('es_field_three_digit_exponent', es_field(1.0e-300_dp, 16, 8), '  1.0000000E-300')
+    call check_text('es_field_huge_negative', es_field(-1.5e300_dp, 16, 8), ' -1.5000000E+300')
     call check_text('compact_real_range', compact_real(1.0e14_dp)//' '//compact_real(1.0e-3_dp)//' '// &
                     compact_real(-1.0e4_dp)//' '//compact_real(1.0e-12_dp), '1e14 0.001 -1e4 1e-12')
     block
@@ -471,6 +475,17 @@ contains
       notes(13:14) = [character(len=120) :: 'notes: measured on 3 May', '  1 2 3']
       call expect_valid('notes_after_end', notes)
     end block
+    ! A duplicated load line would double the load.
+    lines = creep()
+    call expect_read_error('pressure_duplicated', [character(len=120) :: lines(1:8), lines(8:)], 9, 14, 'PRESSURE', &
+                           'the same pressure as on line 8 (a duplicated line?)')
+    lines = square()
+    lines = [character(len=120) :: lines(1:11), 'FORCE 3 FZ=-1e3', 'FORCE 3 FZ=-1e3', lines(12)]
+    call expect_read_error('force_duplicated', lines, 13, 7, 'FORCE', 'the same force as on line 12')
+    ! Two different loads on one set are a sum, as before.
+    lines = creep()
+    lines = [character(len=120) :: lines(1:8), 'PRESSURE TOP P=2e4', lines(9:)]
+    call expect_valid('pressure_two_loads', lines)
     lines = creep()
     lines(3) = 'GEOMETRY AXISYMETRIC'
     call expect_read_error('geometry_column', lines, 3, 10, 'GEOMETRY', 'geometry must be AXISYMMETRIC or PLANESTRAIN')
