@@ -464,7 +464,7 @@ contains
         why = 'must be a finite number (at most 1.8e308 in magnitude)'
       else if (ok .and. nonzero .and. abs(value) < tiny(1.0_dp)) then
         ok = .false.
-        why = 'is too small to be a normal double (a nonzero magnitude must be at least 2.2e-308; 0 is 0)'
+        why = 'is too small to be a normal double (nonzero numbers must be at least 2.2e-308 in magnitude)'
       end if
       if (.not. ok) value = 0.0_dp
     end if

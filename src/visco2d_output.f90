@@ -4,7 +4,7 @@
 module visco2d_output
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: itoa, gtoa, es_field
   use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps, analysis_dynamic, formulation_name, &
                           initial_velocity, stop_name
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
@@ -188,13 +188,15 @@ contains
       do k = 1, size(deck%curves)
         write(unit, '(3x, a)') deck%curves(k)%name//':'
         do i = 1, size(deck%curves(k)%time)
-          write(unit, '(7x, es16.8, a, es16.8)') deck%curves(k)%time(i), ' -> ', deck%curves(k)%value(i)
+          write(unit, '(7x, a, a, a)') es_field(deck%curves(k)%time(i), 16, 8), ' -> ', &
+            es_field(deck%curves(k)%value(i), 16, 8)
         end do
       end do
     end if
     write(unit, '(/, a)') ' NODES  (number, r (m), z (m), band position)'
     do i = 1, min(mesh%nnode, listing_row_limit)
-      write(unit, '(i9, 2(1x, es16.8), i9)') mesh%node_id(i), mesh%xy(:, i), mesh%equation(i)
+      write(unit, '(i9, 2(1x, a), i9)') mesh%node_id(i), es_field(mesh%xy(1, i), 16, 8), &
+        es_field(mesh%xy(2, i), 16, 8), mesh%equation(i)
     end do
     if (mesh%nnode > listing_row_limit) write(unit, '(a)') '   ... '//itoa(mesh%nnode - listing_row_limit)// &
       ' more nodes: see results.h5 /mesh/nodes'
@@ -230,7 +232,7 @@ contains
       write(unit, '(*(a16, :, 1x))') (trim(record%columns(k)), k = 1, size(record%columns))
       do i = 1, record%nrow
         if (i > 20 .and. i < record%nrow - 20) cycle
-        write(unit, '(*(es16.8, :, 1x))') record%history(:, i)
+        write(unit, '(*(a16, :, 1x))') (es_field(record%history(k, i), 16, 8), k = 1, size(record%history, 1))
       end do
     end if
     write(unit, '(a)') rule
