@@ -39,6 +39,7 @@ program test_input_guards
   call message_numbers()
   call deck_files()
   call card_structure()
+  call fuzz_findings()
 
   call execute_command_line('rm -rf '//out_root)
   deallocate(lines)
@@ -490,6 +491,74 @@ contains
     lines(3) = 'GEOMETRY AXISYMETRIC'
     call expect_read_error('geometry_column', lines, 3, 10, 'GEOMETRY', 'geometry must be AXISYMMETRIC or PLANESTRAIN')
   end subroutine card_structure
+
+  !> Decks the mutation fuzzer reduced (issue 13) whose numbers reached an
+  !> output as NaN/Infinity or made an unreadable one on the old reader.
+  subroutine fuzz_findings()
+    character(len=120), allocatable :: fuzz(:)
+    character(:), allocatable :: text
+    integer :: unit, ios
+    character(len=4096) :: row
+    logical :: malformed
+    fuzz = [character(len=120) :: 'ANALYSIS DYNAMIC', 'MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
+      'MESH SPHERE R=0.0366 LEVEL=1', 'GRAVITY G=9.8', 'TIME DT=1e-5 TEND=2e-3', 'EXPECT az_cm_m_s2 4.9e-324 RTOL=1e-9', &
+      'END']
+    call expect_read_error('fuzz_d000017_expect_subnormal', fuzz, 6, 19, 'EXPECT', 'expected value is too small')
+    fuzz = [character(len=120) :: 'ANALYSIS DYNAMIC', 'MATERIAL golden VISCOELASTIC K=1e-308 RHO=790', &
+      'PRONY G=0.099e6 BETA=35.26', 'MESH SPHERE R=0.035 LEVEL=1', 'INITIAL VZ=-0.7 AZ=-9.8', 'TIME DT=1e-5 TEND=8e-3', &
+      'PLATE Z=0 STICK', 'END']
+    call expect_read_error('fuzz_d000373_bulk_subnormal', fuzz, 2, 30, 'MATERIAL', 'K is too small')
+    fuzz = [character(len=120) :: 'ANALYSIS QUASISTATIC', 'MATERIAL apple VISCOELASTIC K=1.756e6 RHO=790', &
+      'PRONY G=0.099e6 BETA=35.26', 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', 'FIX BOTTOM Z', &
+      'TIME DT=1000 TEND=10000', 'GRAVITY G=1e300', 'END']
+    call expect_read_error('fuzz_d000957_gravity_huge', fuzz, 7, 9, 'GRAVITY', 'G must be 0 or in [1e-6, 1e6] m/s^2')
+    fuzz = [character(len=120) :: 'ANALYSIS STATIC', 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=1e300', &
+      'MESH SPHERE R=0.0366 LEVEL=1', 'FIX TOP Z', 'END']
+    call expect_read_error('fuzz_d000521_density_huge', fuzz, 2, 43, 'MATERIAL', 'RHO must be 0 or in')
+    fuzz = [character(len=120) :: 'ANALYSIS DYNAMIC', 'MATERIAL golden VISCOELASTIC K=1.756e6 RHO=790', &
+      'PRONY G=0.099e6 BETA=4.9e-324', 'MESH SPHERE R=0.035 LEVEL=1', 'TIME DT=2e-5 TEND=15e-3', 'END']
+    call expect_read_error('fuzz_d000311_rate_subnormal', fuzz, 3, 17, 'PRONY', 'BETA is too small')
+
+    ! A valid deck whose listing printed -1.71107068-200 (ES16.8 drops the E of a three-digit exponent).
+    block
+      type(record_t) :: record
+      type(error_t), allocatable :: error
+      fuzz = [character(len=120) :: 'ANALYSIS DYNAMIC', &
+        'MATERIAL ground ELASTIC E=8.333333333333333e6 NU=0.25 RHO=1000', &
+        'MESH RECT R0=0.01 R1=0.0125 Z0=0 Z1=1 NR=1 NZ=400', 'PRESSURE TOP P=1e5', 'TIME DT=5e-6 TEND=0.005', &
+        'PROBE d025 R=0.01 Z=0.75', 'END']
+      call write_deck(folder//'/fuzz_d000032_listing.inp', fuzz)
+      call run_deck(folder//'/fuzz_d000032_listing.inp', out_root, record, error)
+      call check('fuzz_d000032_runs', .not. allocated(error), message_of(error))
+      if (allocated(error)) return
+      text = out_root//'/fuzz_d000032_listing/listing.txt'
+      malformed = .false.
+      open(newunit=unit, file=text, status='old', action='read', iostat=ios)
+      call check('fuzz_d000032_listing_exists', ios == 0, text)
+      if (ios /= 0) return
+      do
+        read(unit, '(a)', iostat=ios) row
+        if (ios /= 0) exit
+        malformed = malformed .or. has_bare_exponent(trim(row))
+      end do
+      close(unit)
+      call check('fuzz_d000032_listing_exponents', .not. malformed, 'a number like 1.0-200 (no E) in '//text)
+    end block
+  end subroutine fuzz_findings
+
+  !> True if the text holds a digit, then a sign, then three digits, with no E before the sign.
+  pure logical function has_bare_exponent(text)
+    character(*), intent(in) :: text
+    integer :: i
+    has_bare_exponent = .false.
+    do i = 2, len(text) - 3
+      if (scan(text(i:i), '+-') == 0) cycle
+      if (verify(text(i - 1:i - 1), '0123456789') /= 0) cycle
+      if (verify(text(i + 1:i + 3), '0123456789') /= 0) cycle
+      has_bare_exponent = .true.
+      return
+    end do
+  end function has_bare_exponent
 
   ! ---------------------------------------------------------------- helpers
 
