@@ -7,7 +7,7 @@ module visco2d_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
   use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
-  use visco2d_strings, only: to_upper, itoa
+  use visco2d_strings, only: to_upper, itoa, nearest_word
   use visco2d_ranges, only: range_t, in_range, range_text
   implicit none
   private
@@ -722,13 +722,16 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     character(*), intent(in), optional :: allowed  !< text listing the accepted fields
     integer :: i
-    character(:), allocatable :: hint
+    character(:), allocatable :: hint, guess
     hint = ''
     if (present(allowed)) hint = ' (expected: '//allowed//')'
     do i = 1, size(card%tokens)
       if (card%tokens(i)%used) cycle
       if (len(card%tokens(i)%name) > 0) then
-        call card_error(error, deck, card, 'unknown field '//card%tokens(i)%name//hint, &
+        guess = ''
+        if (present(allowed)) guess = nearest_word(card%tokens(i)%name, field_names(allowed))
+        if (len(guess) > 0) guess = ', did you mean '//guess//'?'
+        call card_error(error, deck, card, 'unknown field '//card%tokens(i)%name//guess//hint, &
                         card%tokens(i)%column)
       else
         call card_error(error, deck, card, 'unexpected value "'//card%tokens(i)%value//'"'//hint, &
@@ -737,4 +740,21 @@ contains
       return
     end do
   end subroutine check_fields_used
+
+  !> The NAME of every NAME= in a card's form ('PLATE Z=.. [RELEASE=YES|NO]' -> Z, RELEASE).
+  pure function field_names(form) result(names)
+    character(*), intent(in) :: form
+    character(len=16), allocatable :: names(:)
+    integer :: i, first
+    allocate(names(0))
+    do i = 2, len(form)
+      if (form(i:i) /= '=') cycle
+      first = i
+      do while (first > 1)
+        if (verify(form(first - 1:first - 1), 'ABCDEFGHIJKLMNOPQRSTUVWXYZ') /= 0) exit
+        first = first - 1
+      end do
+      if (first < i) names = [character(len=16) :: names, form(first:i - 1)]
+    end do
+  end function field_names
 end module visco2d_cards

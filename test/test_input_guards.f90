@@ -487,6 +487,9 @@ contains
     lines = creep()
     lines = [character(len=120) :: lines(1:8), 'PRESSURE TOP P=2e4', lines(9:)]
     call expect_valid('pressure_two_loads', lines)
+    lines = square()
+    lines(4) = 'MATERIAL steel ELASTIC E=200e9 NU=0.3 RH0=7800'
+    call expect_read_error('near_miss_field', lines, 4, 39, 'MATERIAL', 'unknown field RH0, did you mean RHO? (expected:')
     lines = creep()
     lines(3) = 'GEOMETRY AXISYMETRIC'
     call expect_read_error('geometry_column', lines, 3, 10, 'GEOMETRY', 'geometry must be AXISYMMETRIC or PLANESTRAIN')
