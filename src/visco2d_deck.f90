@@ -84,6 +84,7 @@ module visco2d_deck
     real(dp) :: value = 0.0_dp
     real(dp) :: tolerance = 1.0e-2_dp  !< relative
     integer :: line = 0
+    integer :: column = 0              !< column of the key on the EXPECT card
   end type expect_t
 
   !> The model a deck describes.
@@ -344,7 +345,7 @@ contains
 
     if (cards%count == 0) then
       if (cards%lines == 0) then
-        call set_error(error, 'the deck has no cards: it is an empty file', file=file)
+        call set_error(error, 'the deck has no cards: it is an empty file', file=file, line=1)
       else
         call set_error(error, 'the deck has no cards: its '//itoa(cards%lines)//' lines are blank or comments', &
                        file=file, line=cards%lines)
@@ -362,6 +363,11 @@ contains
     if (size(deck%materials) == 0) then
       call card_error(error, cards, cards%cards(first_card(['ELEMENT', 'MESH   ', 'END    '])), &
                       'missing MATERIAL card: the elements need one (MATERIAL id ELASTIC E=.. NU=..)'); return
+    end if
+    if (.not. any([(cards%cards(i)%keyword == 'NODE' .or. cards%cards(i)%keyword == 'ELEMENT' .or. &
+                    cards%cards(i)%keyword == 'MESH', i = 1, cards%count)])) then
+      call card_error(error, cards, cards%cards(cards%count), 'missing mesh: give NODE and ELEMENT cards or a '// &
+                      'MESH card before END'); return
     end if
     do i = 1, size(deck%materials)
       call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
@@ -588,6 +594,7 @@ contains
       end if
     end do
     expect%line = card%line
+    expect%column = field_column(card, '1')
     expects = [expects, expect]
   end subroutine read_expect
 

@@ -79,8 +79,8 @@ program test_bad_decks
                          'missing MATERIAL card: the elements need one')
 
   lines = square()
-  call expect_missing_card('missing_mesh', [lines(1:4), lines(12:12)], 'MESH', &
-                           'missing mesh: give NODE and ELEMENT cards or a MESH card')
+  call expect_read_error('missing_mesh', [lines(1:4), lines(12:12)], 5, 1, 'END', &
+                         'missing mesh: give NODE and ELEMENT cards or a MESH card')
 
   lines = square()
   lines = [character(len=100) :: lines(1:4), 'TITLE again', lines(5:12)]
@@ -171,7 +171,7 @@ program test_bad_decks
   end block
 
   lines = [character(len=100) ::]
-  call expect_missing_card('empty_file', lines, 'no cards', 'it is an empty file')
+  call expect_read_error('empty_file', lines, 1, 0, '', 'the deck has no cards: it is an empty file')
   lines = [character(len=100) :: '# only comments', '', '   ! and blanks']
   call expect_read_error('comments_only_file', lines, 3, 0, '', 'the deck has no cards: its 3 lines are blank or comments')
 
@@ -179,7 +179,7 @@ program test_bad_decks
   lines = square()
   lines = [character(len=100) :: lines(1:11), 'FORCE 3 FZ=-1e3', 'EXPECT no_such_key 1.0', lines(12:12)]
   call expect_run_error('expect_unknown_key', lines, 13, 'EXPECT', &
-                        'key "no_such_key" is not a numeric summary key')
+                        'key "no_such_key" is not a numeric summary key', column=8)
 
   lines = square()
   lines = [character(len=100) :: lines(1:9), 'FORCE 3 FZ=-1e3', lines(12:12)]
@@ -663,34 +663,15 @@ contains
     call check_text_contains(name//'_message', text, fragment)
   end subroutine check_location
 
-  !> A deck without a required card: the error names the file (no line: the
-  !> card is absent) and the missing card.
-  subroutine expect_missing_card(name, deck_lines, card, fragment)
-    character(*), intent(in) :: name
-    character(*), intent(in) :: deck_lines(:)
-    character(*), intent(in) :: card, fragment
-    type(deck_t) :: deck
-    type(error_t), allocatable :: error
-    character(:), allocatable :: path, text
-    path = deck_path(name)
-    call write_deck(path, deck_lines)
-    call read_deck(path, deck, error)
-    call check(name//'_error', allocated(error), 'read_deck accepted '//path)
-    if (.not. allocated(error)) return
-    text = error_text(error)
-    call check(name//'_file', index(text, path//': ') == 1, 'expected "'//path//': " at the start of "'//text//'"')
-    call check_text_contains(name//'_card', text, card)
-    call check_text_contains(name//'_message', text, fragment)
-  end subroutine expect_missing_card
-
   !> A deck that reads but fails in run_deck: the error is located, and the
   !> output root is left exactly as it was (empty: no case folder, no hidden
   !> partial folder).
-  subroutine expect_run_error(name, deck_lines, line, card, fragment)
+  subroutine expect_run_error(name, deck_lines, line, card, fragment, column)
     character(*), intent(in) :: name
     character(*), intent(in) :: deck_lines(:)
     integer, intent(in) :: line
     character(*), intent(in) :: card, fragment
+    integer, intent(in), optional :: column
     type(deck_t) :: deck
     type(record_t) :: record
     type(error_t), allocatable :: error
@@ -705,7 +686,13 @@ contains
     end if
     call run_deck(path, out_root, record, error)
     call check(name//'_error', allocated(error), 'run_deck accepted '//path)
-    if (allocated(error)) call check_location(name, error, path, line, 0, card, fragment)
+    if (allocated(error)) then
+      if (present(column)) then
+        call check_location(name, error, path, line, column, card, fragment)
+      else
+        call check_location(name, error, path, line, 0, card, fragment)
+      end if
+    end if
     entries = folder_entries(out_root)
     call check(name//'_nothing_left', len(entries) == 0, 'output root '//out_root//' holds: '//entries)
   end subroutine expect_run_error
