@@ -86,6 +86,9 @@ contains
       else if (ios /= 0) then
         call set_error(error, 'cannot read the deck: '//trim(message), file=file, line=line_number)
       else
+        if (line_number == 1 .and. len(line) >= 3) then   ! a UTF-8 byte-order mark (some Windows editors)
+          if (line(1:3) == achar(239)//achar(187)//achar(191)) line = line(4:)
+        end if
         call check_text(line, line_number, error)
         if (.not. allocated(error)) call split_line(line, line_number, card, error)
       end if

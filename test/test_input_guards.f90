@@ -445,6 +445,16 @@ contains
     call read_deck(path, deck, error)
     call check('crlf_reads', .not. allocated(error), message_of(error))
 
+    ! A UTF-8 byte-order mark before the first card is skipped.
+    path = folder//'/byte_order_mark.inp'
+    open(newunit=unit, file=path, status='replace', access='stream', form='unformatted', action='write')
+    write(unit) achar(239)//achar(187)//achar(191)
+    write(unit) (trim(lines(k))//achar(10), k = 1, size(lines))
+    close(unit)
+    call read_deck(path, deck, error)
+    call check('byte_order_mark_reads', .not. allocated(error), message_of(error))
+    if (.not. allocated(error)) call check('byte_order_mark_title', deck%title == 'unit square', '"'//deck%title//'"')
+
     call read_deck(folder//'/no_such_deck.inp', deck, error)
     call check('missing_file_error', allocated(error))
     if (allocated(error)) call check_text_contains('missing_file_message', error_text(error), &
