@@ -101,7 +101,6 @@ contains
       if (deck%count == size(deck%cards)) call grow(deck%cards)
       deck%count = deck%count + 1
       call move_card(card, deck%cards(deck%count))
-      deck%lines = line_number
       if (deck%cards(deck%count)%keyword == 'END') then
         deck%has_end = .true.
         exit
@@ -169,6 +168,8 @@ contains
     open(newunit=unit, file=file, status='old', action='read', form='formatted', access='sequential', &
          iostat=ios, iomsg=message)
     if (ios /= 0) then
+      if (index(message, "Cannot open file '") == 1 .and. index(message, "': ", back=.true.) > 0) &
+        message = message(index(message, "': ", back=.true.) + 3:)      ! the runtime's reason only
       call set_error(error, 'cannot open deck: '//trim(message), file=file)
       return
     end if

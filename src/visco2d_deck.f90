@@ -6,8 +6,8 @@ module visco2d_deck
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain, formulation_standard, formulation_bbar
   use visco2d_error, only: error_t, set_error
   use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_strings, only: itoa, rtoa, short_real, compact_real, to_lower, nearest_word
-  use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, curve_factor_range, &
+  use visco2d_strings, only: itoa, rtoa, short_real, to_lower, nearest_word
+  use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, &
                             expected_value_range, tolerance_range, range_t, in_range, range_text
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
                            named_word, positional_word, positional_real, &
