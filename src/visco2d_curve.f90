@@ -24,23 +24,32 @@ module visco2d_curve
 contains
 
   !> Factor of a curve at time t (s): linear between points, constant outside.
+  !> The interval is found by bisection (a curve may have many points).
   pure real(dp) function curve_value(curve, t) result(factor)
     type(curve_t), intent(in) :: curve
     real(dp), intent(in) :: t
-    integer :: k, n
+    integer :: low, high, middle, n
     n = size(curve%time)
     if (t <= curve%time(1)) then
       factor = curve%value(1)
       return
     end if
-    do k = 2, n
-      if (t <= curve%time(k)) then
-        factor = curve%value(k - 1) + (curve%value(k) - curve%value(k - 1))* &
-                 (t - curve%time(k - 1))/(curve%time(k) - curve%time(k - 1))
-        return
+    if (t > curve%time(n)) then
+      factor = curve%value(n)
+      return
+    end if
+    low = 1                                   ! time(low) < t <= time(high)
+    high = n
+    do while (high - low > 1)
+      middle = (low + high)/2
+      if (t <= curve%time(middle)) then
+        high = middle
+      else
+        low = middle
       end if
     end do
-    factor = curve%value(n)
+    factor = curve%value(low) + (curve%value(high) - curve%value(low))* &
+             (t - curve%time(low))/(curve%time(high) - curve%time(low))
   end function curve_value
 
   !> CURVE name STEP   or   CURVE name t1 v1 t2 v2 ...  (t in s, strictly increasing; v a factor)

@@ -16,6 +16,7 @@ program test_input_guards
   use visco2d_driver, only: run_deck, summary_value
   use visco2d_record, only: record_t
   use visco2d_cards, only: parse_real, max_line_length
+  use visco2d_curve, only: curve_t, curve_value
   use visco2d_strings, only: itoa, rtoa, gtoa, es_field, short_real, compact_real
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
   implicit none
@@ -40,6 +41,7 @@ program test_input_guards
   call deck_files()
   call card_structure()
   call fuzz_findings()
+  call curve_lookup()
 
   call execute_command_line('rm -rf '//out_root)
   deallocate(lines)
@@ -558,6 +560,20 @@ contains
       call check('fuzz_d000032_listing_exponents', .not. malformed, 'a number like 1.0-200 (no E) in '//text)
     end block
   end subroutine fuzz_findings
+
+  !> curve_value finds its interval by bisection: the values of a
+  !> piecewise-linear curve at and between its points, and outside them.
+  subroutine curve_lookup()
+    type(curve_t) :: curve
+    real(dp), parameter :: t(8) = [-1.0_dp, 0.0_dp, 0.5_dp, 1.0_dp, 2.0_dp, 3.5_dp, 4.0_dp, 10.0_dp]
+    real(dp), parameter :: expected(8) = [0.0_dp, 0.0_dp, 1.0_dp, 2.0_dp, 0.5_dp, 2.0_dp, 5.0_dp, 5.0_dp]
+    integer :: k
+    curve%time = [0.0_dp, 1.0_dp, 3.0_dp, 4.0_dp]
+    curve%value = [0.0_dp, 2.0_dp, -1.0_dp, 5.0_dp]
+    do k = 1, size(t)
+      call check_close('curve_value_at_'//itoa(k), curve_value(curve, t(k)), expected(k), 0.0_dp, 1.0e-15_dp)
+    end do
+  end subroutine curve_lookup
 
   !> True if the text holds a digit, then a sign, then three digits, with no E before the sign.
   pure logical function has_bare_exponent(text)
