@@ -369,6 +369,11 @@ contains
       call card_error(error, cards, cards%cards(cards%count), 'missing mesh: give NODE and ELEMENT cards or a '// &
                       'MESH card before END'); return
     end if
+    if (.not. any([(cards%cards(i)%keyword == 'ELEMENT' .or. cards%cards(i)%keyword == 'MESH', &
+                    i = 1, cards%count)])) then
+      call card_error(error, cards, cards%cards(first_card(['NODE'])), 'missing elements: NODE cards need '// &
+                      'ELEMENT cards to make a mesh (or give a MESH card instead)'); return
+    end if
     do i = 1, size(deck%materials)
       call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
     end do

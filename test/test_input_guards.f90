@@ -502,6 +502,9 @@ contains
     lines = square()
     lines(4) = 'MATERIAL steel ELASTIC E=200e9 NU=0.3 RH0=7800'
     call expect_read_error('near_miss_field', lines, 4, 39, 'MATERIAL', 'unknown field RH0, did you mean RHO? (expected:')
+    lines = square()
+    call expect_read_error('nodes_without_elements', [character(len=120) :: lines(1:8), lines(10:12)], 5, 1, 'NODE', &
+                           'missing elements: NODE cards need ELEMENT cards')
     lines = creep()
     lines(3) = 'GEOMETRY AXISYMETRIC'
     call expect_read_error('geometry_column', lines, 3, 10, 'GEOMETRY', 'geometry must be AXISYMMETRIC or PLANESTRAIN')
