@@ -503,7 +503,7 @@ sed -e 's/^PLATE Z=0$/PLATE Z=0.001/' drop.inp > cutplate.inp
 "$exe" -o out cutplate.inp > cutplate.out 2> cutplate.err
 check_rc contact_plate_cuts_body_exit_1 1 $?
 check contact_plate_cuts_body_located "stderr: $(first_lines cutplate.err)" \
-  grep -q '^visco2d: error: cutplate.inp:8: PLATE: node [0-9]* (.*) lies below the plate' cutplate.err
+  grep -q '^visco2d: error: cutplate.inp:8:7: PLATE: node [0-9]* (.*) lies below the plate' cutplate.err
 check contact_plate_cuts_body_no_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
   test -z "$(entries_matching out cutplate)"
 

@@ -6,7 +6,9 @@ module visco2d_cards
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: to_upper
+  use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
+  use visco2d_strings, only: to_upper, itoa, nearest_word
+  use visco2d_ranges, only: range_t, in_range, range_text
   implicit none
   private
 
@@ -14,7 +16,14 @@ module visco2d_cards
   public :: read_cards
   public :: card_error, named_real, named_integer, named_word, has_field
   public :: positional_count, positional_real, positional_integer, positional_word
-  public :: check_fields_used, field_column, parse_real
+  public :: check_fields_used, field_column, parse_real, max_line_length
+
+  !> Longest line a deck may have (an error beyond, never a cut).
+  integer, parameter :: max_line_length = 1000000
+  !> Most NAME=value fields on one card (no card takes more than 8).
+  integer, parameter :: max_named_fields = 64
+  !> read_line's status for a line longer than max_line_length.
+  integer, parameter :: line_too_long = -1000
 
   !> One field of a card.
   type :: token_t
@@ -32,6 +41,7 @@ module visco2d_cards
     integer :: line = 0                    !< line number in the deck file
     integer :: column = 0                  !< column of the keyword
     type(token_t), allocatable :: tokens(:)
+    integer, allocatable :: positions(:)   !< tokens(positions(k)) is the k-th positional value
   end type card_t
 
   !> All cards of one deck file, up to and including END.
@@ -40,44 +50,48 @@ module visco2d_cards
     type(card_t), allocatable :: cards(:)
     integer :: count = 0
     logical :: has_end = .false.
+    integer :: lines = 0                   !< lines read (up to END)
   end type card_deck_t
 
 contains
 
-  !> Read a deck file into cards. Reading stops after the END card.
-  subroutine read_cards(file, deck, error)
+  !> Read a deck file into cards. The cards end at the END card; text after
+  !> it is not read as cards, but a line there that starts with one of the
+  !> `known` keywords is an error (a card moved past END would be lost).
+  !> Lines of any length up to max_line_length are read whole (never cut); a
+  !> missing file, a directory, an unreadable file and a binary file (control
+  !> bytes) are located errors.
+  subroutine read_cards(file, deck, error, known)
     character(*), intent(in) :: file
     type(card_deck_t), intent(out) :: deck
     type(error_t), allocatable, intent(out) :: error
+    character(*), intent(in), optional :: known(:)   !< card keywords
     integer :: unit, ios, line_number
-    character(len=4096) :: buffer
-    character(len=256) :: message
+    character(len=512) :: message
+    character(:), allocatable :: line
     type(card_t) :: card
-    logical :: exists
 
     deck%file = file
     allocate(deck%cards(64))
-    inquire(file=file, exist=exists)
-    if (.not. exists) then
-      call set_error(error, 'cannot open deck: file does not exist', file=file)
-      return
-    end if
-    open(newunit=unit, file=file, status='old', action='read', iostat=ios, iomsg=message)
-    if (ios /= 0) then
-      call set_error(error, 'cannot open deck: '//trim(message), file=file)
-      return
-    end if
+    call open_deck(file, unit, error)
+    if (allocated(error)) return
     line_number = 0
     do
-      read(unit, '(a)', iostat=ios) buffer
-      if (ios /= 0) exit
+      call read_line(unit, line, ios, message)
+      if (ios == iostat_end) exit
       line_number = line_number + 1
-      if (len_trim(buffer) >= len(buffer) - 1) then
-        call set_error(error, 'line longer than 4094 characters', file=file, line=line_number)
-        close(unit)
-        return
+      if (ios == line_too_long) then
+        call set_error(error, 'line longer than '//itoa(max_line_length)//' characters (is this a deck?)', &
+                       file=file, line=line_number, column=max_line_length + 1)
+      else if (ios /= 0) then
+        call set_error(error, 'cannot read the deck: '//trim(message), file=file, line=line_number)
+      else
+        if (line_number == 1 .and. len(line) >= 3) then   ! a UTF-8 byte-order mark (some Windows editors)
+          if (line(1:3) == achar(239)//achar(187)//achar(191)) line = line(4:)
+        end if
+        call check_text(line, line_number, error)
+        if (.not. allocated(error)) call split_line(line, line_number, card, error)
       end if
-      call split_line(buffer, line_number, card, error)
       if (allocated(error)) then
         error%file = file
         close(unit)
@@ -86,22 +100,165 @@ contains
       if (.not. allocated(card%keyword)) cycle
       if (deck%count == size(deck%cards)) call grow(deck%cards)
       deck%count = deck%count + 1
-      deck%cards(deck%count) = card
-      if (card%keyword == 'END') then
+      call move_card(card, deck%cards(deck%count))
+      if (deck%cards(deck%count)%keyword == 'END') then
         deck%has_end = .true.
         exit
       end if
     end do
+    deck%lines = line_number
+    if (deck%has_end .and. present(known)) call check_after_end(unit, deck, line_number, known, error)
     close(unit)
   end subroutine read_cards
+
+  !> After END: free text is allowed, a line that starts with a card keyword
+  !> (a card moved or duplicated past END) is an error.
+  subroutine check_after_end(unit, deck, line_number, known, error)
+    integer, intent(in) :: unit
+    type(card_deck_t), intent(in) :: deck
+    integer, intent(in) :: line_number
+    character(*), intent(in) :: known(:)
+    type(error_t), allocatable, intent(inout) :: error
+    character(len=512) :: message
+    character(:), allocatable :: line
+    type(card_t) :: card
+    type(error_t), allocatable :: ignored
+    integer :: ios, number
+    number = line_number
+    do
+      call read_line(unit, line, ios, message)
+      if (ios /= 0) exit
+      number = number + 1
+      call split_line(line, number, card, ignored)
+      if (allocated(ignored)) deallocate(ignored)
+      if (.not. allocated(card%keyword)) cycle
+      if (.not. any(known == card%keyword) .or. card%keyword == 'END') cycle
+      call set_error(error, 'this card comes after END (line '//itoa(deck%cards(deck%count)%line)// &
+                     ') and would be ignored: END must be the last card', file=deck%file, line=number, &
+                     column=card%column, card=card%keyword)
+      return
+    end do
+  end subroutine check_after_end
+
+  !> Open a deck for reading; a missing file, a directory or an unreadable
+  !> file is an error that says which.
+  subroutine open_deck(file, unit, error)
+    character(*), intent(in) :: file
+    integer, intent(out) :: unit
+    type(error_t), allocatable, intent(inout) :: error
+    character(len=512) :: message
+    logical :: exists, directory
+    integer :: ios
+    unit = -1
+    if (len_trim(file) == 0) then
+      call set_error(error, 'cannot open deck: the file name is empty', file='""')
+      return
+    end if
+    inquire(file=file, exist=exists)
+    if (.not. exists) then
+      call set_error(error, 'cannot open deck: file does not exist', file=file)
+      return
+    end if
+    inquire(file=file//'/.', exist=directory)
+    if (directory) then
+      call set_error(error, 'cannot read deck: this is a directory, not a deck file', file=file)
+      return
+    end if
+    message = ''
+    open(newunit=unit, file=file, status='old', action='read', form='formatted', access='sequential', &
+         iostat=ios, iomsg=message)
+    if (ios /= 0) then
+      if (index(message, "Cannot open file '") == 1 .and. index(message, "': ", back=.true.) > 0) &
+        message = message(index(message, "': ", back=.true.) + 3:)      ! the runtime's reason only
+      call set_error(error, 'cannot open deck: '//trim(message), file=file)
+      return
+    end if
+  end subroutine open_deck
+
+  !> Read one line whole, however long (up to max_line_length characters):
+  !> non-advancing reads of a chunk at a time into a buffer that doubles.
+  !> ios: 0, iostat_end at the end of the file, line_too_long, or a read error.
+  subroutine read_line(unit, line, ios, message)
+    integer, intent(in) :: unit
+    character(:), allocatable, intent(out) :: line
+    integer, intent(out) :: ios
+    character(*), intent(out) :: message
+    character(len=4096) :: chunk
+    character(:), allocatable :: buffer, bigger
+    integer :: length, got
+    allocate(character(len=len(chunk)) :: buffer)
+    length = 0
+    message = ''
+    do
+      got = 0
+      read(unit, '(a)', advance='no', iostat=ios, iomsg=message, size=got) chunk
+      if (got > 0) then
+        if (length + got > max_line_length) then
+          ios = line_too_long
+          line = buffer(1:length)
+          return
+        end if
+        if (length + got > len(buffer)) then
+          allocate(character(len=max(2*len(buffer), length + got)) :: bigger)
+          bigger(1:length) = buffer(1:length)
+          call move_alloc(bigger, buffer)
+        end if
+        buffer(length + 1:length + got) = chunk(1:got)
+        length = length + got
+      end if
+      if (ios == iostat_eor) then
+        ios = 0
+        exit
+      end if
+      if (ios == iostat_end .and. length > 0) then   ! a last line without a newline
+        ios = 0
+        exit
+      end if
+      if (ios /= 0) exit
+    end do
+    line = buffer(1:length)
+  end subroutine read_line
+
+  !> A deck is text: a control byte other than the tab (a NUL of a binary
+  !> file) is an error at its column. (The runtime ends a line at LF, CR LF or CR.)
+  subroutine check_text(line, line_number, error)
+    character(*), intent(in) :: line
+    integer, intent(in) :: line_number
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: i, code
+    do i = 1, len(line)
+      code = iachar(line(i:i))
+      if (code >= 32 .and. code /= 127) cycle
+      if (code == 9) cycle
+      call set_error(error, 'a control byte ('//itoa(code)//') where text was expected: '// &
+                     'a deck is a plain text file (is this a binary file?)', line=line_number, column=i)
+      return
+    end do
+  end subroutine check_text
 
   subroutine grow(cards)
     type(card_t), allocatable, intent(inout) :: cards(:)
     type(card_t), allocatable :: bigger(:)
+    integer :: i
     allocate(bigger(2*size(cards)))
-    bigger(1:size(cards)) = cards
+    do i = 1, size(cards)
+      call move_card(cards(i), bigger(i))
+    end do
     call move_alloc(bigger, cards)
   end subroutine grow
+
+  !> Move a card's contents without copying its text and fields.
+  subroutine move_card(from, to)
+    type(card_t), intent(inout) :: from
+    type(card_t), intent(inout) :: to
+    call move_alloc(from%keyword, to%keyword)
+    call move_alloc(from%text, to%text)
+    call move_alloc(from%rest, to%rest)
+    call move_alloc(from%tokens, to%tokens)
+    call move_alloc(from%positions, to%positions)
+    to%line = from%line
+    to%column = from%column
+  end subroutine move_card
 
   !> Split one line into keyword and fields; an empty/comment line gives no keyword.
   subroutine split_line(raw, line_number, card, error)
@@ -110,8 +267,8 @@ contains
     type(card_t), intent(out) :: card
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable :: line
-    integer :: i, n, start, count, equals
-    integer :: starts(512), ends(512)
+    integer :: i, n, start, count, equals, ntoken, named
+    integer, allocatable :: starts(:), ends(:)
 
     line = raw
     do i = 1, len(line)
@@ -124,7 +281,8 @@ contains
     n = len_trim(line)
     if (n == 0) return
 
-    ! Whitespace-separated words.
+    ! Whitespace-separated words (as many as the line holds).
+    allocate(starts(16), ends(16))
     count = 0
     i = 1
     do while (i <= n)
@@ -138,8 +296,8 @@ contains
         i = i + 1
       end do
       if (count == size(starts)) then
-        call set_error(error, 'too many fields on one card (512 at most)', line=line_number)
-        return
+        starts = [starts, starts]
+        ends = [ends, ends]
       end if
       count = count + 1
       starts(count) = start
@@ -157,7 +315,9 @@ contains
     end if
 
     ! Fields; `NAME = value`, `NAME= value` and `NAME =value` are joined.
-    allocate(card%tokens(0))
+    allocate(card%tokens(count - 1))
+    ntoken = 0
+    named = 0
     i = 2
     do while (i <= count)
       block
@@ -195,16 +355,27 @@ contains
           end if
         end if
         if (len(token%name) > 0) then
-          if (any([(card%tokens(equals)%name == token%name, equals = 1, size(card%tokens))])) then
-            call set_error(error, 'field '//token%name//' given twice', &
+          named = named + 1
+          if (named > max_named_fields) then
+            call set_error(error, 'more than '//itoa(max_named_fields)//' NAME=value fields on one card', &
                            line=line_number, column=token%column, card=card%keyword)
             return
           end if
+          do equals = 1, ntoken
+            if (card%tokens(equals)%name /= token%name) cycle
+            call set_error(error, 'field '//token%name//' given twice (first at column '// &
+                           itoa(card%tokens(equals)%column)//')', &
+                           line=line_number, column=token%column, card=card%keyword)
+            return
+          end do
         end if
-        card%tokens = [card%tokens, token]
+        ntoken = ntoken + 1
+        card%tokens(ntoken) = token
       end block
       i = i + 1
     end do
+    card%tokens = card%tokens(1:ntoken)
+    card%positions = pack([(i, i = 1, ntoken)], [(len(card%tokens(i)%name) == 0, i = 1, ntoken)])
   end subroutine split_line
 
   !> Error located at a card (and a column, if known).
@@ -241,18 +412,25 @@ contains
   end function find_named
 
   !> Strict real: [sign] digits [. digits] [e|d [sign] digits], a digit in the
-  !> mantissa, finite. Shared by the card reader and the command line.
-  subroutine parse_real(text, value, ok)
+  !> mantissa, finite and representable: text that overflows (1e999), NaN and
+  !> Infinity are refused, and so is a nonzero number that underflows to 0
+  !> (1e-999) or to a subnormal double (4.9e-324, below 2.2e-308). `reason`
+  !> completes "<NAME> ..." in a message. Shared by the card reader and the
+  !> command line.
+  subroutine parse_real(text, value, ok, reason)
     character(*), intent(in) :: text
     real(dp), intent(out) :: value
     logical, intent(out) :: ok
+    character(:), allocatable, intent(out), optional :: reason
     integer :: i, mantissa_digits, exponent_digits, ios
-    logical :: in_exponent, seen_point
+    logical :: in_exponent, seen_point, nonzero
+    character(:), allocatable :: why
     value = 0.0_dp
     mantissa_digits = 0
     exponent_digits = 0
     in_exponent = .false.
     seen_point = .false.
+    nonzero = .false.
     ok = len(text) > 0
     do i = 1, len(text)
       select case (text(i:i))
@@ -261,6 +439,7 @@ contains
           exponent_digits = exponent_digits + 1
         else
           mantissa_digits = mantissa_digits + 1
+          if (text(i:i) /= '0') nonzero = .true.
         end if
       case ('+', '-')
         if (i > 1) ok = ok .and. scan(text(i - 1:i - 1), 'eEdD') > 0
@@ -275,35 +454,65 @@ contains
       end select
     end do
     ok = ok .and. mantissa_digits > 0 .and. (exponent_digits > 0 .or. .not. in_exponent)
-    if (.not. ok) return
-    read(text, *, iostat=ios) value
-    ok = ios == 0
-    if (ok) ok = ieee_is_finite(value)
+    why = 'must be a number'
+    if (.not. ok) then
+      select case (to_upper(adjustl(text)))
+      case ('NAN', '+NAN', '-NAN', 'INF', '+INF', '-INF', 'INFINITY', '+INFINITY', '-INFINITY')
+        why = 'must be a finite number'
+      end select
+    else
+      read(text, *, iostat=ios) value
+      ok = ios == 0
+      if (ok .and. .not. ieee_is_finite(value)) then
+        ok = .false.
+        why = 'must be a finite number (at most 1.8e308 in magnitude)'
+      else if (ok .and. nonzero .and. abs(value) < tiny(1.0_dp)) then
+        ok = .false.
+        why = 'is too small to be a normal double (nonzero numbers must be at least 2.2e-308 in magnitude)'
+      end if
+      if (.not. ok) value = 0.0_dp
+    end if
+    if (present(reason)) then
+      reason = ''
+      if (.not. ok) reason = why
+    end if
   end subroutine parse_real
 
-  subroutine parse_integer(text, value, ok)
+  !> Strict integer: [sign] digits, at most 9 digits (|n| < 1e9, no overflow).
+  subroutine parse_integer(text, value, ok, reason)
     character(*), intent(in) :: text
     integer, intent(out) :: value
     logical, intent(out) :: ok
-    integer :: ios
+    character(:), allocatable, intent(out) :: reason
+    integer :: ios, first
     value = 0
-    ok = len(text) > 0 .and. len(text) <= 9 .and. verify(text, '0123456789+-') == 0 &
-         .and. scan(text, '0123456789') > 0 .and. scan(text(2:), '+-') == 0
+    reason = 'must be an integer'
+    first = 1
+    if (len(text) > 0) then
+      if (scan(text(1:1), '+-') > 0) first = 2
+    end if
+    ok = len(text) >= first .and. verify(text(first:), '0123456789') == 0
     if (.not. ok) return
+    if (len(text) - first + 1 > 9) then
+      ok = .false.
+      reason = 'must be an integer of at most 9 digits'
+      return
+    end if
     read(text, *, iostat=ios) value
     ok = ios == 0
   end subroutine parse_integer
 
   !> Real value of field NAME=. Absent: `default` if given, else an error.
-  subroutine named_real(deck, card, name, value, error, default)
+  !> With `range`, a value outside it is an error at the field.
+  subroutine named_real(deck, card, name, value, error, default, range)
     type(card_deck_t), intent(in) :: deck
     type(card_t), intent(inout) :: card
     character(*), intent(in) :: name
     real(dp), intent(out) :: value
     type(error_t), allocatable, intent(inout) :: error
     real(dp), intent(in), optional :: default
+    type(range_t), intent(in), optional :: range
     integer :: i
-    logical :: ok
     i = find_named(card, name)
     if (i == 0) then
       if (present(default)) then
@@ -315,10 +524,29 @@ contains
       return
     end if
     card%tokens(i)%used = .true.
-    call parse_real(card%tokens(i)%value, value, ok)
-    if (.not. ok) call card_error(error, deck, card, name//' must be a number, got "'// &
-                                  card%tokens(i)%value//'"', card%tokens(i)%column)
+    call real_field(deck, card, card%tokens(i), name, value, error, range)
   end subroutine named_real
+
+  !> The value of a field as a real, checked: a number, finite, normal, and in `range` if given.
+  subroutine real_field(deck, card, token, what, value, error, range)
+    type(card_deck_t), intent(in) :: deck
+    type(card_t), intent(in) :: card
+    type(token_t), intent(in) :: token
+    character(*), intent(in) :: what
+    real(dp), intent(out) :: value
+    type(error_t), allocatable, intent(inout) :: error
+    type(range_t), intent(in), optional :: range
+    character(:), allocatable :: reason
+    logical :: ok
+    call parse_real(token%value, value, ok, reason)
+    if (.not. ok) then
+      call card_error(error, deck, card, what//' '//reason//', got "'//token%value//'"', token%column)
+      return
+    end if
+    if (.not. present(range)) return
+    if (.not. in_range(value, range)) call card_error(error, deck, card, what//' must be '//range_text(range)// &
+                                                      ', got "'//token%value//'"', token%column)
+  end subroutine real_field
 
   !> Integer value of field NAME=.
   subroutine named_integer(deck, card, name, value, error, default)
@@ -330,6 +558,7 @@ contains
     integer, intent(in), optional :: default
     integer :: i
     logical :: ok
+    character(:), allocatable :: reason
     i = find_named(card, name)
     if (i == 0) then
       if (present(default)) then
@@ -341,8 +570,8 @@ contains
       return
     end if
     card%tokens(i)%used = .true.
-    call parse_integer(card%tokens(i)%value, value, ok)
-    if (.not. ok) call card_error(error, deck, card, name//' must be an integer, got "'// &
+    call parse_integer(card%tokens(i)%value, value, ok, reason)
+    if (.not. ok) call card_error(error, deck, card, name//' '//reason//', got "'// &
                                   card%tokens(i)%value//'"', card%tokens(i)%column)
   end subroutine named_integer
 
@@ -373,17 +602,27 @@ contains
   integer function positional_count(card)
     type(card_t), intent(in) :: card
     integer :: i
+    if (allocated(card%positions)) then
+      positional_count = size(card%positions)
+      return
+    end if
     positional_count = 0
     do i = 1, size(card%tokens)
       if (len(card%tokens(i)%name) == 0) positional_count = positional_count + 1
     end do
   end function positional_count
 
+  !> Index in card%tokens of the `position`-th positional field, 0 if none.
   integer function find_positional(card, position) result(found)
     type(card_t), intent(in) :: card
     integer, intent(in) :: position
     integer :: i, seen
     found = 0
+    if (position < 1) return
+    if (allocated(card%positions)) then
+      if (position <= size(card%positions)) found = card%positions(position)
+      return
+    end if
     seen = 0
     do i = 1, size(card%tokens)
       if (len(card%tokens(i)%name) == 0) then
@@ -397,15 +636,16 @@ contains
   end function find_positional
 
   !> The `position`-th positional field as a real; `what` names it in errors.
-  subroutine positional_real(deck, card, position, what, value, error)
+  !> With `range`, a value outside it is an error at the field.
+  subroutine positional_real(deck, card, position, what, value, error, range)
     type(card_deck_t), intent(in) :: deck
     type(card_t), intent(inout) :: card
     integer, intent(in) :: position
     character(*), intent(in) :: what
     real(dp), intent(out) :: value
     type(error_t), allocatable, intent(inout) :: error
+    type(range_t), intent(in), optional :: range
     integer :: i
-    logical :: ok
     value = 0.0_dp
     i = find_positional(card, position)
     if (i == 0) then
@@ -413,9 +653,7 @@ contains
       return
     end if
     card%tokens(i)%used = .true.
-    call parse_real(card%tokens(i)%value, value, ok)
-    if (.not. ok) call card_error(error, deck, card, what//' must be a number, got "'// &
-                                  card%tokens(i)%value//'"', card%tokens(i)%column)
+    call real_field(deck, card, card%tokens(i), what, value, error, range)
   end subroutine positional_real
 
   !> The `position`-th positional field as an integer.
@@ -428,6 +666,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: i
     logical :: ok
+    character(:), allocatable :: reason
     value = 0
     i = find_positional(card, position)
     if (i == 0) then
@@ -435,8 +674,8 @@ contains
       return
     end if
     card%tokens(i)%used = .true.
-    call parse_integer(card%tokens(i)%value, value, ok)
-    if (.not. ok) call card_error(error, deck, card, what//' must be an integer, got "'// &
+    call parse_integer(card%tokens(i)%value, value, ok, reason)
+    if (.not. ok) call card_error(error, deck, card, what//' '//reason//', got "'// &
                                   card%tokens(i)%value//'"', card%tokens(i)%column)
   end subroutine positional_integer
 
@@ -487,13 +726,16 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     character(*), intent(in), optional :: allowed  !< text listing the accepted fields
     integer :: i
-    character(:), allocatable :: hint
+    character(:), allocatable :: hint, guess
     hint = ''
     if (present(allowed)) hint = ' (expected: '//allowed//')'
     do i = 1, size(card%tokens)
       if (card%tokens(i)%used) cycle
       if (len(card%tokens(i)%name) > 0) then
-        call card_error(error, deck, card, 'unknown field '//card%tokens(i)%name//hint, &
+        guess = ''
+        if (present(allowed)) guess = nearest_word(card%tokens(i)%name, field_names(allowed))
+        if (len(guess) > 0) guess = ', did you mean '//guess//'?'
+        call card_error(error, deck, card, 'unknown field '//card%tokens(i)%name//guess//hint, &
                         card%tokens(i)%column)
       else
         call card_error(error, deck, card, 'unexpected value "'//card%tokens(i)%value//'"'//hint, &
@@ -502,4 +744,21 @@ contains
       return
     end do
   end subroutine check_fields_used
+
+  !> The NAME of every NAME= in a card's form ('PLATE Z=.. [RELEASE=YES|NO]' -> Z, RELEASE).
+  pure function field_names(form) result(names)
+    character(*), intent(in) :: form
+    character(len=16), allocatable :: names(:)
+    integer :: i, first
+    allocate(names(0))
+    do i = 2, len(form)
+      if (form(i:i) /= '=') cycle
+      first = i
+      do while (first > 1)
+        if (verify(form(first - 1:first - 1), 'ABCDEFGHIJKLMNOPQRSTUVWXYZ') /= 0) exit
+        first = first - 1
+      end do
+      if (first < i) names = [character(len=16) :: names, form(first:i - 1)]
+    end do
+  end function field_names
 end module visco2d_cards

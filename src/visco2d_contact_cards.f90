@@ -4,6 +4,7 @@
 module visco2d_contact_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
+  use visco2d_ranges, only: length_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, positional_word, &
                            check_fields_used, has_field, field_column
   implicit none
@@ -45,7 +46,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable :: word
     character(len=*), parameter :: form = 'PLATE Z=.. [STICK | SLIP] [RELEASE=YES|NO]'
-    call named_real(cards, card, 'Z', plate%z, error); if (allocated(error)) return
+    call named_real(cards, card, 'Z', plate%z, error, range=length_range); if (allocated(error)) return
     call positional_word(cards, card, 1, 'contact kind (STICK or SLIP)', word, error, optional_field=.true.)
     if (allocated(error)) return
     select case (word)

@@ -3,6 +3,7 @@
 !> points, held constant before the first and after the last point.
 module visco2d_curve
   use visco2d_kinds, only: dp
+  use visco2d_ranges, only: time_range, curve_factor_range
   use visco2d_error, only: error_t
   use visco2d_strings, only: itoa, short_real
   use visco2d_cards, only: card_t, card_deck_t, card_error, positional_word, positional_real, positional_count, &
@@ -23,23 +24,32 @@ module visco2d_curve
 contains
 
   !> Factor of a curve at time t (s): linear between points, constant outside.
+  !> The interval is found by bisection (a curve may have many points).
   pure real(dp) function curve_value(curve, t) result(factor)
     type(curve_t), intent(in) :: curve
     real(dp), intent(in) :: t
-    integer :: k, n
+    integer :: low, high, middle, n
     n = size(curve%time)
     if (t <= curve%time(1)) then
       factor = curve%value(1)
       return
     end if
-    do k = 2, n
-      if (t <= curve%time(k)) then
-        factor = curve%value(k - 1) + (curve%value(k) - curve%value(k - 1))* &
-                 (t - curve%time(k - 1))/(curve%time(k) - curve%time(k - 1))
-        return
+    if (t > curve%time(n)) then
+      factor = curve%value(n)
+      return
+    end if
+    low = 1                                   ! time(low) < t <= time(high)
+    high = n
+    do while (high - low > 1)
+      middle = (low + high)/2
+      if (t <= curve%time(middle)) then
+        high = middle
+      else
+        low = middle
       end if
     end do
-    factor = curve%value(n)
+    factor = curve%value(low) + (curve%value(high) - curve%value(low))* &
+             (t - curve%time(low))/(curve%time(high) - curve%time(low))
   end function curve_value
 
   !> CURVE name STEP   or   CURVE name t1 v1 t2 v2 ...  (t in s, strictly increasing; v a factor)
@@ -59,7 +69,7 @@ contains
     do k = 1, size(curves)
       if (curves(k)%name == curve%name) then
         call card_error(error, cards, card, 'curve '//curve%name//' defined twice (first on line '// &
-                        itoa(curves(k)%line)//')'); return
+                        itoa(curves(k)%line)//')', field_column(card, '1')); return
       end if
     end do
     curve%line = card%line
@@ -72,19 +82,16 @@ contains
       npoint = positional_count(card) - 1
       if (mod(npoint, 2) /= 0) then
         call card_error(error, cards, card, 'CURVE points come in pairs (time value); got '//itoa(npoint)// &
-                        ' numbers'); return
+                        ' numbers (this one has no value)', field_column(card, itoa(npoint + 1))); return
       end if
       npoint = npoint/2
       allocate(curve%time(npoint), curve%value(npoint))
       do k = 1, npoint
-        call positional_real(cards, card, 2*k, 'time of point '//itoa(k), curve%time(k), error)
+        call positional_real(cards, card, 2*k, 'time of point '//itoa(k), curve%time(k), error, range=time_range)
         if (allocated(error)) return
-        call positional_real(cards, card, 2*k + 1, 'value of point '//itoa(k), curve%value(k), error)
+        call positional_real(cards, card, 2*k + 1, 'value of point '//itoa(k), curve%value(k), error, &
+                             range=curve_factor_range)
         if (allocated(error)) return
-        if (curve%time(k) < 0.0_dp) then
-          call card_error(error, cards, card, 'curve times must be >= 0 s, got '//short_real(curve%time(k)), &
-                          field_column(card, itoa(2*k))); return
-        end if
         if (k > 1) then
           if (curve%time(k) <= curve%time(k - 1)) then
             call card_error(error, cards, card, 'curve times must increase strictly (point '//itoa(k)// &

@@ -5,7 +5,10 @@
 module visco2d_deck
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain, formulation_standard, formulation_bbar
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, rtoa, short_real, to_lower
+  use, intrinsic :: iso_fortran_env, only: int64
+  use visco2d_strings, only: itoa, rtoa, short_real, to_lower, nearest_word
+  use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, &
+                            expected_value_range, tolerance_range, range_t, in_range, range_text
   use visco2d_cards, only: card_t, card_deck_t, read_cards, card_error, named_real, named_integer, &
                            named_word, positional_word, positional_real, &
                            check_fields_used, has_field, field_column
@@ -32,6 +35,11 @@ module visco2d_deck
   integer, parameter :: analysis_static = 1       !< S U = R once
   integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
   integer, parameter :: analysis_dynamic = 3      !< incremental in time with inertia (Wilson-theta, the extension)
+
+  !> Every card keyword a deck may use.
+  character(len=11), parameter :: card_keywords(24) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+    'FORMULATION', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
+    'CURVE', 'TIME', 'WILSON', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'END']
 
   !> A warning about a deck that still runs (file:line: CARD: text).
   type :: warning_t
@@ -76,6 +84,7 @@ module visco2d_deck
     real(dp) :: value = 0.0_dp
     real(dp) :: tolerance = 1.0e-2_dp  !< relative
     integer :: line = 0
+    integer :: column = 0              !< column of the key on the EXPECT card
   end type expect_t
 
   !> The model a deck describes.
@@ -155,11 +164,19 @@ contains
     name = trim(name)
   end function geometry_name
 
-  !> Total number of time steps of the deck's TIME stages.
+  !> Total number of time steps of the deck's TIME stages (read_time keeps
+  !> it at most max_steps; summed in 64 bits all the same).
   pure integer function total_steps(deck)
     type(deck_t), intent(in) :: deck
-    total_steps = 0
-    if (allocated(deck%stages)) total_steps = sum(deck%stages%steps)
+    integer(int64) :: steps
+    integer :: k
+    steps = 0
+    if (allocated(deck%stages)) then
+      do k = 1, size(deck%stages)
+        steps = steps + int(deck%stages(k)%steps, int64)
+      end do
+    end if
+    total_steps = int(min(steps, int(huge(total_steps), int64)))
   end function total_steps
 
   !> Read and check a deck file.
@@ -174,7 +191,7 @@ contains
     integer :: i, title_line, analysis_line, geometry_line, material_card, formulation_line
     character(:), allocatable :: word
 
-    call read_cards(file, deck%cards, error)
+    call read_cards(file, deck%cards, error, card_keywords)
     if (allocated(error)) return
     deck%title = ''
     allocate(deck%materials(0), deck%pressures(0), deck%expects(0), fixes(0), forces(0), probes(0))
@@ -231,15 +248,15 @@ contains
         case ('PLANESTRAIN')
           deck%geometry = geometry_plane_strain
         case default
-          call card_error(error, cards, card, 'geometry must be AXISYMMETRIC or PLANESTRAIN, got "'//word//'"')
+          call card_error(error, cards, card, 'geometry must be AXISYMMETRIC or PLANESTRAIN, got "'//word//'"', &
+                          field_column(card, '1'))
           return
         end select
       case ('MATERIAL')
         call read_material(cards, card, deck%materials, error); if (allocated(error)) return
         material_card = i
       case ('PRONY')
-        if (material_card == 0 .or. (cards%cards(i - 1)%keyword /= 'MATERIAL' .and. &
-                                     cards%cards(i - 1)%keyword /= 'PRONY')) then
+        if (.not. follows_material(i)) then
           call card_error(error, cards, card, 'PRONY must follow its MATERIAL card (or another PRONY card)')
           return
         end if
@@ -306,8 +323,10 @@ contains
         call read_pressure(cards, card, deck%pressures, word, error); if (allocated(error)) return
         pressure_curves = [character(len=32) :: pressure_curves, word]
         pressure_cards = [pressure_cards, i]
+        call check_repeated_pressure(); if (allocated(error)) return
       case ('FORCE')
         call read_force(cards, card, i, forces, error); if (allocated(error)) return
+        call check_repeated_force(); if (allocated(error)) return
       case ('PROBE')
         call read_probe(cards, card, i, probes, error); if (allocated(error)) return
       case ('EXPECT')
@@ -315,7 +334,8 @@ contains
       case ('END')
         call check_fields_used(cards, card, error, 'END'); if (allocated(error)) return
       case default
-        call card_error(error, cards, card, 'unknown card "'//card%keyword//'" (known: TITLE ANALYSIS '// &
+        call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
+          suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
           'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
           'WILSON INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT END)')
         return
@@ -324,16 +344,35 @@ contains
     end do
 
     if (cards%count == 0) then
-      call set_error(error, 'the deck has no cards (an empty file?)', file=file); return
+      if (cards%lines == 0) then
+        call set_error(error, 'the deck has no cards: it is an empty file', file=file, line=1)
+      else
+        call set_error(error, 'the deck has no cards: its '//itoa(cards%lines)//' lines are blank or comments', &
+                       file=file, line=cards%lines)
+      end if
+      return
     end if
     if (.not. cards%has_end) then
-      call set_error(error, 'missing END card (is the deck truncated?)', file=file); return
+      call card_error(error, cards, cards%cards(cards%count), 'missing END card: the deck ends after this card '// &
+                      '(is it truncated?)'); return
     end if
     if (analysis_line == 0) then
-      call set_error(error, 'missing ANALYSIS card (ANALYSIS STATIC, QUASISTATIC or DYNAMIC)', file=file); return
+      call card_error(error, cards, cards%cards(cards%count), 'missing ANALYSIS card (ANALYSIS STATIC, '// &
+                      'QUASISTATIC or DYNAMIC) before END'); return
     end if
     if (size(deck%materials) == 0) then
-      call set_error(error, 'missing MATERIAL card', file=file); return
+      call card_error(error, cards, cards%cards(first_card(['ELEMENT', 'MESH   ', 'END    '])), &
+                      'missing MATERIAL card: the elements need one (MATERIAL id ELASTIC E=.. NU=..)'); return
+    end if
+    if (.not. any([(cards%cards(i)%keyword == 'NODE' .or. cards%cards(i)%keyword == 'ELEMENT' .or. &
+                    cards%cards(i)%keyword == 'MESH', i = 1, cards%count)])) then
+      call card_error(error, cards, cards%cards(cards%count), 'missing mesh: give NODE and ELEMENT cards or a '// &
+                      'MESH card before END'); return
+    end if
+    if (.not. any([(cards%cards(i)%keyword == 'ELEMENT' .or. cards%cards(i)%keyword == 'MESH', &
+                    i = 1, cards%count)])) then
+      call card_error(error, cards, cards%cards(first_card(['NODE'])), 'missing elements: NODE cards need '// &
+                      'ELEMENT cards to make a mesh (or give a MESH card instead)'); return
     end if
     do i = 1, size(deck%materials)
       call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
@@ -352,6 +391,7 @@ contains
       deck%pressures(i)%curve = curve_index(deck, pressure_cards(i), trim(pressure_curves(i)), error)
       if (allocated(error)) return
     end do
+    call check_load_sizes(deck, error); if (allocated(error)) return
     call check_memory_needs_time(deck, analysis_line, error); if (allocated(error)) return
     call check_mass(deck, error); if (allocated(error)) return
     call check_plate_position(deck, error); if (allocated(error)) return
@@ -365,6 +405,57 @@ contains
       call card_error(error, deck%cards, deck%cards%cards(i), 'only one '//deck%cards%cards(i)%keyword// &
         ' card is allowed (first on line '//itoa(first_line)//')')
     end subroutine duplicate_card
+
+    !> The same pressure twice (same set, value and curve) is a duplicated
+    !> line, not a load meant to be doubled.
+    subroutine check_repeated_pressure()
+      integer :: k, n
+      n = size(deck%pressures)
+      do k = 1, n - 1
+        if (deck%pressures(k)%edge_set /= deck%pressures(n)%edge_set) cycle
+        if (deck%pressures(k)%value /= deck%pressures(n)%value .or. pressure_curves(k) /= pressure_curves(n)) cycle
+        call card_error(error, deck%cards, deck%cards%cards(i), 'the same pressure as on line '// &
+          itoa(deck%pressures(k)%line)//' (a duplicated line?): give the total on one card', &
+          field_column(deck%cards%cards(i), 'P'))
+        return
+      end do
+    end subroutine check_repeated_pressure
+
+    !> The same point load twice (same node, values and curve): a duplicated line.
+    subroutine check_repeated_force()
+      integer :: k, n
+      n = size(forces)
+      do k = 1, n - 1
+        if (forces(k)%target /= forces(n)%target .or. forces(k)%curve /= forces(n)%curve) cycle
+        if (any(forces(k)%values /= forces(n)%values)) cycle
+        call card_error(error, deck%cards, deck%cards%cards(i), 'the same force as on line '// &
+          itoa(deck%cards%cards(forces(k)%card)%line)//' (a duplicated line?): give the total on one card', &
+          forces(n)%column)
+        return
+      end do
+    end subroutine check_repeated_force
+
+    !> True if card k (a PRONY) directly follows a MATERIAL or PRONY card.
+    logical function follows_material(k)
+      integer, intent(in) :: k
+      follows_material = .false.
+      if (material_card == 0 .or. k < 2) return
+      follows_material = deck%cards%cards(k - 1)%keyword == 'MATERIAL' .or. &
+                         deck%cards%cards(k - 1)%keyword == 'PRONY'
+    end function follows_material
+
+    !> Index of the first card with one of these keywords (the last card if none).
+    integer function first_card(keywords) result(found)
+      character(*), intent(in) :: keywords(:)
+      integer :: k
+      found = deck%cards%count
+      do k = 1, deck%cards%count
+        if (any(keywords == deck%cards%cards(k)%keyword)) then
+          found = k
+          return
+        end if
+      end do
+    end function first_card
   end subroutine read_deck
 
   !> FIX target R|Z|RZ [UR=..] [UZ=..] [CURVE=name]  (target: node number, AXIS, BOTTOM, TOP,
@@ -381,8 +472,10 @@ contains
                          fix%target, error); if (allocated(error)) return
     fix%column = field_column(card, '1')
     call positional_word(cards, card, 2, 'components (R, Z or RZ)', fix%components, error); if (allocated(error)) return
-    call named_real(cards, card, 'UR', fix%values(1), error, default=0.0_dp); if (allocated(error)) return
-    call named_real(cards, card, 'UZ', fix%values(2), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'UR', fix%values(1), error, default=0.0_dp, range=length_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'UZ', fix%values(2), error, default=0.0_dp, range=length_range)
+    if (allocated(error)) return
     call named_word(cards, card, 'CURVE', fix%curve, error, default=''); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'FIX target R|Z|RZ [UR=..] [UZ=..] [CURVE=name]')
     if (allocated(error)) return
@@ -417,7 +510,7 @@ contains
     character(:), allocatable :: set
     call positional_word(cards, card, 1, 'edge set (INNER, OUTER, TOP or BOTTOM)', set, error)
     if (allocated(error)) return
-    call named_real(cards, card, 'P', pressure%value, error); if (allocated(error)) return
+    call named_real(cards, card, 'P', pressure%value, error, range=pressure_range); if (allocated(error)) return
     call named_word(cards, card, 'CURVE', curve, error, default=''); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'PRESSURE INNER|OUTER|TOP|BOTTOM P=.. [CURVE=name]')
     if (allocated(error)) return
@@ -441,8 +534,10 @@ contains
     force%card = index
     call positional_word(cards, card, 1, 'node number', force%target, error); if (allocated(error)) return
     force%column = field_column(card, '1')
-    call named_real(cards, card, 'FR', force%values(1), error, default=0.0_dp); if (allocated(error)) return
-    call named_real(cards, card, 'FZ', force%values(2), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'FR', force%values(1), error, default=0.0_dp, range=force_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'FZ', force%values(2), error, default=0.0_dp, range=force_range)
+    if (allocated(error)) return
     call named_word(cards, card, 'CURVE', force%curve, error, default=''); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'FORCE n FR=.. FZ=.. [CURVE=name]'); if (allocated(error)) return
     forces = [forces, force]
@@ -461,11 +556,12 @@ contains
     call positional_word(cards, card, 1, 'probe name', probe%components, error); if (allocated(error)) return
     if (verify(probe%components, 'ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') /= 0 .or. len(probe%components) > 24) then
       call card_error(error, cards, card, 'probe name must be letters, digits or _ (24 at most), got "'// &
-                      probe%components//'"'); return
+                      probe%components//'"', field_column(card, '1')); return
     end if
     do k = 1, size(probes)
       if (probes(k)%components == probe%components) then
-        call card_error(error, cards, card, 'probe '//probe%components//' defined twice'); return
+        call card_error(error, cards, card, 'probe '//probe%components//' defined twice (first on line '// &
+                        itoa(cards%cards(probes(k)%card)%line)//')', field_column(card, '1')); return
       end if
     end do
     if (has_field(card, 'NODE')) then
@@ -473,8 +569,8 @@ contains
       probe%target = itoa(node)
       probe%column = field_column(card, 'NODE')
     else
-      call named_real(cards, card, 'R', probe%values(1), error); if (allocated(error)) return
-      call named_real(cards, card, 'Z', probe%values(2), error); if (allocated(error)) return
+      call named_real(cards, card, 'R', probe%values(1), error, range=length_range); if (allocated(error)) return
+      call named_real(cards, card, 'Z', probe%values(2), error, range=length_range); if (allocated(error)) return
       probe%target = ''
     end if
     call check_fields_used(cards, card, error, 'PROBE name NODE=n | R=.. Z=..'); if (allocated(error)) return
@@ -482,20 +578,28 @@ contains
   end subroutine read_probe
 
   !> EXPECT key value [RTOL=0.01]: the value a summary key should have.
+  !> The value is nonzero (the relative error divides by it); a key is expected once.
   subroutine read_expect(cards, card, expects, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
     type(expect_t), allocatable, intent(inout) :: expects(:)
     type(error_t), allocatable, intent(inout) :: error
     type(expect_t) :: expect
+    integer :: k
     call positional_word(cards, card, 1, 'summary key', expect%key, error); if (allocated(error)) return
-    call positional_real(cards, card, 2, 'expected value', expect%value, error); if (allocated(error)) return
-    call named_real(cards, card, 'RTOL', expect%tolerance, error, default=1.0e-2_dp); if (allocated(error)) return
+    call positional_real(cards, card, 2, 'expected value', expect%value, error, range=expected_value_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'RTOL', expect%tolerance, error, default=1.0e-2_dp, range=tolerance_range)
+    if (allocated(error)) return
     call check_fields_used(cards, card, error, 'EXPECT key value [RTOL=..]'); if (allocated(error)) return
-    if (expect%tolerance <= 0.0_dp) then
-      call card_error(error, cards, card, 'RTOL must be > 0'); return
-    end if
+    do k = 1, size(expects)
+      if (expects(k)%key == expect%key) then
+        call card_error(error, cards, card, 'key '//to_lower(expect%key)//' is already expected on line '// &
+                        itoa(expects(k)%line), field_column(card, '1')); return
+      end if
+    end do
     expect%line = card%line
+    expect%column = field_column(card, '1')
     expects = [expects, expect]
   end subroutine read_expect
 
@@ -510,34 +614,69 @@ contains
           deck%mesh%element_material(e) = 1
           cycle
         end if
-        call set_error(error, 'element '//itoa(deck%mesh%element_id(e))// &
-          ' needs MAT=<id>: the deck defines several materials', file=deck%cards%file, &
-          line=deck%mesh%element_line(e), card=trim(card_of_line(deck, deck%mesh%element_line(e))))
+        call line_error(error, deck, deck%mesh%element_line(e), 'element '//itoa(deck%mesh%element_id(e))// &
+          ' needs MAT=<id>: the deck defines several materials')
         return
       end if
       do k = 1, size(deck%materials)
         if (deck%materials(k)%id == trim(name)) deck%mesh%element_material(e) = k
       end do
       if (deck%mesh%element_material(e) == 0) then
-        call set_error(error, 'element '//itoa(deck%mesh%element_id(e))//' uses material '//trim(name)// &
-          ', which is not defined by a MATERIAL card', file=deck%cards%file, &
-          line=deck%mesh%element_line(e), card=trim(card_of_line(deck, deck%mesh%element_line(e))))
+        call line_error(error, deck, deck%mesh%element_line(e), 'element '//itoa(deck%mesh%element_id(e))// &
+          ' uses material '//trim(name)//', which is not defined by a MATERIAL card', 'MAT')
         return
       end if
       end associate
     end do
   end subroutine resolve_materials
 
-  function card_of_line(deck, line) result(keyword)
+  !> Index of the card on a line (0 if none: a line is always a card's here).
+  integer function card_at_line(deck, line) result(found)
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: line
-    character(len=16) :: keyword
-    integer :: i
-    keyword = ''
-    do i = 1, deck%cards%count
-      if (deck%cards%cards(i)%line == line) keyword = deck%cards%cards(i)%keyword
+    integer :: low, high, middle
+    found = 0
+    low = 1
+    high = deck%cards%count
+    do while (low <= high)                  ! cards are in line order
+      middle = (low + high)/2
+      if (deck%cards%cards(middle)%line == line) then
+        found = middle
+        return
+      else if (deck%cards%cards(middle)%line < line) then
+        low = middle + 1
+      else
+        high = middle - 1
+      end if
     end do
-  end function card_of_line
+  end function card_at_line
+
+  !> An error at the card on `line`, at the column of its field `field` (a
+  !> name, or a position as '1') if it has one, else at its keyword.
+  subroutine line_error(error, deck, line, message, field)
+    type(error_t), allocatable, intent(inout) :: error
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: message
+    character(*), intent(in), optional :: field
+    integer :: k
+    k = card_at_line(deck, line)
+    if (k == 0) then
+      call set_error(error, message, file=deck%cards%file, line=line)
+    else if (present(field)) then
+      call card_error(error, deck%cards, deck%cards%cards(k), message, field_column(deck%cards%cards(k), field))
+    else
+      call card_error(error, deck%cards, deck%cards%cards(k), message)
+    end if
+  end subroutine line_error
+
+  !> ' (did you mean X?)' for a near-miss word, '' if none.
+  pure function suggestion(word) result(text)
+    character(*), intent(in) :: word
+    character(:), allocatable :: text
+    text = ''
+    if (len_trim(word) > 0) text = ' (did you mean '//trim(word)//'?)'
+  end function suggestion
 
   !> Node index of a target written as a node number; error if undefined.
   integer function target_node(deck, pending, error) result(node)
@@ -593,7 +732,8 @@ contains
         if (deck%geometry == geometry_axisymmetric .and. deck%mesh%xy(1, node) == 0.0_dp .and. &
             fix%fix_r .and. fix%value(1) /= 0.0_dp) then
           call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))// &
-            ' is on the axis, where u_r = 0 always; it cannot have UR='//short_real(fix%value(1)))
+            ' is on the axis, where u_r = 0 always; it cannot have UR='//short_real(fix%value(1)), &
+            field_column(card, 'UR'))
           return
         end if
         do c = 1, 2
@@ -603,7 +743,7 @@ contains
             if (deck%fixes(other)%value(c) /= fix%value(c) .or. deck%fixes(other)%curve /= fix%curve) then
               call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))//' gets a '// &
                 'different prescribed '//trim(merge('u_r', 'u_z', c == 1))//' from the FIX card on line '// &
-                itoa(deck%fixes(other)%line)//' (a node may be prescribed twice only alike)')
+                itoa(deck%fixes(other)%line)//' (a node may be prescribed twice only alike)', pending(k)%column)
               return
             end if
           end if
@@ -661,11 +801,11 @@ contains
     integer, intent(in) :: analysis_line
     type(error_t), allocatable, intent(inout) :: error
     if (deck%analysis /= analysis_static .and. size(deck%stages) == 0) then
-      call set_error(error, analysis_name(deck%analysis)//' analysis needs a TIME DT=.. TEND=.. card', &
-                     file=deck%cards%file, line=analysis_line, card='ANALYSIS')
+      call line_error(error, deck, analysis_line, analysis_name(deck%analysis)// &
+                      ' analysis needs a TIME DT=.. TEND=.. card', '1')
     else if (deck%analysis == analysis_static .and. size(deck%stages) > 0) then
-      call set_error(error, 'TIME cards need ANALYSIS QUASISTATIC or DYNAMIC (STATIC has no time axis)', &
-                     file=deck%cards%file, line=deck%stages(1)%line, card='TIME')
+      call line_error(error, deck, deck%stages(1)%line, &
+                      'TIME cards need ANALYSIS QUASISTATIC or DYNAMIC (STATIC has no time axis)')
     end if
   end subroutine check_time_stages
 
@@ -675,37 +815,47 @@ contains
     type(deck_t), intent(in) :: deck
     type(error_t), allocatable, intent(inout) :: error
     integer :: k, lines(3)
+    real(dp) :: speed(2)
     character(len=7), parameter :: names(3) = ['WILSON ', 'INITIAL', 'DROP   ']
     associate (d => deck%dynamics)
     lines = [d%wilson_line, d%initial_line, d%drop_line]
     if (deck%analysis /= analysis_dynamic) then
       do k = 1, size(lines)
         if (lines(k) == 0) cycle
-        call set_error(error, trim(names(k))//' needs ANALYSIS DYNAMIC (this deck is '// &
-                       analysis_name(deck%analysis)//')', file=deck%cards%file, line=lines(k), card=trim(names(k)))
+        call line_error(error, deck, lines(k), trim(names(k))//' needs ANALYSIS DYNAMIC (this deck is '// &
+                        analysis_name(deck%analysis)//')')
         return
       end do
     end if
+    if (d%drop_line > 0) then
+      speed = initial_velocity(deck)
+      if (.not. in_range(speed(2), speed_range)) then
+        call line_error(error, deck, d%drop_line, 'DROP HEIGHT = '//short_real(d%drop_height)//' m with g = '// &
+          short_real(merge(deck%gravity, standard_gravity, deck%gravity_line > 0))//' m/s^2 gives VZ = '// &
+          short_real(speed(2))//' m/s; the speed must be '//range_text(speed_range), 'HEIGHT')
+        return
+      end if
+    end if
     if (d%drop_line > 0 .and. d%initial_line > 0) then
       if (d%velocity(2) /= 0.0_dp) then
-        call set_error(error, 'DROP sets the initial VZ = -sqrt(2 g h); the INITIAL card on line '// &
-                       itoa(d%initial_line)//' sets VZ too: give one of them', file=deck%cards%file, &
-                       line=d%drop_line, card='DROP')
+        call line_error(error, deck, d%drop_line, 'DROP sets the initial VZ = -sqrt(2 g h); the INITIAL card '// &
+                        'on line '//itoa(d%initial_line)//' sets VZ too: give one of them', 'HEIGHT')
         return
       end if
     end if
     end associate
     if (deck%output%line > 0) then
       if (deck%analysis /= analysis_dynamic) then
-        call set_error(error, 'OUTPUT applies to ANALYSIS DYNAMIC (this deck is '//analysis_name(deck%analysis)// &
-                       '; QUASISTATIC records every step)', file=deck%cards%file, line=deck%output%line, card='OUTPUT')
+        call line_error(error, deck, deck%output%line, 'OUTPUT applies to ANALYSIS DYNAMIC (this deck is '// &
+                        analysis_name(deck%analysis)//'; QUASISTATIC records every step)')
         return
       end if
       if (size(deck%output%field_times) > 0 .and. size(deck%stages) > 0) then
         if (deck%output%field_times(size(deck%output%field_times)) > deck%stages(size(deck%stages))%end_time) then
-          call set_error(error, 'FIELDS time '//short_real(deck%output%field_times(size(deck%output%field_times)))// &
+          call line_error(error, deck, deck%output%line, 'FIELDS time '// &
+            short_real(deck%output%field_times(size(deck%output%field_times)))// &
             ' s is after the end of the run (TEND = '//short_real(deck%stages(size(deck%stages))%end_time)//' s)', &
-            file=deck%cards%file, line=deck%output%line, card='OUTPUT')
+            'FIELDS')
           return
         end if
       end if
@@ -720,25 +870,25 @@ contains
     type(deck_t), intent(inout) :: deck
     type(error_t), allocatable, intent(inout) :: error
     if (deck%plate%line > 0 .and. deck%analysis == analysis_quasistatic) then
-      call set_error(error, 'PLATE needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no contact search)', &
-                     file=deck%cards%file, line=deck%plate%line, card='PLATE'); return
+      call line_error(error, deck, deck%plate%line, &
+                      'PLATE needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no contact search)'); return
     end if
     if (deck%stop_line == 0) then
       if (deck%plate%line > 0 .and. deck%analysis == analysis_dynamic) deck%stop_at = stop_at_max_deformation
       return
     end if
     if (deck%analysis /= analysis_dynamic) then
-      call set_error(error, 'STOP needs ANALYSIS DYNAMIC (this deck is '//analysis_name(deck%analysis)//')', &
-                     file=deck%cards%file, line=deck%stop_line, card='STOP'); return
+      call line_error(error, deck, deck%stop_line, 'STOP needs ANALYSIS DYNAMIC (this deck is '// &
+                      analysis_name(deck%analysis)//')'); return
     end if
     if (deck%stop_at /= stop_at_tend .and. deck%plate%line == 0) then
-      call set_error(error, 'STOP AT='//stop_name(deck%stop_at)//' needs a PLATE card (or use STOP AT=TEND)', &
-                     file=deck%cards%file, line=deck%stop_line, card='STOP'); return
+      call line_error(error, deck, deck%stop_line, 'STOP AT='//stop_name(deck%stop_at)// &
+                      ' needs a PLATE card (or use STOP AT=TEND)', 'AT'); return
     end if
     if (deck%stop_at == stop_at_separation .and. .not. deck%plate%release) then
-      call set_error(error, 'STOP AT=SEPARATION needs PLATE ... RELEASE=YES (line '//itoa(deck%plate%line)// &
-                     '): without it contact nodes are held for good and the body never leaves the plate', &
-                     file=deck%cards%file, line=deck%stop_line, card='STOP'); return
+      call line_error(error, deck, deck%stop_line, 'STOP AT=SEPARATION needs PLATE ... RELEASE=YES (line '// &
+                      itoa(deck%plate%line)//'): without it contact nodes are held for good and the body never '// &
+                      'leaves the plate', 'AT'); return
     end if
   end subroutine check_contact_cards
 
@@ -750,9 +900,9 @@ contains
     if (deck%plate%line == 0) return
     lowest = minloc(deck%mesh%xy(2, :), dim=1)
     if (deck%mesh%xy(2, lowest) < deck%plate%z - 1.0e-9_dp*deck%mesh%size) then
-      call set_error(error, 'node '//itoa(deck%mesh%node_id(lowest))//' (r = '//rtoa(deck%mesh%xy(1, lowest))// &
-        ', z = '//rtoa(deck%mesh%xy(2, lowest))//') lies below the plate z = '//rtoa(deck%plate%z)// &
-        ': the body must start on or above the plate', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+      call line_error(error, deck, deck%plate%line, 'node '//itoa(deck%mesh%node_id(lowest))//' (r = '// &
+        rtoa(deck%mesh%xy(1, lowest))//', z = '//rtoa(deck%mesh%xy(2, lowest))//') lies below the plate z = '// &
+        rtoa(deck%plate%z)//': the body must start on or above the plate', 'Z')
     end if
   end subroutine check_plate_position
 
@@ -765,9 +915,9 @@ contains
     do k = 1, size(deck%materials)
       if (deck%materials(k)%density > 0.0_dp) cycle
       if (.not. any(deck%mesh%element_material == k)) cycle
-      call set_error(error, 'material '//deck%materials(k)%id//' has no density: '// &
+      call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//' has no density: '// &
         trim(merge('ANALYSIS DYNAMIC', 'GRAVITY         ', deck%analysis == analysis_dynamic))// &
-        ' needs RHO= > 0 (kg/m^3)', file=deck%cards%file, line=deck%materials(k)%line, card='MATERIAL')
+        ' needs RHO= > 0 (kg/m^3)', 'RHO')
       return
     end do
   end subroutine check_mass
@@ -808,9 +958,8 @@ contains
     do k = 1, size(deck%materials)
       if (.not. has_memory(deck%materials(k))) cycle
       if (.not. any(deck%mesh%element_material == k)) cycle
-      call set_error(error, 'material '//deck%materials(k)%id//' relaxes in time (PRONY terms with BETA > 0): '// &
-        'use ANALYSIS QUASISTATIC or DYNAMIC with TIME cards', file=deck%cards%file, line=analysis_line, &
-        card='ANALYSIS')
+      call line_error(error, deck, analysis_line, 'material '//deck%materials(k)%id//' relaxes in time '// &
+        '(PRONY terms with BETA > 0): use ANALYSIS QUASISTATIC or DYNAMIC with TIME cards', '1')
       return
     end do
   end subroutine check_memory_needs_time
@@ -834,14 +983,49 @@ contains
     end do
   end subroutine resolve_probes
 
+  !> A load or prescribed displacement times its curve stays in its range
+  !> (each within its own, the product too: P = 1e12 Pa with a curve up to
+  !> 1e6 would reach 1e18 Pa).
+  subroutine check_load_sizes(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    do k = 1, size(deck%pressures)
+      call check_product(deck%pressures(k)%line, [deck%pressures(k)%value], deck%pressures(k)%curve, 'P', pressure_range)
+      if (allocated(error)) return
+    end do
+    do k = 1, size(deck%forces)
+      call check_product(deck%forces(k)%line, deck%forces(k)%value, deck%forces(k)%curve, 'FR, FZ', force_range)
+      if (allocated(error)) return
+    end do
+    do k = 1, size(deck%fixes)
+      call check_product(deck%fixes(k)%line, deck%fixes(k)%value, deck%fixes(k)%curve, 'UR, UZ', length_range)
+      if (allocated(error)) return
+    end do
+  contains
+    subroutine check_product(line, values, curve, names, range)
+      integer, intent(in) :: line
+      real(dp), intent(in) :: values(:)
+      integer, intent(in) :: curve
+      character(*), intent(in) :: names
+      type(range_t), intent(in) :: range
+      real(dp) :: largest
+      if (curve == 0) return
+      largest = maxval(abs(values))*maxval(abs(deck%curves(curve)%value))
+      if (largest <= range%upper) return
+      call line_error(error, deck, line, names//' times curve '//deck%curves(curve)%name//' (line '// &
+        itoa(deck%curves(curve)%line)//') reaches '//rtoa(largest)//': it must stay '//range_text(range), 'CURVE')
+    end subroutine check_product
+  end subroutine check_load_sizes
+
   subroutine check_pressures(deck, error)
     type(deck_t), intent(in) :: deck
     type(error_t), allocatable, intent(inout) :: error
     integer :: k
     do k = 1, size(deck%pressures)
       if (.not. any(deck%mesh%edge_set == deck%pressures(k)%edge_set)) then
-        call set_error(error, 'edge set '//edge_set_name(deck%pressures(k)%edge_set)// &
-          ' has no boundary edges in this mesh', file=deck%cards%file, line=deck%pressures(k)%line, card='PRESSURE')
+        call line_error(error, deck, deck%pressures(k)%line, 'edge set '//edge_set_name(deck%pressures(k)%edge_set)// &
+          ' has no boundary edges in this mesh', '1')
         return
       end if
     end do

@@ -268,7 +268,8 @@ contains
       end do
       if (.not. found) then
         call set_error(error, 'key "'//to_lower(deck%expects(k)%key)//'" is not a numeric summary key '// &
-          'of this run (see summary.txt for the keys)', file=deck%cards%file, line=deck%expects(k)%line, card='EXPECT')
+          'of this run (see summary.txt for the keys)', file=deck%cards%file, line=deck%expects(k)%line, &
+          column=deck%expects(k)%column, card='EXPECT')
         return
       end if
     end do

@@ -5,6 +5,8 @@ module visco2d_dynamic_cards
   use visco2d_kinds, only: dp, formulation_standard, formulation_bbar
   use visco2d_error, only: error_t
   use visco2d_strings, only: short_real, itoa
+  use visco2d_ranges, only: speed_range, acceleration_range, drop_height_range, gravity_range, time_range, &
+                            in_range, range_text
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
                            positional_word, check_fields_used, has_field, field_column, parse_real
   implicit none
@@ -69,11 +71,15 @@ contains
     type(card_t), intent(inout) :: card
     type(dynamics_t), intent(inout) :: dynamics
     type(error_t), allocatable, intent(inout) :: error
-    call named_real(cards, card, 'VR', dynamics%velocity(1), error, default=0.0_dp); if (allocated(error)) return
-    call named_real(cards, card, 'VZ', dynamics%velocity(2), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'VR', dynamics%velocity(1), error, default=0.0_dp, range=speed_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'VZ', dynamics%velocity(2), error, default=0.0_dp, range=speed_range)
+    if (allocated(error)) return
     dynamics%acceleration_given = [has_field(card, 'AR'), has_field(card, 'AZ')]
-    call named_real(cards, card, 'AR', dynamics%acceleration(1), error, default=0.0_dp); if (allocated(error)) return
-    call named_real(cards, card, 'AZ', dynamics%acceleration(2), error, default=0.0_dp); if (allocated(error)) return
+    call named_real(cards, card, 'AR', dynamics%acceleration(1), error, default=0.0_dp, range=acceleration_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'AZ', dynamics%acceleration(2), error, default=0.0_dp, range=acceleration_range)
+    if (allocated(error)) return
     call check_fields_used(cards, card, error, 'INITIAL VZ=.. [VR=..] [AZ=..] [AR=..]'); if (allocated(error)) return
     if (.not. any([has_field(card, 'VR'), has_field(card, 'VZ'), dynamics%acceleration_given])) then
       call card_error(error, cards, card, 'INITIAL needs at least one of VZ=, VR=, AZ=, AR='); return
@@ -87,12 +93,9 @@ contains
     type(card_t), intent(inout) :: card
     type(dynamics_t), intent(inout) :: dynamics
     type(error_t), allocatable, intent(inout) :: error
-    call named_real(cards, card, 'HEIGHT', dynamics%drop_height, error); if (allocated(error)) return
+    call named_real(cards, card, 'HEIGHT', dynamics%drop_height, error, range=drop_height_range)
+    if (allocated(error)) return
     call check_fields_used(cards, card, error, 'DROP HEIGHT=..'); if (allocated(error)) return
-    if (dynamics%drop_height < 0.0_dp) then
-      call card_error(error, cards, card, 'HEIGHT must be >= 0 m, got '//short_real(dynamics%drop_height), &
-                      field_column(card, 'HEIGHT')); return
-    end if
     dynamics%drop_line = card%line
   end subroutine read_drop
 
@@ -102,12 +105,9 @@ contains
     type(card_t), intent(inout) :: card
     real(dp), intent(out) :: gravity
     type(error_t), allocatable, intent(inout) :: error
-    call named_real(cards, card, 'G', gravity, error, default=standard_gravity); if (allocated(error)) return
+    call named_real(cards, card, 'G', gravity, error, default=standard_gravity, range=gravity_range)
+    if (allocated(error)) return
     call check_fields_used(cards, card, error, 'GRAVITY [G=9.8]'); if (allocated(error)) return
-    if (gravity < 0.0_dp) then
-      call card_error(error, cards, card, 'G must be >= 0 m/s^2 (gravity acts in -z), got '//short_real(gravity), &
-                      field_column(card, 'G')); return
-    end if
   end subroutine read_gravity
 
   !> OUTPUT EVERY=k [FIELDS=t1,t2,...]: history every k steps, fields at those times (s).
@@ -133,9 +133,15 @@ contains
       comma = index(list(start:), ',')
       if (comma == 0) comma = len(list) - start + 2
       call parse_real(list(start:start + comma - 2), value, ok)
-      if (.not. ok .or. value < 0.0_dp) then
+      if (.not. ok) then
         call card_error(error, cards, card, 'FIELDS must be a comma-separated list of times >= 0 s, got "'// &
-                        list(start:start + comma - 2)//'"', field_column(card, 'FIELDS')); return
+                        list(start:start + comma - 2)//'"', field_column(card, 'FIELDS'))
+        return
+      end if
+      if (.not. in_range(value, time_range)) then
+        call card_error(error, cards, card, 'FIELDS times must be '//range_text(time_range)//', got "'// &
+                        list(start:start + comma - 2)//'"', field_column(card, 'FIELDS'))
+        return
       end if
       if (size(output%field_times) > 0) then
         if (value <= output%field_times(size(output%field_times))) then

@@ -37,6 +37,8 @@ module visco2d_material
     real(dp), allocatable :: uniaxial_young(:)  !< E_i, Pa
     real(dp), allocatable :: uniaxial_rate(:)   !< alpha_i, 1/s
     integer :: line = 0                      !< line of the MATERIAL card
+    integer :: card_column = 0               !< column of its K= (NU= for UNIAXIAL) field, for errors
+    integer, allocatable :: prony_lines(:)   !< lines of its PRONY cards, in the order given
   end type material_t
 
 contains

@@ -4,7 +4,7 @@
 module visco2d_output
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: itoa, gtoa, es_field
   use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps, analysis_dynamic, formulation_name, &
                           initial_velocity, stop_name
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
@@ -149,23 +149,24 @@ contains
     write(unit, '(a)') '   id           kind          E(0) (Pa)       nu(0)     G(0) (Pa)       K (Pa)          rho (kg/m3)'
     do k = 1, size(deck%materials)
       associate (m => deck%materials(k))
-      write(unit, '(3x, a12, 1x, a12, 1x, es15.7, 1x, f9.6, 3(1x, es15.7))') m%id, material_kind_name(m%kind), &
-        m%young, m%poisson, m%shear, m%bulk, m%density
+      write(unit, '(3x, a12, 1x, a12, 1x, a15, 1x, f9.6, 3(1x, a15))') m%id, material_kind_name(m%kind), &
+        es_field(m%young, 15, 7), m%poisson, es_field(m%shear, 15, 7), es_field(m%bulk, 15, 7), &
+        es_field(m%density, 15, 7)
       if (m%kind == material_kind_uniaxial) then
         write(unit, '(a)') '     uniaxial relaxation E(t) = sum E_i exp(-alpha_i t), eq. [47], as given:'
         do i = 1, size(m%uniaxial_young)
-          write(unit, '(7x, a, es16.8, a, es16.8, a)') 'E_i = ', m%uniaxial_young(i), ' Pa   alpha_i = ', &
-            m%uniaxial_rate(i), ' 1/s'
+          write(unit, '(7x, a, a, a, a, a)') 'E_i = ', es_field(m%uniaxial_young(i), 16, 8), ' Pa   alpha_i = ', &
+            es_field(m%uniaxial_rate(i), 16, 8), ' 1/s'
         end do
         write(unit, '(a)') '     converted exactly (eq. [48], partial fractions) to the shear terms below'
       end if
       if (m%kind /= material_kind_elastic) then
         write(unit, '(a)') '     shear relaxation phi1(t) = G_inf + sum G_m exp(-beta_m t), eq. [12]:'
-        write(unit, '(7x, a, es16.8, a)') 'G_inf = ', m%long_term_shear, ' Pa'
+        write(unit, '(7x, a, a, a)') 'G_inf = ', es_field(m%long_term_shear, 16, 8), ' Pa'
         if (has_memory(m)) then
           do i = 1, size(m%prony_shear)
-            write(unit, '(7x, a, es16.8, a, es16.8, a)') 'G_m = ', m%prony_shear(i), ' Pa   beta_m = ', &
-              m%prony_rate(i), ' 1/s'
+            write(unit, '(7x, a, a, a, a, a)') 'G_m = ', es_field(m%prony_shear(i), 16, 8), ' Pa   beta_m = ', &
+              es_field(m%prony_rate(i), 16, 8), ' 1/s'
           end do
         end if
       end if
@@ -174,8 +175,8 @@ contains
     if (size(deck%stages) > 0) then
       write(unit, '(/, a)') ' TIME STAGES  (line, steps, dt (s), end (s))'
       do k = 1, size(deck%stages)
-        write(unit, '(i9, i9, 2(1x, es16.8))') deck%stages(k)%line, deck%stages(k)%steps, deck%stages(k)%dt, &
-          deck%stages(k)%end_time
+        write(unit, '(i9, i9, 2(1x, a))') deck%stages(k)%line, deck%stages(k)%steps, &
+          es_field(deck%stages(k)%dt, 16, 8), es_field(deck%stages(k)%end_time, 16, 8)
       end do
       if (deck%analysis == analysis_dynamic) then
         write(unit, '(a)') '   '//itoa(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0'
@@ -188,13 +189,15 @@ contains
       do k = 1, size(deck%curves)
         write(unit, '(3x, a)') deck%curves(k)%name//':'
         do i = 1, size(deck%curves(k)%time)
-          write(unit, '(7x, es16.8, a, es16.8)') deck%curves(k)%time(i), ' -> ', deck%curves(k)%value(i)
+          write(unit, '(7x, a, a, a)') es_field(deck%curves(k)%time(i), 16, 8), ' -> ', &
+            es_field(deck%curves(k)%value(i), 16, 8)
         end do
       end do
     end if
     write(unit, '(/, a)') ' NODES  (number, r (m), z (m), band position)'
     do i = 1, min(mesh%nnode, listing_row_limit)
-      write(unit, '(i9, 2(1x, es16.8), i9)') mesh%node_id(i), mesh%xy(:, i), mesh%equation(i)
+      write(unit, '(i9, 2(1x, a), i9)') mesh%node_id(i), es_field(mesh%xy(1, i), 16, 8), &
+        es_field(mesh%xy(2, i), 16, 8), mesh%equation(i)
     end do
     if (mesh%nnode > listing_row_limit) write(unit, '(a)') '   ... '//itoa(mesh%nnode - listing_row_limit)// &
       ' more nodes: see results.h5 /mesh/nodes'
@@ -230,7 +233,7 @@ contains
       write(unit, '(*(a16, :, 1x))') (trim(record%columns(k)), k = 1, size(record%columns))
       do i = 1, record%nrow
         if (i > 20 .and. i < record%nrow - 20) cycle
-        write(unit, '(*(es16.8, :, 1x))') record%history(:, i)
+        write(unit, '(*(a16, :, 1x))') (es_field(record%history(k, i), 16, 8), k = 1, size(record%history, 1))
       end do
     end if
     write(unit, '(a)') rule

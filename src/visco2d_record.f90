@@ -11,11 +11,10 @@ module visco2d_record
   public :: record_put, record_put_real, record_put_integer
   public :: history_define, history_append, record_add_snapshot, record_insert_snapshot, record_column
 
-  integer, parameter :: key_length = 48
-
-  !> One `key = value` line of summary.txt.
+  !> One `key = value` line of summary.txt. The key is kept whole, however
+  !> long (expect_probe_<name>_..._within_rtol keys are long).
   type :: summary_item_t
-    character(len=key_length) :: key = ''
+    character(:), allocatable :: key
     character(:), allocatable :: value
   end type summary_item_t
 
@@ -37,7 +36,7 @@ module visco2d_record
   type :: record_t
     type(summary_item_t), allocatable :: summary(:)
     integer :: nsummary = 0
-    character(len=key_length), allocatable :: columns(:)   !< history column names (with unit suffix)
+    character(:), allocatable :: columns(:)                !< history column names (with unit suffix), as long as given
     real(dp), allocatable :: history(:, :)                 !< (ncolumn, capacity)
     integer :: nrow = 0
     type(snapshot_t), allocatable :: snapshots(:)
@@ -93,7 +92,7 @@ contains
     if (present(capacity)) rows = max(capacity, 1)
     if (allocated(record%columns)) deallocate(record%columns)
     if (allocated(record%history)) deallocate(record%history)
-    allocate(record%columns(size(columns)))
+    allocate(character(len=len(columns)) :: record%columns(size(columns)))
     record%columns = columns
     allocate(record%history(size(columns), rows))
     record%nrow = 0
