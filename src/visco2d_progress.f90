@@ -317,7 +317,7 @@ contains
     character(len=8) :: form
     write(form, '(a, i0, a)') '(f0.', digits, ')'
     if (.not. (abs(value) < 1.0e12_dp)) then      ! huge or NaN
-      write(text, '(es10.3)') value
+      write(text, '(es11.3e3)') value
     else
       write(text, form) value
     end if

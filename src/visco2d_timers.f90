@@ -128,7 +128,7 @@ contains
     write(unit, '(a, a20, f12.6)') 'timing:   ', 'whole run', total_seconds
     if (step_total > 0 .and. floor_seconds > 0.0_dp) then
       per_step = timer_seconds(phase_step_loop)/step_total
-      write(unit, '(a, i0, a, es10.3, a, es10.3, a, f6.2)') 'timing:   steps ', step_total, &
+      write(unit, '(a, i0, a, es11.3e3, a, es11.3e3, a, f6.2)') 'timing:   steps ', step_total, &
         '  time per step ', per_step, ' s  floor (one dpbtrs) ', floor_seconds, ' s  ratio ', per_step/floor_seconds
     end if
   end subroutine timers_report
