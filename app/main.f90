@@ -7,7 +7,8 @@ program visco2d
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
-  use visco2d_driver, only: run_deck, check_deck, run_line
+  use visco2d_driver, only: run_deck, check_deck, run_line, prepare_output_root, expect_tally_t
+  use visco2d_system, only: ignore_file_size_signal
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: itoa
@@ -27,7 +28,9 @@ program visco2d
   logical :: quiet, checking, progress
   type(error_t), allocatable :: error
   type(record_t) :: record
+  type(expect_tally_t) :: tally
 
+  call ignore_file_size_signal()        ! past a file size limit a write fails and is reported (exit 1)
   out_root = 'out'
   quiet = .false.
   progress = .false.
@@ -73,6 +76,7 @@ program visco2d
     i = i + 1
   end do
   if (count == 0) call usage_error('no deck given')
+  if (.not. checking) call prepare_output(out_root)
   call configure_progress()
 
   failed = 0
@@ -81,8 +85,8 @@ program visco2d
     if (checking) then
       call check_deck(decks(i)(1:length), error)
     else
-      call run_deck(decks(i)(1:length), out_root, record, error)
-      if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record)
+      call run_deck(decks(i)(1:length), out_root, record, error, tally)
+      if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
     end if
     if (allocated(error)) then
       failed = failed + 1
@@ -93,9 +97,24 @@ program visco2d
   if (count > 1 .and. failed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
   flush(6)
   flush(0)
+  deallocate(decks, out_root, argument)
   if (failed > 0) call c_exit(1_c_int)
 
 contains
+
+  !> Before any deck runs: the output root must be named and writable (exit
+  !> status 2, as for usage errors); folders that dead runs left in it are removed.
+  subroutine prepare_output(root)
+    character(*), intent(in) :: root
+    type(error_t), allocatable :: problem
+    if (len_trim(root) == 0) call usage_error('the output folder given with -o is empty: give a folder, e.g. -o out')
+    call prepare_output_root(root, problem)
+    if (allocated(problem)) then
+      write(0, '(a)') 'visco2d: error: '//error_text(problem)
+      flush(0)
+      call c_exit(2_c_int)
+    end if
+  end subroutine prepare_output
 
   !> Progress on stderr: --progress forces it on; otherwise -q turns it off;
   !> otherwise it shows when stderr is a terminal. VISCO2D_PROGRESS_DELAY

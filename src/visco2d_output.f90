@@ -1,7 +1,11 @@
 !> Output of one run into its case folder: the legacy-style `listing.txt`,
 !> `summary.txt` (`key = value`), `history.csv` and `results.h5`.
 !> Names and keys here are an interface: tools parse them.
+!> Every writer returns '' or a message saying what failed: each write and
+!> close is checked, and a text file's size is compared with the bytes meant
+!> for it (the Fortran runtime may not report a failed write: a full disk).
 module visco2d_output
+  use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, gtoa
@@ -20,6 +24,15 @@ module visco2d_output
 
   !> Node and element tables in the listing stop after this many rows.
   integer, parameter :: listing_row_limit = 2000
+
+  !> A text file written line by line: the first failure is kept, later lines are dropped.
+  type :: text_file_t
+    character(:), allocatable :: path
+    integer :: unit = 0                    !< (newunit numbers are negative)
+    logical :: opened = .false.
+    integer(int64) :: bytes = 0            !< bytes meant for the file so far (lines and newlines)
+    character(:), allocatable :: message   !< '' or what failed
+  end type text_file_t
 
 contains
 
@@ -49,194 +62,301 @@ contains
     end select
   end function unit_of
 
+  !> Create (replace) a text file.
+  subroutine text_open(file, path)
+    type(text_file_t), intent(out) :: file
+    character(*), intent(in) :: path
+    character(len=256) :: text
+    integer :: status
+    file%path = path
+    file%message = ''
+    open(newunit=file%unit, file=path, status='replace', action='write', iostat=status, iomsg=text)
+    if (status /= 0) then
+      file%message = 'cannot create the file: '//trim(text)
+      return
+    end if
+    file%opened = .true.
+  end subroutine text_open
+
+  !> Write one line (nothing after a failure).
+  subroutine put(file, line)
+    type(text_file_t), intent(inout) :: file
+    character(*), intent(in) :: line
+    character(len=256) :: text
+    integer :: status
+    if (len(file%message) > 0) return
+    write(file%unit, '(a)', iostat=status, iomsg=text) line
+    if (status /= 0) then
+      file%message = 'writing failed after '//itoa64(file%bytes)//' bytes: '//trim(text)
+      return
+    end if
+    file%bytes = file%bytes + len(line) + 1
+  end subroutine put
+
+  !> Close the file; then its size must be the bytes written (a write the
+  !> runtime did not report as failed shows here: a full disk, a size limit).
+  subroutine text_close(file)
+    type(text_file_t), intent(inout) :: file
+    character(len=256) :: text
+    integer(int64) :: size
+    integer :: status
+    if (.not. file%opened) return
+    close(file%unit, iostat=status, iomsg=text)
+    file%opened = .false.
+    if (len(file%message) > 0) return
+    if (status /= 0) then
+      file%message = 'closing failed: '//trim(text)
+      return
+    end if
+    inquire(file=file%path, size=size, iostat=status)
+    if (status /= 0 .or. size /= file%bytes) file%message = 'only '//itoa64(max(size, 0_int64))//' of '// &
+      itoa64(file%bytes)//' bytes reached the disk (disk full or a file size limit?)'
+  end subroutine text_close
+
+  !> A 64-bit integer as text.
+  pure function itoa64(value) result(text)
+    integer(int64), intent(in) :: value
+    character(:), allocatable :: text
+    character(len=24) :: buffer
+    write(buffer, '(i0)') value
+    text = trim(buffer)
+  end function itoa64
+
   !> summary.txt: one `key = value` per line.
-  subroutine write_summary(path, record, status)
+  subroutine write_summary(path, record, message)
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
-    integer, intent(out) :: status
-    integer :: unit, i
-    open(newunit=unit, file=path, status='replace', action='write', iostat=status)
-    if (status /= 0) return
+    character(:), allocatable, intent(out) :: message
+    type(text_file_t) :: out
+    integer :: i
+    call text_open(out, path)
     do i = 1, record%nsummary
-      write(unit, '(a, " = ", a)', iostat=status) trim(record%summary(i)%key), record%summary(i)%value
+      call put(out, trim(record%summary(i)%key)//' = '//record%summary(i)%value)
     end do
-    close(unit)
+    call text_close(out)
+    message = out%message
   end subroutine write_summary
 
   !> history.csv: a header row of column names (units in the names), then one row per output step.
-  subroutine write_history(path, record, status)
+  subroutine write_history(path, record, message)
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
-    integer, intent(out) :: status
-    integer :: unit, i, j
+    character(:), allocatable, intent(out) :: message
+    type(text_file_t) :: out
+    integer :: i, j
     character(:), allocatable :: line
-    open(newunit=unit, file=path, status='replace', action='write', iostat=status)
-    if (status /= 0) return
+    call text_open(out, path)
     line = trim(record%columns(1))
     do j = 2, size(record%columns)
       line = line//','//trim(record%columns(j))
     end do
-    write(unit, '(a)') line
+    call put(out, line)
     do i = 1, record%nrow
       line = gtoa(record%history(1, i))
       do j = 2, size(record%columns)
         line = line//','//gtoa(record%history(j, i))
       end do
-      write(unit, '(a)', iostat=status) line
+      call put(out, line)
     end do
-    close(unit)
+    call text_close(out)
+    message = out%message
   end subroutine write_history
 
   !> The legacy-style printed listing.
-  subroutine write_listing(path, case_name, deck, effects, record, status)
+  subroutine write_listing(path, case_name, deck, effects, record, message)
     character(*), intent(in) :: path, case_name, effects
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
-    integer, intent(out) :: status
-    integer :: unit, i, k
+    character(:), allocatable, intent(out) :: message
+    type(text_file_t) :: out
+    integer :: i, k
     character(len=*), parameter :: rule = repeat('-', 78)
-    open(newunit=unit, file=path, status='replace', action='write', iostat=status)
-    if (status /= 0) return
+    character(len=256) :: buffer
+    character(:), allocatable :: line
+    call text_open(out, path)
     associate (mesh => deck%mesh)
-    write(unit, '(a)') rule
-    write(unit, '(a)') ' visco2d  -  axisymmetric / plane-strain viscoelastic finite elements'
-    write(unit, '(a)') rule
-    write(unit, '(a)') ' case:  '//case_name
-    write(unit, '(a)') ' title: '//deck%title
-    write(unit, '(a)') ' deck:  '//deck%cards%file
-    write(unit, '(/, a)') ' INPUT CARDS'
+    call put(out, rule)
+    call put(out, ' visco2d  -  axisymmetric / plane-strain viscoelastic finite elements')
+    call put(out, rule)
+    call put(out, ' case:  '//case_name)
+    call put(out, ' title: '//deck%title)
+    call put(out, ' deck:  '//deck%cards%file)
+    call put(out, '')
+    call put(out, ' INPUT CARDS')
     do i = 1, deck%cards%count
-      write(unit, '(i6, 2x, a)') deck%cards%cards(i)%line, deck%cards%cards(i)%text
+      write(buffer, '(i6, 2x)') deck%cards%cards(i)%line
+      call put(out, buffer(1:8)//deck%cards%cards(i)%text)
     end do
-    write(unit, '(/, a)') ' CONTROL'
-    write(unit, '(a)') '   analysis          '//analysis_name(deck%analysis)
-    write(unit, '(a)') '   geometry          '//geometry_name(deck%geometry)
-    write(unit, '(a)') '   effects           '//effects
-    write(unit, '(a)') '   formulation       '//formulation_name(deck%formulation)
+    call put(out, '')
+    call put(out, ' CONTROL')
+    call put(out, '   analysis          '//analysis_name(deck%analysis))
+    call put(out, '   geometry          '//geometry_name(deck%geometry))
+    call put(out, '   effects           '//effects)
+    call put(out, '   formulation       '//formulation_name(deck%formulation))
     if (deck%analysis == analysis_dynamic) then
-      write(unit, '(a)') '   Wilson theta      '//gtoa(deck%dynamics%theta)
+      call put(out, '   Wilson theta      '//gtoa(deck%dynamics%theta))
       associate (velocity => initial_velocity(deck))
-      write(unit, '(a)') '   initial velocity  ('//gtoa(velocity(1))//', '//gtoa(velocity(2))//') m/s'
+      call put(out, '   initial velocity  ('//gtoa(velocity(1))//', '//gtoa(velocity(2))//') m/s')
       end associate
-      if (any(deck%dynamics%acceleration_given)) write(unit, '(a)') '   initial accel.    ('// &
-        gtoa(deck%dynamics%acceleration(1))//', '//gtoa(deck%dynamics%acceleration(2))//') m/s^2 (as given)'
-      if (.not. all(deck%dynamics%acceleration_given)) write(unit, '(a)') &
-        '   initial accel.    from equilibrium M a = R(0) + gravity (components not given)'
-      write(unit, '(a)') '   output            history every '//itoa(deck%output%every)//' step(s), '// &
-        itoa(size(deck%output%field_times))//' requested field time(s)'
+      if (any(deck%dynamics%acceleration_given)) call put(out, '   initial accel.    ('// &
+        gtoa(deck%dynamics%acceleration(1))//', '//gtoa(deck%dynamics%acceleration(2))//') m/s^2 (as given)')
+      if (.not. all(deck%dynamics%acceleration_given)) call put(out, &
+        '   initial accel.    from equilibrium M a = R(0) + gravity (components not given)')
+      call put(out, '   output            history every '//itoa(deck%output%every)//' step(s), '// &
+        itoa(size(deck%output%field_times))//' requested field time(s)')
     end if
-    if (deck%gravity > 0.0_dp) write(unit, '(a)') '   gravity           '//gtoa(deck%gravity)//' m/s^2 in -z'
+    if (deck%gravity > 0.0_dp) call put(out, '   gravity           '//gtoa(deck%gravity)//' m/s^2 in -z')
     if (deck%plate%line > 0) then
-      write(unit, '(a)') '   plate             z = '//gtoa(deck%plate%z)//' m, '// &
+      call put(out, '   plate             z = '//gtoa(deck%plate%z)//' m, '// &
         trim(merge('STICK (u_r, u_z held)', 'SLIP (u_z held)      ', deck%plate%stick))//', RELEASE='// &
-        trim(merge('YES', 'NO ', deck%plate%release))
-      if (deck%analysis == analysis_dynamic) write(unit, '(a)') '   stop at           '//stop_name(deck%stop_at)
+        trim(merge('YES', 'NO ', deck%plate%release)))
+      if (deck%analysis == analysis_dynamic) call put(out, '   stop at           '//stop_name(deck%stop_at))
     end if
-    if (size(deck%warnings) > 0) then
-      write(unit, '(/, a)') ' WARNINGS'
+    if (size(deck%warnings) + run_warnings(record) > 0) then
+      call put(out, '')
+      call put(out, ' WARNINGS')
       do k = 1, size(deck%warnings)
-        write(unit, '(3x, a)') deck%warnings(k)%text
+        call put(out, '   '//deck%warnings(k)%text)
+      end do
+      do k = 1, run_warnings(record)
+        call put(out, '   '//record%warnings(k)%text)
       end do
     end if
-    write(unit, '(/, a)') ' MESH'
-    write(unit, '(a)') '   source            '//mesh%source
-    write(unit, '(a)') '   nodes             '//itoa(mesh%nnode)
-    write(unit, '(a)') '   elements          '//itoa(mesh%nelem)
-    write(unit, '(a)') '   equations         '//itoa(2*mesh%nnode)
-    write(unit, '(a)') '   half-bandwidth    '//itoa(mesh%half_bandwidth_before)//' as input, '// &
-                       itoa(mesh%half_bandwidth)//' after reverse Cuthill-McKee'
-    write(unit, '(/, a)') ' MATERIALS'
-    write(unit, '(a)') '   id           kind          E(0) (Pa)       nu(0)     G(0) (Pa)       K (Pa)          rho (kg/m3)'
+    call put(out, '')
+    call put(out, ' MESH')
+    call put(out, '   source            '//mesh%source)
+    call put(out, '   nodes             '//itoa(mesh%nnode))
+    call put(out, '   elements          '//itoa(mesh%nelem))
+    call put(out, '   equations         '//itoa(2*mesh%nnode))
+    call put(out, '   half-bandwidth    '//itoa(mesh%half_bandwidth_before)//' as input, '// &
+                  itoa(mesh%half_bandwidth)//' after reverse Cuthill-McKee')
+    call put(out, '')
+    call put(out, ' MATERIALS')
+    call put(out, '   id           kind          E(0) (Pa)       nu(0)     G(0) (Pa)       K (Pa)          rho (kg/m3)')
     do k = 1, size(deck%materials)
       associate (m => deck%materials(k))
-      write(unit, '(3x, a12, 1x, a12, 1x, es15.7, 1x, f9.6, 3(1x, es15.7))') m%id, material_kind_name(m%kind), &
+      write(buffer, '(3x, a12, 1x, a12, 1x, es15.7, 1x, f9.6, 3(1x, es15.7))') m%id, material_kind_name(m%kind), &
         m%young, m%poisson, m%shear, m%bulk, m%density
+      call put(out, trim(buffer))
       if (m%kind == material_kind_uniaxial) then
-        write(unit, '(a)') '     uniaxial relaxation E(t) = sum E_i exp(-alpha_i t), eq. [47], as given:'
+        call put(out, '     uniaxial relaxation E(t) = sum E_i exp(-alpha_i t), eq. [47], as given:')
         do i = 1, size(m%uniaxial_young)
-          write(unit, '(7x, a, es16.8, a, es16.8, a)') 'E_i = ', m%uniaxial_young(i), ' Pa   alpha_i = ', &
+          write(buffer, '(7x, a, es16.8, a, es16.8, a)') 'E_i = ', m%uniaxial_young(i), ' Pa   alpha_i = ', &
             m%uniaxial_rate(i), ' 1/s'
+          call put(out, trim(buffer))
         end do
-        write(unit, '(a)') '     converted exactly (eq. [48], partial fractions) to the shear terms below'
+        call put(out, '     converted exactly (eq. [48], partial fractions) to the shear terms below')
       end if
       if (m%kind /= material_kind_elastic) then
-        write(unit, '(a)') '     shear relaxation phi1(t) = G_inf + sum G_m exp(-beta_m t), eq. [12]:'
-        write(unit, '(7x, a, es16.8, a)') 'G_inf = ', m%long_term_shear, ' Pa'
+        call put(out, '     shear relaxation phi1(t) = G_inf + sum G_m exp(-beta_m t), eq. [12]:')
+        write(buffer, '(7x, a, es16.8, a)') 'G_inf = ', m%long_term_shear, ' Pa'
+        call put(out, trim(buffer))
         if (has_memory(m)) then
           do i = 1, size(m%prony_shear)
-            write(unit, '(7x, a, es16.8, a, es16.8, a)') 'G_m = ', m%prony_shear(i), ' Pa   beta_m = ', &
+            write(buffer, '(7x, a, es16.8, a, es16.8, a)') 'G_m = ', m%prony_shear(i), ' Pa   beta_m = ', &
               m%prony_rate(i), ' 1/s'
+            call put(out, trim(buffer))
           end do
         end if
       end if
       end associate
     end do
     if (size(deck%stages) > 0) then
-      write(unit, '(/, a)') ' TIME STAGES  (line, steps, dt (s), end (s))'
+      call put(out, '')
+      call put(out, ' TIME STAGES  (line, steps, dt (s), end (s))')
       do k = 1, size(deck%stages)
-        write(unit, '(i9, i9, 2(1x, es16.8))') deck%stages(k)%line, deck%stages(k)%steps, deck%stages(k)%dt, &
+        write(buffer, '(i9, i9, 2(1x, es16.8))') deck%stages(k)%line, deck%stages(k)%steps, deck%stages(k)%dt, &
           deck%stages(k)%end_time
+        call put(out, trim(buffer))
       end do
       if (deck%analysis == analysis_dynamic) then
-        write(unit, '(a)') '   '//itoa(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0'
+        call put(out, '   '//itoa(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0')
       else
-        write(unit, '(a)') '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0'
+        call put(out, '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0')
       end if
     end if
     if (size(deck%curves) > 0) then
-      write(unit, '(/, a)') ' CURVES  (name: time (s) -> factor; constant outside the points)'
+      call put(out, '')
+      call put(out, ' CURVES  (name: time (s) -> factor; constant outside the points)')
       do k = 1, size(deck%curves)
-        write(unit, '(3x, a)') deck%curves(k)%name//':'
+        call put(out, '   '//deck%curves(k)%name//':')
         do i = 1, size(deck%curves(k)%time)
-          write(unit, '(7x, es16.8, a, es16.8)') deck%curves(k)%time(i), ' -> ', deck%curves(k)%value(i)
+          write(buffer, '(7x, es16.8, a, es16.8)') deck%curves(k)%time(i), ' -> ', deck%curves(k)%value(i)
+          call put(out, trim(buffer))
         end do
       end do
     end if
-    write(unit, '(/, a)') ' NODES  (number, r (m), z (m), band position)'
+    call put(out, '')
+    call put(out, ' NODES  (number, r (m), z (m), band position)')
     do i = 1, min(mesh%nnode, listing_row_limit)
-      write(unit, '(i9, 2(1x, es16.8), i9)') mesh%node_id(i), mesh%xy(:, i), mesh%equation(i)
+      write(buffer, '(i9, 2(1x, es16.8), i9)') mesh%node_id(i), mesh%xy(:, i), mesh%equation(i)
+      call put(out, trim(buffer))
     end do
-    if (mesh%nnode > listing_row_limit) write(unit, '(a)') '   ... '//itoa(mesh%nnode - listing_row_limit)// &
-      ' more nodes: see results.h5 /mesh/nodes'
-    write(unit, '(/, a)') ' ELEMENTS  (number, nodes 1-4, material)'
+    if (mesh%nnode > listing_row_limit) call put(out, '   ... '//itoa(mesh%nnode - listing_row_limit)// &
+      ' more nodes: see results.h5 /mesh/nodes')
+    call put(out, '')
+    call put(out, ' ELEMENTS  (number, nodes 1-4, material)')
     do i = 1, min(mesh%nelem, listing_row_limit)
-      write(unit, '(i9, 4i9, 2x, a)') mesh%element_id(i), mesh%node_id(mesh%connectivity(:, i)), &
-        trim(mesh%element_material_name(i))
+      write(buffer, '(i9, 4i9, 2x)') mesh%element_id(i), mesh%node_id(mesh%connectivity(:, i))
+      call put(out, buffer(1:47)//trim(mesh%element_material_name(i)))
     end do
-    if (mesh%nelem > listing_row_limit) write(unit, '(a)') '   ... '//itoa(mesh%nelem - listing_row_limit)// &
-      ' more elements: see results.h5 /mesh/elements'
-    write(unit, '(/, a)') ' SUPPORTS AND LOADS'
+    if (mesh%nelem > listing_row_limit) call put(out, '   ... '//itoa(mesh%nelem - listing_row_limit)// &
+      ' more elements: see results.h5 /mesh/elements')
+    call put(out, '')
+    call put(out, ' SUPPORTS AND LOADS')
     do k = 1, size(deck%fixes)
-      write(unit, '(a)') '   FIX      line '//itoa(deck%fixes(k)%line)//': '//itoa(size(deck%fixes(k)%nodes))// &
+      call put(out, '   FIX      line '//itoa(deck%fixes(k)%line)//': '//itoa(size(deck%fixes(k)%nodes))// &
         ' node(s), '//merge('u_r ', '    ', deck%fixes(k)%fix_r)//merge('u_z', '   ', deck%fixes(k)%fix_z)// &
-        trim(prescribed_text(deck, k))
+        trim(prescribed_text(deck, k)))
     end do
     do k = 1, size(deck%pressures)
-      write(unit, '(a)') '   PRESSURE line '//itoa(deck%pressures(k)%line)//': '// &
+      call put(out, '   PRESSURE line '//itoa(deck%pressures(k)%line)//': '// &
         edge_set_name(deck%pressures(k)%edge_set)//' p = '//gtoa(deck%pressures(k)%value)//' Pa'// &
-        curve_text(deck, deck%pressures(k)%curve)
+        curve_text(deck, deck%pressures(k)%curve))
     end do
     do k = 1, size(deck%forces)
-      write(unit, '(a)') '   FORCE    line '//itoa(deck%forces(k)%line)//': node '// &
+      call put(out, '   FORCE    line '//itoa(deck%forces(k)%line)//': node '// &
         itoa(mesh%node_id(deck%forces(k)%node))//' F = ('//gtoa(deck%forces(k)%value(1))//', '// &
-        gtoa(deck%forces(k)%value(2))//') N'//curve_text(deck, deck%forces(k)%curve)
+        gtoa(deck%forces(k)%value(2))//') N'//curve_text(deck, deck%forces(k)%curve))
     end do
-    write(unit, '(/, a)') ' RESULTS'
+    call put(out, '')
+    call put(out, ' RESULTS')
     do i = 1, record%nsummary
-      write(unit, '(3x, a, " = ", a)') trim(record%summary(i)%key), record%summary(i)%value
+      call put(out, '   '//trim(record%summary(i)%key)//' = '//record%summary(i)%value)
     end do
     if (record%nrow > 0) then
-      write(unit, '(/, a)') ' HISTORY (first and last rows; all rows in history.csv)'
-      write(unit, '(*(a16, :, 1x))') (trim(record%columns(k)), k = 1, size(record%columns))
+      call put(out, '')
+      call put(out, ' HISTORY (first and last rows; all rows in history.csv)')
+      line = ''
+      do k = 1, size(record%columns)
+        write(buffer, '(a16)') trim(record%columns(k))
+        line = line//buffer(1:16)
+        if (k < size(record%columns)) line = line//' '
+      end do
+      call put(out, line)
       do i = 1, record%nrow
         if (i > 20 .and. i < record%nrow - 20) cycle
-        write(unit, '(*(es16.8, :, 1x))') record%history(:, i)
+        line = ''
+        do k = 1, size(record%columns)
+          write(buffer, '(es16.8)') record%history(k, i)
+          line = line//buffer(1:16)
+        if (k < size(record%columns)) line = line//' '
+        end do
+        call put(out, line)
       end do
     end if
-    write(unit, '(a)') rule
+    call put(out, rule)
     end associate
-    close(unit)
+    call text_close(out)
+    message = out%message
   end subroutine write_listing
+
+  !> Number of run-time warnings in a record.
+  pure integer function run_warnings(record)
+    type(record_t), intent(in) :: record
+    run_warnings = 0
+    if (allocated(record%warnings)) run_warnings = size(record%warnings)
+  end function run_warnings
 
   !> ' x curve NAME' or '' (constant in time).
   function curve_text(deck, curve) result(text)
@@ -263,21 +383,19 @@ contains
   end function prescribed_text
 
   !> results.h5: /mesh, /history/<column>, /fields/<snapshot>/..., summary as root attributes.
-  subroutine write_results_h5(path, case_name, deck, record, status)
+  !> HDF5 is closed (h5fclose, h5close) also after a failure; `message` says
+  !> what failed first ('' if all went well).
+  subroutine write_results_h5(path, case_name, deck, record, message)
     character(*), intent(in) :: path, case_name
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
-    integer, intent(out) :: status
+    character(:), allocatable, intent(out) :: message
     type(h5_writer_t) :: writer
     integer(hid_t) :: group, fields, snapshot
     integer :: i, k
     real(dp), allocatable :: column(:)
 
     call h5_open_file(writer, path)
-    if (writer%status /= 0) then
-      status = writer%status
-      return
-    end if
     call h5_attribute(writer, writer%file, 'case', case_name)
     call h5_attribute(writer, writer%file, 'title', deck%title)
     call h5_attribute(writer, writer%file, 'geometry', geometry_name(deck%geometry))
@@ -325,6 +443,6 @@ contains
     end if
     call h5_close_group(writer, fields)
     call h5_close_file(writer)
-    status = writer%status
+    message = writer%failed
   end subroutine write_results_h5
 end module visco2d_output

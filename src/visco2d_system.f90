@@ -1,12 +1,33 @@
 !> Operating-system calls the driver needs (POSIX, through C interoperability):
-!> create and rename folders, remove files, process id, terminal test.
+!> create, rename and remove folders and files, list hidden entries of a
+!> folder by pattern, process id and liveness, terminal test, signals.
 module visco2d_system
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_size_t, c_ptr, c_funptr, c_null_ptr, &
+                                         c_null_funptr, c_intptr_t, c_f_pointer, c_associated
   implicit none
   private
 
   public :: make_directory, rename_path, remove_file, remove_directory, process_id, is_terminal
-  public :: directory_exists, remove_tree
+  public :: directory_exists, path_exists, remove_tree, process_alive, matching_paths, ignore_file_size_signal
+  public :: path_t
+
+  !> One path of a list (`matching_paths`).
+  type :: path_t
+    character(:), allocatable :: path
+  end type path_t
+
+  !> POSIX glob_t: the fields read here come first in glibc and musl
+  !> (count, vector, offset, flags); the rest is reserved room.
+  type, bind(c) :: glob_t
+    integer(c_size_t) :: path_count = 0
+    type(c_ptr) :: paths = c_null_ptr
+    integer(c_size_t) :: offset = 0
+    integer(c_int) :: flags = 0
+    type(c_ptr) :: reserved(16) = c_null_ptr
+  end type glob_t
+
+  !> SIGXFSZ (file size limit exceeded) on Linux and the BSDs.
+  integer(c_int), parameter :: signal_file_size = 25
 
   interface
     integer(c_int) function c_mkdir(path, mode) bind(c, name='mkdir')
@@ -29,10 +50,34 @@ module visco2d_system
     integer(c_int) function c_getpid() bind(c, name='getpid')
       import :: c_int
     end function c_getpid
+    integer(c_int) function c_kill(pid, signal) bind(c, name='kill')
+      import :: c_int
+      integer(c_int), value :: pid, signal
+    end function c_kill
     integer(c_int) function c_isatty(fd) bind(c, name='isatty')
       import :: c_int
       integer(c_int), value :: fd
     end function c_isatty
+    integer(c_int) function c_glob(pattern, flags, on_error, result) bind(c, name='glob')
+      import :: c_int, c_char, c_funptr, glob_t
+      character(kind=c_char), intent(in) :: pattern(*)
+      integer(c_int), value :: flags
+      type(c_funptr), value :: on_error
+      type(glob_t), intent(inout) :: result
+    end function c_glob
+    subroutine c_globfree(result) bind(c, name='globfree')
+      import :: glob_t
+      type(glob_t), intent(inout) :: result
+    end subroutine c_globfree
+    integer(c_size_t) function c_strlen(text) bind(c, name='strlen')
+      import :: c_size_t, c_ptr
+      type(c_ptr), value :: text
+    end function c_strlen
+    type(c_funptr) function c_signal(signal, handler) bind(c, name='signal')
+      import :: c_int, c_funptr
+      integer(c_int), value :: signal
+      type(c_funptr), value :: handler
+    end function c_signal
   end interface
 
 contains
@@ -56,6 +101,12 @@ contains
     inquire(file=path//'/.', exist=directory_exists)
   end function directory_exists
 
+  !> True if anything (file, folder, device) exists at the path.
+  logical function path_exists(path)
+    character(*), intent(in) :: path
+    inquire(file=path, exist=path_exists)
+  end function path_exists
+
   integer function rename_path(old, new) result(status)
     character(*), intent(in) :: old, new
     status = c_rename(old//c_null_char, new//c_null_char)
@@ -71,7 +122,7 @@ contains
     status = c_rmdir(path//c_null_char)
   end function remove_directory
 
-  !> rm -rf of a folder (used only for an older copy of a case folder).
+  !> rm -rf of a folder (used only for folders this program names: older or stale copies of case folders).
   subroutine remove_tree(path)
     character(*), intent(in) :: path
     character(:), allocatable :: quoted
@@ -91,6 +142,74 @@ contains
   integer function process_id()
     process_id = int(c_getpid())
   end function process_id
+
+  !> True if a process with this id exists (kill(pid, 0); where that is refused,
+  !> because the process belongs to another user, /proc/<pid> tells). Ids < 1 are never alive.
+  logical function process_alive(pid) result(alive)
+    integer, intent(in) :: pid
+    character(len=16) :: text
+    alive = .false.
+    if (pid < 1) return
+    alive = c_kill(int(pid, c_int), 0_c_int) == 0
+    if (alive) return
+    write(text, '(i0)') pid
+    if (directory_exists('/proc/self')) then
+      alive = directory_exists('/proc/'//trim(text))
+    else
+      alive = .true.                  ! no /proc: cannot tell "no such process" from "not ours"; keep
+    end if
+  end function process_alive
+
+  !> The paths matching a shell pattern (glob(3), sorted); none if nothing
+  !> matches. `folder` is taken literally (its *, ? and [ are escaped) and
+  !> `pattern` is a pattern for the names in it ('.*.partial.*').
+  function matching_paths(folder, pattern) result(paths)
+    character(*), intent(in) :: folder, pattern
+    type(path_t), allocatable :: paths(:)
+    type(glob_t) :: found
+    type(c_ptr), pointer :: vector(:)
+    character(kind=c_char, len=1), pointer :: characters(:)
+    integer :: k, n, length, i
+    allocate(paths(0))
+    if (c_glob(escaped(folder)//'/'//pattern//c_null_char, 0_c_int, c_null_funptr, found) /= 0) then
+      call c_globfree(found)
+      return
+    end if
+    n = int(found%path_count)
+    if (n > 0 .and. c_associated(found%paths)) then
+      call c_f_pointer(found%paths, vector, [n])
+      deallocate(paths)
+      allocate(paths(n))
+      do k = 1, n
+        length = int(c_strlen(vector(k)))
+        call c_f_pointer(vector(k), characters, [length])
+        allocate(character(len=length) :: paths(k)%path)
+        do i = 1, length
+          paths(k)%path(i:i) = characters(i)
+        end do
+      end do
+    end if
+    call c_globfree(found)
+  end function matching_paths
+
+  !> A path with the glob(3) special characters escaped by a backslash.
+  pure function escaped(path) result(text)
+    character(*), intent(in) :: path
+    character(:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, len(path)
+      if (index('*?[]\', path(i:i)) > 0) text = text//'\'
+      text = text//path(i:i)
+    end do
+  end function escaped
+
+  !> Ignore SIGXFSZ: a write past a file size limit (ulimit -f) then fails
+  !> with an error the writer reports, instead of killing the process.
+  subroutine ignore_file_size_signal()
+    type(c_funptr) :: previous
+    previous = c_signal(signal_file_size, transfer(1_c_intptr_t, c_null_funptr))   ! SIG_IGN = (handler) 1
+  end subroutine ignore_file_size_signal
 
   !> True if the file descriptor (2 = stderr) is a terminal.
   logical function is_terminal(fd)
