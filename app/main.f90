@@ -27,8 +27,6 @@ program visco2d
   integer :: i, count, failed, length
   logical :: quiet, checking, progress
   type(error_t), allocatable :: error
-  type(record_t) :: record
-  type(expect_tally_t) :: tally
 
   call ignore_file_size_signal()        ! past a file size limit a write fails and is reported (exit 1)
   out_root = 'out'
@@ -85,8 +83,7 @@ program visco2d
     if (checking) then
       call check_deck(decks(i)(1:length), error)
     else
-      call run_deck(decks(i)(1:length), out_root, record, error, tally)
-      if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
+      call run_one(decks(i)(1:length), error)
     end if
     if (allocated(error)) then
       failed = failed + 1
@@ -101,6 +98,16 @@ program visco2d
   if (failed > 0) call c_exit(1_c_int)
 
 contains
+
+  !> Run a deck; print its one-line result unless quiet (the record is freed on return).
+  subroutine run_one(path, error)
+    character(*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: record
+    type(expect_tally_t) :: tally
+    call run_deck(path, out_root, record, error, tally)
+    if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
+  end subroutine run_one
 
   !> Before any deck runs: the output root must be named and writable (exit
   !> status 2, as for usage errors); folders that dead runs left in it are removed.

@@ -653,4 +653,148 @@ else
 fi
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- output root
+# The output root is checked before any deck runs: an empty name, a path
+# through a file, or a folder that cannot be made are refused with exit
+# status 2 (as for usage errors) and nothing is written anywhere.
+mkdir outroot && cd outroot || exit 0
+"$exe" -o "" ../decks/first.inp > empty.out 2> empty.err
+check_rc out_root_empty_exit_2 2 $?
+check out_root_empty_message "stderr: $(first_lines empty.err)" grep -q 'output folder given with -o is empty' empty.err
+check out_root_empty_nothing_at_root "/ holds: $(ls -A / | grep -F 'first' | tr '\n' ' ')" \
+  test -z "$(ls -A / 2>/dev/null | grep -F '.first.')"
+echo plain > plainfile
+"$exe" -o plainfile/sub ../decks/first.inp > through.out 2> through.err
+check_rc out_root_through_file_exit_2 2 $?
+check out_root_through_file_message "stderr: $(first_lines through.err)" grep -q '"plainfile/sub": plainfile is not a folder' through.err
+check out_root_through_file_untouched "plainfile changed" test "$(cat plainfile)" = plain
+"$exe" -o plainfile ../decks/first.inp > isfile.out 2> isfile.err
+check_rc out_root_is_file_exit_2 2 $?
+# /proc accepts no new folder, not even from root (a read-only place that works in CI).
+if [ -d /proc/self ]; then
+  "$exe" -o "/proc/visco2d_cli_$$" ../decks/first.inp > proc.out 2> proc.err
+  check_rc out_root_unwritable_exit_2 2 $?
+  check out_root_unwritable_message "stderr: $(first_lines proc.err)" \
+    grep -qF "visco2d: error: the output folder \"/proc/visco2d_cli_$$\" cannot be created" proc.err
+fi
+if [ "$(id -u)" != 0 ]; then                # permissions do not stop root
+  mkdir locked && chmod 555 locked
+  "$exe" -o locked/out ../decks/first.inp > locked.out 2> locked.err
+  check_rc out_root_read_only_exit_2 2 $?
+  chmod 755 locked
+fi
+# The root is not created before a deck succeeds: a failing deck leaves no folder at all.
+"$exe" -o fresh ../decks/bad.inp > fresh.out 2> fresh.err
+check_rc out_root_failed_deck_exit_1 1 $?
+check out_root_failed_deck_no_root "fresh/ was created: $(ls -A fresh 2>/dev/null | tr '\n' ' ')" test ! -e fresh
+# check never writes, so it does not look at -o.
+"$exe" check -o "" ../decks/first.inp > checkempty.out 2> checkempty.err
+check_rc out_root_check_ignores_root 0 $?
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- write faults
+# A full disk part-way through the outputs: a file size limit (ulimit -f, in
+# kB) makes writes past it fail (visco2d ignores SIGXFSZ; `trap '' XFSZ` too).
+# Each file in turn: a located error naming the file, exit 1 (never a crash),
+# no case folder and no partial folder. free_flight writes summary.txt 2.6 kB,
+# history.csv 11 kB, listing.txt 28 kB, results.h5 111 kB.
+mkdir faults && cd faults || exit 0
+cp "$root/inputs/free_flight.inp" free_flight.inp
+for pair in 2:summary.txt 16:listing.txt 64:results.h5; do
+  limit=${pair%%:*}
+  file=${pair#*:}
+  (ulimit -f "$limit"; trap '' XFSZ; exec "$exe" -q -o "full$limit" free_flight.inp) > "full$limit.out" 2> "full$limit.err"
+  status=$?
+  check_rc "disk_full_${file}_exit_1" 1 $status
+  check "disk_full_${file}_located" "stderr: $(first_lines "full$limit.err")" \
+    grep -qF "visco2d: error: free_flight.inp: cannot write full$limit/free_flight/$file: " "full$limit.err"
+  check "disk_full_${file}_one_line" "stderr: $(first_lines "full$limit.err")" \
+    test "$(wc -l < "full$limit.err")" = 1
+  check "disk_full_${file}_no_folder" "full$limit holds: $(ls -A "full$limit" 2>/dev/null | tr '\n' ' ')" \
+    test -z "$(ls -A "full$limit" 2>/dev/null)"
+done
+# Unlimited, the same run writes all four files (the limits above were the cause).
+"$exe" -q -o fine free_flight.inp > fine.out 2> fine.err
+check_rc disk_unlimited_exit_0 0 $?
+check disk_unlimited_results "fine/free_flight holds: $(ls fine/free_flight 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls fine/free_flight 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+# A failed rewrite keeps the previous case folder as it was.
+cp fine/free_flight/summary.txt previous_summary.txt
+(ulimit -f 64; exec "$exe" -q -o fine free_flight.inp) > refull.out 2> refull.err
+check_rc disk_full_rerun_exit_1 1 $?
+check disk_full_rerun_keeps_previous "fine/free_flight/summary.txt changed or missing" \
+  cmp -s previous_summary.txt fine/free_flight/summary.txt
+check disk_full_rerun_no_partial "fine holds: $(ls -A fine | tr '\n' ' ')" test "$(ls -A fine)" = free_flight
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- stale folders
+# A run stopped while writing leaves OUT/.<case>.partial.<pid>/ (and, when it
+# was replacing a case folder, OUT/.<case>.old.<pid>/). The next run into the
+# same root removes those of processes that no longer exist, puts back an old
+# folder whose case folder is missing, and keeps those of live processes.
+mkdir stale && cd stale || exit 0
+sh -c 'exit 0' & dead=$!
+wait "$dead"
+mkdir -p "out/.first.partial.$dead" "out/.last.partial.$dead" "out/.kept.old.$dead" "out/.other.old.$dead" \
+  out/other "out/.first.partial.1" "out/.first.partial.$$"
+echo half > "out/.first.partial.$dead/summary.txt"
+echo previous > "out/.kept.old.$dead/summary.txt"
+"$exe" -q -o out ../decks/first.inp > stale.out 2> stale.err
+check_rc stale_run_exit_0 0 $?
+check stale_dead_partial_removed "out holds: $(ls -A out | tr '\n' ' ')" \
+  test ! -e "out/.first.partial.$dead" -a ! -e "out/.last.partial.$dead"
+check stale_dead_old_put_back "out/kept/summary.txt: $(cat out/kept/summary.txt 2>/dev/null)" \
+  test "$(cat out/kept/summary.txt 2>/dev/null)" = previous
+check stale_dead_old_removed_beside_case "out holds: $(ls -A out | tr '\n' ' ')" \
+  test ! -e "out/.other.old.$dead" -a -d out/other
+check stale_live_partials_kept "out holds: $(ls -A out | tr '\n' ' ')" \
+  test -d out/.first.partial.1 -a -d "out/.first.partial.$$"
+check stale_notes "stderr: $(first_lines stale.err)" \
+  test "$(grep -c "^visco2d: note: .*(left by process $dead, which no longer runs)$" stale.err)" = 4
+check stale_run_result "out/first/summary.txt missing" test -s out/first/summary.txt
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- non-finite results
+# No NaN or Infinity reaches an output: a deck whose result is not finite
+# (a modulus at the edge of double precision: refused by the deck checks or
+# by the last check before writing) fails with an error naming the deck, exit 1, no folder.
+mkdir nonfinite && cd nonfinite || exit 0
+sed -e 's/E=200e9/E=1e308/' ../decks/first.inp > huge.inp
+"$exe" -o out huge.inp > huge.out 2> huge.err
+check_rc non_finite_exit_1 1 $?
+check non_finite_names_deck "stderr: $(first_lines huge.err)" grep -q '^visco2d: error: huge\.inp:[0-9]' huge.err
+check non_finite_no_folder "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test -z "$(ls -A out 2>/dev/null)"
+check non_finite_stdout_empty "stdout: $(first_lines huge.out)" test ! -s huge.out
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- EXPECT
+# One check per EXPECT card (run line "EXPECT k/n"); an expected 0 or a
+# second card for a key is refused at the card, before solving.
+mkdir expect && cd expect || exit 0
+"$exe" -q -o out ../decks/first.inp > /dev/null 2>&1
+value_in() { sed -n "s/^$1 = //p" out/first/summary.txt 2>/dev/null | head -1; }
+u=$(value_in max_displacement_m); w=$(value_in strain_energy_J)
+{ cat ../decks/first.inp | grep -v '^END'
+  echo "EXPECT max_displacement_m $u RTOL=1e-6"
+  echo "EXPECT strain_energy_J $w RTOL=1e-6"
+  echo "EXPECT external_work_J 1.0 RTOL=1e-6"
+  echo END; } > three.inp
+"$exe" -o out three.inp > three.out 2> three.err
+check_rc expect_three_exit_0 0 $?
+check expect_counts_cards "stdout: $(first_lines three.out)" grep -q '; EXPECT 2/3 within RTOL (worst rel. error ' three.out
+sed -e "s/^EXPECT strain_energy_J .*/EXPECT strain_energy_J 0/" three.inp > zero.inp
+"$exe" -o out zero.inp > zero.out 2> zero.err
+check_rc expect_zero_exit_1 1 $?
+check expect_zero_located "stderr: $(first_lines zero.err)" \
+  grep -q '^visco2d: error: zero\.inp:9:24: EXPECT: the expected value of strain_energy_j is 0' zero.err
+"$exe" check zero.inp > checkzero.out 2> checkzero.err
+check_rc expect_zero_check_exit_1 1 $?
+sed -e "s/^EXPECT external_work_J .*/EXPECT max_displacement_m 1.0/" three.inp > twice.inp
+"$exe" -o out twice.inp > twice.out 2> twice.err
+check_rc expect_twice_exit_1 1 $?
+check expect_twice_located "stderr: $(first_lines twice.err)" \
+  grep -q '^visco2d: error: twice\.inp:10: EXPECT: key max_displacement_m is already expected on line 8' twice.err
+check expect_no_nan "a NaN in out/: $(grep -rl NaN out 2>/dev/null | tr '\n' ' ')" test -z "$(grep -rl 'NaN\|Infinity' out 2>/dev/null)"
+cd "$work" || exit 0
+
 exit 0

@@ -26,10 +26,10 @@ contains
   subroutine check_finite_outputs(deck, record, error)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
-    type(error_t), allocatable, intent(inout) :: error
-    call check_results(deck, record, error)
+    type(error_t), allocatable, intent(out) :: error
+    call check_deck_numbers(deck, error)         ! first: a non-finite input explains a non-finite result
     if (allocated(error)) return
-    call check_deck_numbers(deck, error)
+    call check_results(deck, record, error)
   end subroutine check_finite_outputs
 
   !> The run's results: summary, history, snapshots.
@@ -175,26 +175,30 @@ contains
     if (allocated(deck%materials)) then
       do k = 1, size(deck%materials)
         associate (m => deck%materials(k))
-        call check_values([m%young, m%poisson, m%shear, m%bulk, m%density, m%long_term_shear], &
-                          'material '//m%id//' (E, nu, G, K, rho or G_inf, as listed)', m%line, 'MATERIAL')
+        call check_values([m%young], 'Young modulus E(0) of material '//m%id, m%line, 'MATERIAL')
+        call check_values([m%poisson], 'Poisson ratio nu(0) of material '//m%id, m%line, 'MATERIAL')
+        call check_values([m%shear], 'shear modulus G(0) of material '//m%id, m%line, 'MATERIAL')
+        call check_values([m%bulk], 'bulk modulus K of material '//m%id, m%line, 'MATERIAL')
+        call check_values([m%density], 'density of material '//m%id, m%line, 'MATERIAL')
+        call check_values([m%long_term_shear], 'long-term shear modulus G_inf of material '//m%id, m%line, 'MATERIAL')
         if (allocated(m%uniaxial_young)) call check_values([m%uniaxial_young, m%uniaxial_rate], &
-                          'material '//m%id//' (uniaxial terms E_i, alpha_i)', m%line, 'MATERIAL')
+                          'uniaxial terms (E_i, alpha_i) of material '//m%id, m%line, 'MATERIAL')
         if (allocated(m%prony_shear)) call check_values([m%prony_shear, m%prony_rate], &
-                          'material '//m%id//' (shear terms G_m, beta_m)', m%line, 'MATERIAL')
+                          'shear terms (G_m, beta_m) of material '//m%id, m%line, 'MATERIAL')
         end associate
         if (allocated(error)) return
       end do
     end if
     if (allocated(deck%stages)) then
       do k = 1, size(deck%stages)
-        call check_values([deck%stages(k)%dt, deck%stages(k)%end_time], 'time stage (dt, end)', &
+        call check_values([deck%stages(k)%dt, deck%stages(k)%end_time], 'time stage (dt or end time)', &
                           deck%stages(k)%line, 'TIME')
         if (allocated(error)) return
       end do
     end if
     if (allocated(deck%curves)) then
       do k = 1, size(deck%curves)
-        call check_values([deck%curves(k)%time, deck%curves(k)%value], 'curve '//deck%curves(k)%name, &
+        call check_values([deck%curves(k)%time, deck%curves(k)%value], 'points of curve '//deck%curves(k)%name, &
                           deck%curves(k)%line, 'CURVE')
         if (allocated(error)) return
       end do
@@ -247,14 +251,15 @@ contains
       character(*), intent(in) :: what, card
       integer, intent(in) :: line
       integer :: j
+      if (allocated(error)) return
       do j = 1, size(values)
         if (ieee_is_finite(values(j))) cycle
         if (line > 0) then
-          call set_error(error, 'a value of the '//what//' is '//non_finite_text(values(j))// &
-            ' (out of the range of double precision); no output is written', file=deck%cards%file, line=line, card=card)
+          call set_error(error, 'the '//what//' is '//non_finite_text(values(j))// &
+            ' (beyond the range of double precision); no output is written', file=deck%cards%file, line=line, card=card)
         else
-          call set_error(error, 'a value of the '//what//' is '//non_finite_text(values(j))// &
-            ' (out of the range of double precision); no output is written', file=deck%cards%file)
+          call set_error(error, 'the '//what//' is '//non_finite_text(values(j))// &
+            ' (beyond the range of double precision); no output is written', file=deck%cards%file)
         end if
         return
       end do

@@ -122,21 +122,23 @@ contains
     status = c_rmdir(path//c_null_char)
   end function remove_directory
 
-  !> rm -rf of a folder (used only for folders this program names: older or stale copies of case folders).
-  subroutine remove_tree(path)
+  !> rm -rf of a folder (used only for folders this program names: older or
+  !> stale copies of case folders). Each entry is first unlinked, which removes
+  !> a file or a symbolic link (never followed); what cannot be unlinked is a
+  !> folder, emptied the same way and removed.
+  recursive subroutine remove_tree(path)
     character(*), intent(in) :: path
-    character(:), allocatable :: quoted
-    integer :: i, status
-    quoted = "'"
-    do i = 1, len(path)
-      if (path(i:i) == "'") then
-        quoted = quoted//"'\''"
-      else
-        quoted = quoted//path(i:i)
-      end if
+    type(path_t), allocatable :: entries(:)
+    character(len=6), parameter :: patterns(3) = [character(len=6) :: '*', '.[!.]*', '..?*']   ! all but . and ..
+    integer :: k, p, status
+    if (c_unlink(path//c_null_char) == 0) return
+    do p = 1, size(patterns)
+      entries = matching_paths(path, trim(patterns(p)))
+      do k = 1, size(entries)
+        if (c_unlink(entries(k)%path//c_null_char) /= 0) call remove_tree(entries(k)%path)
+      end do
     end do
-    quoted = quoted//"'"
-    call execute_command_line('rm -rf -- '//quoted, exitstat=status)
+    status = c_rmdir(path//c_null_char)
   end subroutine remove_tree
 
   integer function process_id()
