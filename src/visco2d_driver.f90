@@ -358,7 +358,7 @@ contains
     do k = 1, size(paths)
       call stale_pid(paths(k)%path, '.old.', pid, mark)
       if (pid <= 0) cycle
-      name = paths(k)%path(len(out_root) + 2:)
+      name = paths(k)%path(index(paths(k)%path, '/', back=.true.) + 1:)
       case_name = name(2:mark - 1)
       if (len(case_name) == 0) cycle
       if (.not. directory_exists(out_root//'/'//case_name)) then

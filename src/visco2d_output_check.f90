@@ -75,7 +75,7 @@ contains
                    file=deck%cards%file, line=card_line(deck, 'ANALYSIS'), card=card_name(deck, 'ANALYSIS'))
   end subroutine check_results
 
-  !> ' (step = 12, t_ms = 0.12)': the row's step and time columns, where finite.
+  !> ' (step 12, t_s = 1.2E-004)': the row's step and time columns, where finite.
   function row_place(record, row) result(text)
     type(record_t), intent(in) :: record
     integer, intent(in) :: row
@@ -86,7 +86,11 @@ contains
       if (trim(record%columns(j)) /= 'step' .and. index(record%columns(j), 't_') /= 1) cycle
       if (.not. ieee_is_finite(record%history(j, row))) cycle
       if (len(text) > 0) text = text//', '
-      text = text//trim(record%columns(j))//' = '//gtoa(record%history(j, row))
+      if (trim(record%columns(j)) == 'step' .and. abs(record%history(j, row)) < 1.0e9_dp) then
+        text = text//'step '//itoa(nint(record%history(j, row)))
+      else
+        text = text//trim(record%columns(j))//' = '//gtoa(record%history(j, row))
+      end if
     end do
     if (len(text) > 0) text = ' ('//text//')'
   end function row_place
