@@ -94,7 +94,8 @@ program visco2d
   if (count > 1 .and. failed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
   flush(6)
   flush(0)
-  deallocate(decks, out_root, argument)
+  deallocate(decks, out_root)                 ! everything freed before exit (valgrind: nothing lost)
+  if (allocated(argument)) deallocate(argument)
   if (failed > 0) call c_exit(1_c_int)
 
 contains
