@@ -793,8 +793,91 @@ sed -e "s/^EXPECT external_work_J .*/EXPECT max_displacement_m 1.0/" three.inp >
 "$exe" -o out twice.inp > twice.out 2> twice.err
 check_rc expect_twice_exit_1 1 $?
 check expect_twice_located "stderr: $(first_lines twice.err)" \
-  grep -q '^visco2d: error: twice\.inp:10: EXPECT: key max_displacement_m is already expected on line 8' twice.err
+  grep -q '^visco2d: error: twice\.inp:10:8: EXPECT: key max_displacement_m is already expected on line 8' twice.err
 check expect_no_nan "a NaN in out/: $(grep -rl NaN out 2>/dev/null | tr '\n' ' ')" test -z "$(grep -rl 'NaN\|Infinity' out 2>/dev/null)"
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- fuzz regressions
+# Decks the fuzzer found writing NaN/Infinity or numbers no reader parses
+# (an exponent without its letter, 1.0000000+300; a field of '*'). Each now
+# either fails with an error located in the deck (exit 1, no folder) or
+# writes outputs that hold only finite, readable numbers.
+mkdir fuzzreg && cd fuzzreg || exit 0
+cat > expect_denormal.inp <<'EOF'
+ANALYSIS DYNAMIC
+MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85
+MESH SPHERE R=0.0366 LEVEL=1
+GRAVITY G=9.8
+TIME DT=1e-5 TEND=2e-3
+EXPECT az_cm_m_s2 4.9e-324 RTOL=1e-9
+END
+EOF
+cat > hertz_tiny_bulk.inp <<'EOF'
+ANALYSIS DYNAMIC
+MATERIAL golden VISCOELASTIC K=1e-308 RHO=790
+PRONY G=0.099e6 BETA=35.26
+MESH SPHERE R=0.035 LEVEL=1
+INITIAL VZ=-0.7 AZ=-9.8
+TIME DT=1e-5 TEND=8e-3
+PLATE Z=0 STICK
+END
+EOF
+cat > gravity_huge.inp <<'EOF'
+ANALYSIS QUASISTATIC
+MATERIAL apple VISCOELASTIC K=1.756e6 RHO=790
+PRONY G=0.099e6 BETA=35.26
+MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2
+FIX BOTTOM Z
+TIME DT=1000 TEND=10000
+GRAVITY G=1e300
+END
+EOF
+cat > ring_huge.inp <<'EOF'
+ANALYSIS QUASISTATIC
+MATERIAL flesh VISCOELASTIC K=5.0e6 RHO=800
+PRONY G=0.5e6 BETA=0.1
+MESH RING R0=0.01 R1=1e308 NR=32 NT=32
+TIME DT=5     TEND=100
+END
+EOF
+cat > density_huge.inp <<'EOF'
+ANALYSIS STATIC
+MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=1e300
+MESH SPHERE R=0.0366 LEVEL=1
+FIX TOP Z
+END
+EOF
+cat > beta_denormal.inp <<'EOF'
+ANALYSIS DYNAMIC
+MATERIAL golden VISCOELASTIC K=1.756e6 RHO=790
+PRONY G=0.099e6 BETA=4.9e-324
+MESH SPHERE R=0.035 LEVEL=1
+TIME DT=2e-5 TEND=15e-3
+END
+EOF
+cp "$root/inputs/halfspace_wave.inp" halfspace_wave.inp    # probe values ~1e-179 ahead of the wave
+for deck in expect_denormal hertz_tiny_bulk gravity_huge ring_huge density_huge beta_denormal halfspace_wave; do
+  "$exe" -q -o out "$deck.inp" > "$deck.out" 2> "$deck.err"
+  status=$?
+  if [ $status = 0 ]; then
+    bad=$(grep -liE '(^|[^A-Za-z0-9_])[-+]?(nan|inf|infinity)([^A-Za-z0-9_]|$)' \
+          "out/$deck/summary.txt" "out/$deck/history.csv" 2>/dev/null | tr '\n' ' ')
+    check "fuzz_${deck}_finite" "non-finite in: $bad" test -z "$bad"
+    bad=$(grep -hoE '(^|[^A-Za-z0-9_.])[-+]?[0-9]+\.[0-9]+[-+][0-9]{2,}|\*\*' \
+          "out/$deck/summary.txt" "out/$deck/history.csv" "out/$deck/listing.txt" 2>/dev/null | head -3 | tr '\n' ' ')
+    check "fuzz_${deck}_readable" "unreadable numbers: $bad" test -z "$bad"
+    if command -v h5dump > /dev/null; then
+      bad=$(h5dump "out/$deck/results.h5" 2>/dev/null | grep -ciE '(^|[^a-z_])(nan|inf)([^a-z_]|$)')
+      check "fuzz_${deck}_h5_finite" "$bad lines with nan/inf in h5dump" test "$bad" = 0
+    fi
+  else
+    check_rc "fuzz_${deck}_exit_1" 1 $status
+    check "fuzz_${deck}_located" "stderr: $(first_lines "$deck.err")" \
+      grep -qE "^visco2d: error: $deck\.inp:[0-9]+(:[0-9]+)?: [A-Z]+: " "$deck.err"
+    check "fuzz_${deck}_no_folder" "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+      test -z "$(entries_matching out "$deck")"
+  fi
+done
 cd "$work" || exit 0
 
 exit 0

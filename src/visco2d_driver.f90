@@ -415,26 +415,28 @@ contains
       do j = 1, k - 1
         if (deck%expects(j)%key /= expect%key) cycle
         call set_error(error, 'key '//to_lower(expect%key)//' is already expected on line '// &
-          itoa(deck%expects(j)%line)//' (one EXPECT card per key)', file=deck%cards%file, line=expect%line, card='EXPECT')
+          itoa(deck%expects(j)%line)//' (one EXPECT card per key)', file=deck%cards%file, line=expect%line, &
+          column=positional_column(deck, expect%line, 1), card='EXPECT')
         return
       end do
       if (.not. ieee_is_finite(expect%value)) then
         call set_error(error, 'the expected value of '//to_lower(expect%key)//' is not a finite number', &
-          file=deck%cards%file, line=expect%line, column=value_column(deck, expect%line), card='EXPECT')
+          file=deck%cards%file, line=expect%line, column=positional_column(deck, expect%line, 2), card='EXPECT')
       else if (expect%value == 0.0_dp) then
         call set_error(error, 'the expected value of '//to_lower(expect%key)//' is 0: a relative error '// &
           '|computed - expected|/|expected| (RTOL) cannot be checked against 0; expect a nonzero value', &
-          file=deck%cards%file, line=expect%line, column=value_column(deck, expect%line), card='EXPECT')
+          file=deck%cards%file, line=expect%line, column=positional_column(deck, expect%line, 2), card='EXPECT')
       end if
       end associate
       if (allocated(error)) return
     end do
   end subroutine check_expect_cards
 
-  !> Column of the second positional field (the value) of the card on a line (0 if unknown).
-  integer function value_column(deck, line) result(column)
+  !> Column of the n-th positional field of the card on a line (0 if unknown):
+  !> on an EXPECT card, 1 is the key and 2 the value.
+  integer function positional_column(deck, line, n) result(column)
     type(deck_t), intent(in) :: deck
-    integer, intent(in) :: line
+    integer, intent(in) :: line, n
     integer :: i, t, positional
     column = 0
     if (.not. allocated(deck%cards%cards)) return
@@ -445,13 +447,13 @@ contains
         if (.not. allocated(deck%cards%cards(i)%tokens(t)%name)) cycle
         if (len(deck%cards%cards(i)%tokens(t)%name) > 0) cycle
         positional = positional + 1
-        if (positional == 2) then
+        if (positional == n) then
           column = deck%cards%cards(i)%tokens(t)%column
           return
         end if
       end do
     end do
-  end function value_column
+  end function positional_column
 
   !> Compare the EXPECT cards with the summary; record per key the expected
   !> value, the relative error and whether it is within RTOL; count the checks in `tally`.
@@ -469,7 +471,8 @@ contains
         if (to_upper(trim(record%summary(i)%key)) /= deck%expects(k)%key) cycle
         if (.not. finite_text(record%summary(i)%value)) then
           call set_error(error, 'key "'//to_lower(deck%expects(k)%key)//'" is '//record%summary(i)%value// &
-            ' in this run: it cannot be compared', file=deck%cards%file, line=deck%expects(k)%line, card='EXPECT')
+            ' in this run: it cannot be compared', file=deck%cards%file, line=deck%expects(k)%line, &
+            column=positional_column(deck, deck%expects(k)%line, 1), card='EXPECT')
           return
         end if
         read(record%summary(i)%value, *, iostat=ios) computed
@@ -487,7 +490,8 @@ contains
       end do
       if (.not. found) then
         call set_error(error, 'key "'//to_lower(deck%expects(k)%key)//'" is not a numeric summary key '// &
-          'of this run (see summary.txt for the keys)', file=deck%cards%file, line=deck%expects(k)%line, card='EXPECT')
+          'of this run (see summary.txt for the keys)', file=deck%cards%file, line=deck%expects(k)%line, &
+          column=positional_column(deck, deck%expects(k)%line, 1), card='EXPECT')
         return
       end if
     end do
@@ -495,17 +499,19 @@ contains
 
   !> |computed - expected| / |expected| for finite values and expected /= 0,
   !> without overflow: both are scaled by the larger magnitude first; a ratio
-  !> beyond the range of double precision is reported as huge(1.0_dp).
+  !> above relative_error_ceiling (1e300: an expected value near the underflow
+  !> limit) is reported as the ceiling, which no RTOL accepts.
   pure real(dp) function relative_error(computed, expected) result(relative)
     real(dp), intent(in) :: computed, expected
+    real(dp), parameter :: relative_error_ceiling = 1.0e300_dp
     real(dp) :: scale, difference, reference
     scale = max(abs(computed), abs(expected))
     relative = 0.0_dp
     if (scale == 0.0_dp .or. computed == expected) return
     difference = abs(computed/scale - expected/scale)
     reference = abs(expected)/scale
-    if (difference >= reference*huge(1.0_dp)) then
-      relative = huge(1.0_dp)
+    if (difference >= reference*relative_error_ceiling) then
+      relative = relative_error_ceiling
     else
       relative = difference/reference
     end if
@@ -524,7 +530,7 @@ contains
     if (len(summary_value(record, 'max_displacement_m')) > 0) &
       line = line//'; max |u| = '//summary_value(record, 'max_displacement_m')//' m'
     if (tally%count > 0) then
-      write(buffer, '(es9.2)') tally%worst
+      write(buffer, '(es10.2e3)') tally%worst
       line = line//'; EXPECT '//itoa(tally%within)//'/'//itoa(tally%count)//' within RTOL (worst rel. error '// &
              trim(adjustl(buffer))//')'
     end if

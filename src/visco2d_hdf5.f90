@@ -117,7 +117,11 @@ contains
     call h5fget_file_image_f(writer%file, buffer, 0_size_t, status, bytes)
     call check(writer, status, 'the file image (h5fget_file_image)')
     if (writer%status /= 0) return
-    allocate(image(bytes))
+    allocate(image(bytes), stat=status)
+    if (status /= 0) then
+      call fail(writer, status, 'not enough memory for the file image ('//int_text(int(bytes, int64))//' bytes)')
+      return
+    end if
     buffer = c_loc(image)
     call h5fget_file_image_f(writer%file, buffer, bytes, status); call check(writer, status, 'the file image')
     if (writer%status /= 0) return

@@ -171,7 +171,6 @@ contains
     type(text_file_t) :: out
     integer :: i, k
     character(len=*), parameter :: rule = repeat('-', 78)
-    character(len=256) :: buffer
     character(:), allocatable :: line
     call text_open(out, path)
     associate (mesh => deck%mesh)
@@ -184,8 +183,7 @@ contains
     call put(out, '')
     call put(out, ' INPUT CARDS')
     do i = 1, deck%cards%count
-      write(buffer, '(i6, 2x)') deck%cards%cards(i)%line
-      call put(out, buffer(1:8)//deck%cards%cards(i)%text)
+      call put(out, integer_field(deck%cards%cards(i)%line, 6)//'  '//deck%cards%cards(i)%text)
     end do
     call put(out, '')
     call put(out, ' CONTROL')
@@ -235,27 +233,24 @@ contains
     call put(out, '   id           kind          E(0) (Pa)       nu(0)     G(0) (Pa)       K (Pa)          rho (kg/m3)')
     do k = 1, size(deck%materials)
       associate (m => deck%materials(k))
-      write(buffer, '(3x, a12, 1x, a12, 1x, es15.7, 1x, f9.6, 3(1x, es15.7))') m%id, material_kind_name(m%kind), &
-        m%young, m%poisson, m%shear, m%bulk, m%density
-      call put(out, trim(buffer))
+      call put(out, '   '//text_field(m%id, 12)//' '//text_field(material_kind_name(m%kind), 12)//' '// &
+        real_field(m%young, 15, 7)//' '//real_field(m%poisson, 9, 2, fixed=6)//' '//real_field(m%shear, 15, 7)//' '// &
+        real_field(m%bulk, 15, 7)//' '//real_field(m%density, 15, 7))
       if (m%kind == material_kind_uniaxial) then
         call put(out, '     uniaxial relaxation E(t) = sum E_i exp(-alpha_i t), eq. [47], as given:')
         do i = 1, size(m%uniaxial_young)
-          write(buffer, '(7x, a, es16.8, a, es16.8, a)') 'E_i = ', m%uniaxial_young(i), ' Pa   alpha_i = ', &
-            m%uniaxial_rate(i), ' 1/s'
-          call put(out, trim(buffer))
+          call put(out, '       E_i = '//real_field(m%uniaxial_young(i), 16, 8)//' Pa   alpha_i = '// &
+            real_field(m%uniaxial_rate(i), 16, 8)//' 1/s')
         end do
         call put(out, '     converted exactly (eq. [48], partial fractions) to the shear terms below')
       end if
       if (m%kind /= material_kind_elastic) then
         call put(out, '     shear relaxation phi1(t) = G_inf + sum G_m exp(-beta_m t), eq. [12]:')
-        write(buffer, '(7x, a, es16.8, a)') 'G_inf = ', m%long_term_shear, ' Pa'
-        call put(out, trim(buffer))
+        call put(out, '       G_inf = '//real_field(m%long_term_shear, 16, 8)//' Pa')
         if (has_memory(m)) then
           do i = 1, size(m%prony_shear)
-            write(buffer, '(7x, a, es16.8, a, es16.8, a)') 'G_m = ', m%prony_shear(i), ' Pa   beta_m = ', &
-              m%prony_rate(i), ' 1/s'
-            call put(out, trim(buffer))
+            call put(out, '       G_m = '//real_field(m%prony_shear(i), 16, 8)//' Pa   beta_m = '// &
+              real_field(m%prony_rate(i), 16, 8)//' 1/s')
           end do
         end if
       end if
@@ -265,9 +260,8 @@ contains
       call put(out, '')
       call put(out, ' TIME STAGES  (line, steps, dt (s), end (s))')
       do k = 1, size(deck%stages)
-        write(buffer, '(i9, i9, 2(1x, es16.8))') deck%stages(k)%line, deck%stages(k)%steps, deck%stages(k)%dt, &
-          deck%stages(k)%end_time
-        call put(out, trim(buffer))
+        call put(out, integer_field(deck%stages(k)%line, 9)//integer_field(deck%stages(k)%steps, 9)//' '// &
+          real_field(deck%stages(k)%dt, 16, 8)//' '//real_field(deck%stages(k)%end_time, 16, 8))
       end do
       if (deck%analysis == analysis_dynamic) then
         call put(out, '   '//itoa(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0')
@@ -281,24 +275,27 @@ contains
       do k = 1, size(deck%curves)
         call put(out, '   '//deck%curves(k)%name//':')
         do i = 1, size(deck%curves(k)%time)
-          write(buffer, '(7x, es16.8, a, es16.8)') deck%curves(k)%time(i), ' -> ', deck%curves(k)%value(i)
-          call put(out, trim(buffer))
+          call put(out, '       '//real_field(deck%curves(k)%time(i), 16, 8)//' -> '// &
+            real_field(deck%curves(k)%value(i), 16, 8))
         end do
       end do
     end if
     call put(out, '')
     call put(out, ' NODES  (number, r (m), z (m), band position)')
     do i = 1, min(mesh%nnode, listing_row_limit)
-      write(buffer, '(i9, 2(1x, es16.8), i9)') mesh%node_id(i), mesh%xy(:, i), mesh%equation(i)
-      call put(out, trim(buffer))
+      call put(out, integer_field(mesh%node_id(i), 9)//' '//real_field(mesh%xy(1, i), 16, 8)//' '// &
+        real_field(mesh%xy(2, i), 16, 8)//integer_field(mesh%equation(i), 9))
     end do
     if (mesh%nnode > listing_row_limit) call put(out, '   ... '//itoa(mesh%nnode - listing_row_limit)// &
       ' more nodes: see results.h5 /mesh/nodes')
     call put(out, '')
     call put(out, ' ELEMENTS  (number, nodes 1-4, material)')
     do i = 1, min(mesh%nelem, listing_row_limit)
-      write(buffer, '(i9, 4i9, 2x)') mesh%element_id(i), mesh%node_id(mesh%connectivity(:, i))
-      call put(out, buffer(1:47)//trim(mesh%element_material_name(i)))
+      line = integer_field(mesh%element_id(i), 9)
+      do k = 1, 4
+        line = line//integer_field(mesh%node_id(mesh%connectivity(k, i)), 9)
+      end do
+      call put(out, line//'  '//trim(mesh%element_material_name(i)))
     end do
     if (mesh%nelem > listing_row_limit) call put(out, '   ... '//itoa(mesh%nelem - listing_row_limit)// &
       ' more elements: see results.h5 /mesh/elements')
@@ -329,8 +326,7 @@ contains
       call put(out, ' HISTORY (first and last rows; all rows in history.csv)')
       line = ''
       do k = 1, size(record%columns)
-        write(buffer, '(a16)') trim(record%columns(k))
-        line = line//buffer(1:16)
+        line = line//text_field(record%columns(k)(1:min(16, len_trim(record%columns(k)))), 16, right=.true.)
         if (k < size(record%columns)) line = line//' '
       end do
       call put(out, line)
@@ -338,8 +334,7 @@ contains
         if (i > 20 .and. i < record%nrow - 20) cycle
         line = ''
         do k = 1, size(record%columns)
-          write(buffer, '(es16.8)') record%history(k, i)
-          line = line//buffer(1:16)
+          line = line//real_field(record%history(k, i), 16, 8)
         if (k < size(record%columns)) line = line//' '
         end do
         call put(out, line)
@@ -350,6 +345,54 @@ contains
     call text_close(out)
     message = out%message
   end subroutine write_listing
+
+  !> A real right-aligned in `width` characters: es format with `digits`
+  !> decimals and a 3-digit exponent (with its letter: 1.0E+300, never
+  !> 1.0+300), or f format with `fixed` decimals where that fits; never '*'.
+  function real_field(value, width, digits, fixed) result(text)
+    real(dp), intent(in) :: value
+    integer, intent(in) :: width, digits
+    integer, intent(in), optional :: fixed
+    character(:), allocatable :: text
+    character(len=64) :: buffer
+    character(len=32) :: form
+    if (present(fixed)) then
+      write(form, '(a, i0, a, i0, a)') '(f', width, '.', fixed, ')'
+      write(buffer, form) value
+      if (index(buffer(1:width), '*') == 0) then
+        text = buffer(1:width)
+        return
+      end if
+    end if
+    write(form, '(a, i0, a)') '(es32.', digits, 'e3)'
+    write(buffer, form) value
+    text = text_field(trim(adjustl(buffer)), width, right=.true.)
+  end function real_field
+
+  !> An integer right-aligned in `width` characters (wider if it needs more).
+  function integer_field(value, width) result(text)
+    integer, intent(in) :: value, width
+    character(:), allocatable :: text
+    text = text_field(itoa(value), width, right=.true.)
+  end function integer_field
+
+  !> Text padded with blanks to `width` (left-aligned, or right-aligned); longer text is kept whole.
+  pure function text_field(text, width, right) result(field)
+    character(*), intent(in) :: text
+    integer, intent(in) :: width
+    logical, intent(in), optional :: right
+    character(:), allocatable :: field
+    logical :: to_right
+    to_right = .false.
+    if (present(right)) to_right = right
+    if (len(text) >= width) then
+      field = text
+    else if (to_right) then
+      field = repeat(' ', width - len(text))//text
+    else
+      field = text//repeat(' ', width - len(text))
+    end if
+  end function text_field
 
   !> Number of run-time warnings in a record.
   pure integer function run_warnings(record)

@@ -244,12 +244,21 @@ contains
       do i = 1, size(deck%mesh%xy, 2)
         if (all(ieee_is_finite(deck%mesh%xy(:, i)))) cycle
         call set_error(error, 'node '//itoa(deck%mesh%node_id(i))//' has a non-finite coordinate (r, z) = ('// &
-          non_finite_text(deck%mesh%xy(1, i))//', '//non_finite_text(deck%mesh%xy(2, i))// &
-          '); no output is written', file=deck%cards%file)
+          gtoa(deck%mesh%xy(1, i))//', '//gtoa(deck%mesh%xy(2, i))//'); no output is written', &
+          file=deck%cards%file, line=card_line(deck, mesh_card()), card=card_name(deck, mesh_card()))
         return
       end do
     end if
   contains
+    !> The card that made the nodes: MESH for a generated mesh, else the first NODE card.
+    function mesh_card() result(keyword)
+      character(:), allocatable :: keyword
+      keyword = 'NODE'
+      if (allocated(deck%mesh%source)) then
+        if (deck%mesh%source /= 'CARDS') keyword = 'MESH'
+      end if
+    end function mesh_card
+
     subroutine check_values(values, what, line, card)
       real(dp), intent(in) :: values(:)
       character(*), intent(in) :: what, card
