@@ -8,7 +8,7 @@ program visco2d
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, check_deck, run_line, prepare_output_root, expect_tally_t
-  use visco2d_system, only: ignore_file_size_signal
+  use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: itoa
@@ -29,6 +29,7 @@ program visco2d
   type(error_t), allocatable :: error
 
   call ignore_file_size_signal()        ! past a file size limit a write fails and is reported (exit 1)
+  call install_interrupt_cleanup()      ! an interrupt while a case folder is written leaves no partial folder
   out_root = 'out'
   quiet = .false.
   progress = .false.

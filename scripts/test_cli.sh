@@ -880,4 +880,54 @@ for deck in expect_denormal hertz_tiny_bulk gravity_huge ring_huge density_huge 
 done
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- interrupt
+# SIGTERM while the case folder is being written (a tall strip whose
+# results.h5 takes a moment): the temporary folder is removed, a previous
+# case folder is kept whole, and the run ends as killed by the signal (143).
+# If the signal comes too late the run has finished (0) with its whole folder.
+mkdir interrupt && cd interrupt || exit 0
+cat > tall.inp <<'EOF'
+TITLE tall strip: 80000 elements, 20 MB of results.h5
+ANALYSIS STATIC
+GEOMETRY PLANESTRAIN
+MATERIAL steel ELASTIC E=200e9 NU=0.3
+MESH RECT R0=0 R1=0.01 Z0=0 Z1=10 NR=4 NZ=20000
+FIX BOTTOM RZ
+PRESSURE TOP P=1e6
+END
+EOF
+interrupted_run() {  # interrupted_run NAME: SIGTERM once out/.tall.partial.* appears
+  "$exe" -q -o out tall.inp > "$1.out" 2> "$1.err" &
+  local pid=$! i
+  for i in $(seq 1 5000); do
+    compgen -G "out/.tall.partial.*" > /dev/null && break
+    sleep 0.002
+  done
+  kill -TERM "$pid" 2> /dev/null
+  wait "$pid"
+}
+interrupted_run first
+status=$?
+check interrupt_first_status "exit status $status, expected 143 (or 0 if the signal came late)" \
+  test "$status" = 143 -o "$status" = 0
+check interrupt_first_no_partial "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(ls -A out 2>/dev/null | grep -F -e .partial. -e .old.)"
+if [ "$status" = 143 ]; then
+  check interrupt_first_no_case_folder "out holds: $(ls -A out | tr '\n' ' ')" test ! -e out/tall
+fi
+"$exe" -q -o out tall.inp > whole.out 2> whole.err
+check_rc interrupt_whole_run_exit_0 0 $?
+cp out/tall/summary.txt whole_summary.txt
+interrupted_run second
+status=$?
+check interrupt_rerun_status "exit status $status, expected 143 (or 0 if the signal came late)" \
+  test "$status" = 143 -o "$status" = 0
+check interrupt_rerun_no_partial "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test "$(ls -A out)" = tall
+check interrupt_rerun_keeps_folder "out/tall holds: $(ls out/tall 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls out/tall 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+check interrupt_rerun_same_summary "out/tall/summary.txt differs from the whole run's (beyond cpu_s)" \
+  test "$(grep -v '^cpu_s' out/tall/summary.txt)" = "$(grep -v '^cpu_s' whole_summary.txt)"
+echo "# interrupt: the SIGTERMs ended the runs with status $status (143: during writing)"
+cd "$work" || exit 0
+
 exit 0

@@ -18,7 +18,8 @@ module visco2d_driver
   use visco2d_output_check, only: check_finite_outputs, finite_text
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
-                            directory_exists, path_exists, remove_tree, process_alive, matching_paths, path_t
+                            directory_exists, path_exists, remove_tree, process_alive, matching_paths, path_t, &
+                            interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
   private
@@ -26,6 +27,10 @@ module visco2d_driver
   public :: run_deck, check_deck, case_name_of, run_line, summary_value
   public :: prepare_output_root, remove_stale_folders, relative_error, run_warning_count
   public :: expect_tally_t
+
+  !> The files of a case folder.
+  character(len=*), parameter :: case_files(4) = [character(len=11) :: 'summary.txt', 'history.csv', &
+                                                  'listing.txt', 'results.h5']
 
   !> The EXPECT checks of a run: one per EXPECT card (the summary holds their
   !> expect_<key>_value, _rel_error and _within_rtol keys).
@@ -211,47 +216,70 @@ contains
     final_dir = out_root//'/'//case_name
     temporary_dir = out_root//'/.'//case_name//'.partial.'//itoa(process_id())
     old_dir = out_root//'/.'//case_name//'.old.'//itoa(process_id())
-    if (make_directory(temporary_dir) /= 0) then
-      call set_error(error, 'cannot create the output folder '//temporary_dir//'; nothing was written', file=path)
-      return
-    end if
-    file = 'summary.txt'
-    call write_summary(temporary_dir//'/'//file, record, message)
-    if (len(message) == 0) then
-      file = 'history.csv'
-      call write_history(temporary_dir//'/'//file, record, message)
-    end if
-    if (len(message) == 0) then
-      file = 'listing.txt'
-      call write_listing(temporary_dir//'/'//file, case_name, deck, effects, record, message)
-    end if
-    if (len(message) == 0) then
-      file = 'results.h5'
-      call write_results_h5(temporary_dir//'/'//file, case_name, deck, record, message)
-    end if
-    if (len(message) > 0) then
-      call discard(temporary_dir)
-      call set_error(error, 'cannot write '//final_dir//'/'//file//': '//message//'; no output was kept', file=path)
-      return
-    end if
-    replaced = directory_exists(final_dir)
-    if (replaced) then
-      if (rename_path(final_dir, old_dir) /= 0) then
-        call discard(temporary_dir)
-        call set_error(error, 'cannot replace the existing output folder '//final_dir, file=path)
+    call interrupt_cleanup_arm(temporary_dir, file_paths(temporary_dir))   ! SIGINT/SIGTERM/SIGHUP undo what follows
+    call write_and_move(error)
+    call interrupt_cleanup_disarm()
+
+  contains
+
+    !> The files into the temporary folder, then the folder into place.
+    subroutine write_and_move(error)
+      type(error_t), allocatable, intent(inout) :: error
+      if (make_directory(temporary_dir) /= 0) then
+        call set_error(error, 'cannot create the output folder '//temporary_dir//'; nothing was written', file=path)
         return
       end if
-    end if
-    if (rename_path(temporary_dir, final_dir) /= 0) then
-      call discard(temporary_dir)
-      if (replaced) then
-        if (rename_path(old_dir, final_dir) /= 0) continue    ! the old folder stays as old_dir
+      file = 'summary.txt'
+      call write_summary(temporary_dir//'/'//file, record, message)
+      if (len(message) == 0) then
+        file = 'history.csv'
+        call write_history(temporary_dir//'/'//file, record, message)
       end if
-      call set_error(error, 'cannot create output folder '//final_dir, file=path)
-      return
-    end if
-    if (directory_exists(old_dir)) call remove_tree(old_dir)
+      if (len(message) == 0) then
+        file = 'listing.txt'
+        call write_listing(temporary_dir//'/'//file, case_name, deck, effects, record, message)
+      end if
+      if (len(message) == 0) then
+        file = 'results.h5'
+        call write_results_h5(temporary_dir//'/'//file, case_name, deck, record, message)
+      end if
+      if (len(message) > 0) then
+        call discard(temporary_dir)
+        call set_error(error, 'cannot write '//final_dir//'/'//file//': '//message//'; no output was kept', file=path)
+        return
+      end if
+      replaced = directory_exists(final_dir)
+      if (replaced) then
+        if (rename_path(final_dir, old_dir) /= 0) then
+          call discard(temporary_dir)
+          call set_error(error, 'cannot replace the existing output folder '//final_dir, file=path)
+          return
+        end if
+        call interrupt_cleanup_restore(old_dir, final_dir)
+      end if
+      if (rename_path(temporary_dir, final_dir) /= 0) then
+        call discard(temporary_dir)
+        if (replaced) then
+          if (rename_path(old_dir, final_dir) /= 0) continue    ! the old folder stays as old_dir
+        end if
+        call set_error(error, 'cannot create output folder '//final_dir, file=path)
+        return
+      end if
+      call interrupt_cleanup_disarm()
+      if (directory_exists(old_dir)) call remove_tree(old_dir)
+    end subroutine write_and_move
   end subroutine write_case_folder
+
+  !> The paths of the files of a case folder.
+  function file_paths(folder) result(paths)
+    character(*), intent(in) :: folder
+    type(path_t), allocatable :: paths(:)
+    integer :: k
+    allocate(paths(size(case_files)))
+    do k = 1, size(case_files)
+      paths(k)%path = folder//'/'//trim(case_files(k))
+    end do
+  end function file_paths
 
   !> An error that names no file gets the deck's name.
   subroutine name_the_deck(error, path)
@@ -289,11 +317,10 @@ contains
   !> Remove a temporary case folder (it holds only files this program wrote).
   subroutine discard(folder)
     character(*), intent(in) :: folder
-    integer :: status
-    status = remove_file(folder//'/summary.txt')
-    status = remove_file(folder//'/history.csv')
-    status = remove_file(folder//'/listing.txt')
-    status = remove_file(folder//'/results.h5')
+    integer :: status, k
+    do k = 1, size(case_files)
+      status = remove_file(folder//'/'//trim(case_files(k)))
+    end do
     status = remove_directory(folder)
     if (directory_exists(folder)) call remove_tree(folder)
   end subroutine discard

@@ -1,15 +1,18 @@
 !> Operating-system calls the driver needs (POSIX, through C interoperability):
 !> create, rename and remove folders and files, list hidden entries of a
-!> folder by pattern, process id and liveness, terminal test, signals.
+!> folder by pattern, process id and liveness, terminal test, signals (a
+!> file size limit reported as a failed write; an interrupt that undoes a
+!> case folder being written).
 module visco2d_system
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_size_t, c_ptr, c_funptr, c_null_ptr, &
-                                         c_null_funptr, c_intptr_t, c_f_pointer, c_associated
+                                         c_null_funptr, c_intptr_t, c_f_pointer, c_associated, c_funloc
   implicit none
   private
 
   public :: make_directory, rename_path, remove_file, remove_directory, process_id, is_terminal
   public :: directory_exists, path_exists, remove_tree, process_alive, matching_paths, ignore_file_size_signal
   public :: path_t
+  public :: install_interrupt_cleanup, interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
 
   !> One path of a list (`matching_paths`).
   type :: path_t
@@ -28,6 +31,18 @@ module visco2d_system
 
   !> SIGXFSZ (file size limit exceeded) on Linux and the BSDs.
   integer(c_int), parameter :: signal_file_size = 25
+  !> SIGHUP, SIGINT, SIGTERM: the signals that end a run early (POSIX numbers).
+  integer(c_int), parameter :: interrupt_signals(3) = [1_c_int, 2_c_int, 15_c_int]
+
+  !> What an interrupt must undo while a case folder is being written: the
+  !> files of the temporary folder and the folder, and a case folder moved
+  !> aside (old -> final). Null-terminated paths, set before the signal can
+  !> need them; the handler only calls unlink, rmdir, rename, signal and raise.
+  integer, parameter :: cleanup_length = 4096
+  integer, parameter :: cleanup_files = 5
+  character(kind=c_char, len=cleanup_length), save :: cleanup_path(cleanup_files) = c_null_char
+  character(kind=c_char, len=cleanup_length), save :: cleanup_old = c_null_char, cleanup_final = c_null_char
+  logical, volatile, save :: cleanup_armed = .false., cleanup_restore_old = .false.
 
   interface
     integer(c_int) function c_mkdir(path, mode) bind(c, name='mkdir')
@@ -78,6 +93,10 @@ module visco2d_system
       integer(c_int), value :: signal
       type(c_funptr), value :: handler
     end function c_signal
+    integer(c_int) function c_raise(signal) bind(c, name='raise')
+      import :: c_int
+      integer(c_int), value :: signal
+    end function c_raise
   end interface
 
 contains
@@ -212,6 +231,74 @@ contains
     type(c_funptr) :: previous
     previous = c_signal(signal_file_size, transfer(1_c_intptr_t, c_null_funptr))   ! SIG_IGN = (handler) 1
   end subroutine ignore_file_size_signal
+
+  !> On SIGHUP, SIGINT or SIGTERM, undo a case folder being written (see
+  !> interrupt_cleanup_arm), then end as the signal would have (default action).
+  subroutine install_interrupt_cleanup()
+    type(c_funptr) :: previous
+    integer :: k
+    do k = 1, size(interrupt_signals)
+      previous = c_signal(interrupt_signals(k), c_funloc(on_interrupt))
+    end do
+  end subroutine install_interrupt_cleanup
+
+  !> From now on an interrupt removes these files (at most 4) and then the folder.
+  subroutine interrupt_cleanup_arm(folder, files)
+    character(*), intent(in) :: folder
+    type(path_t), intent(in) :: files(:)
+    integer :: k
+    cleanup_armed = .false.
+    cleanup_restore_old = .false.
+    cleanup_path = c_null_char
+    do k = 1, min(size(files), cleanup_files - 1)
+      cleanup_path(k) = c_text(files(k)%path)
+    end do
+    cleanup_path(cleanup_files) = c_text(folder)
+    cleanup_armed = len(folder) < cleanup_length
+  end subroutine interrupt_cleanup_arm
+
+  !> The case folder `final` has been moved to `old`: an interrupt now also moves it back.
+  subroutine interrupt_cleanup_restore(old, final)
+    character(*), intent(in) :: old, final
+    cleanup_old = c_text(old)
+    cleanup_final = c_text(final)
+    cleanup_restore_old = len(old) < cleanup_length .and. len(final) < cleanup_length
+  end subroutine interrupt_cleanup_restore
+
+  !> Nothing left to undo.
+  subroutine interrupt_cleanup_disarm()
+    cleanup_armed = .false.
+    cleanup_restore_old = .false.
+  end subroutine interrupt_cleanup_disarm
+
+  !> A path as a null-terminated C string ('' if too long: nothing is removed then).
+  pure function c_text(path) result(text)
+    character(*), intent(in) :: path
+    character(kind=c_char, len=cleanup_length) :: text
+    text = c_null_char
+    if (len(path) < cleanup_length) text = path//c_null_char
+  end function c_text
+
+  !> The signal handler: async-signal-safe calls only.
+  subroutine on_interrupt(signal) bind(c)
+    integer(c_int), value :: signal
+    type(c_funptr) :: previous
+    integer(c_int) :: status
+    integer :: k
+    if (cleanup_armed) then
+      do k = 1, cleanup_files
+        if (cleanup_path(k)(1:1) == c_null_char) cycle
+        if (k < cleanup_files) then
+          status = c_unlink(cleanup_path(k))
+        else
+          status = c_rmdir(cleanup_path(k))
+        end if
+      end do
+      if (cleanup_restore_old) status = c_rename(cleanup_old, cleanup_final)
+    end if
+    previous = c_signal(signal, c_null_funptr)          ! SIG_DFL = (handler) 0
+    status = c_raise(signal)
+  end subroutine on_interrupt
 
   !> True if the file descriptor (2 = stderr) is a terminal.
   logical function is_terminal(fd)
