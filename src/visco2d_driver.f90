@@ -525,18 +525,20 @@ contains
   end subroutine check_expectations
 
   !> |computed - expected| / |expected| for finite values and expected /= 0,
-  !> without overflow: both are scaled by the larger magnitude first; a ratio
-  !> above relative_error_ceiling (1e300: an expected value near the underflow
-  !> limit) is reported as the ceiling, which no RTOL accepts.
+  !> without overflow: values beyond huge/4 are halved first (exact, so the
+  !> result is that of the formula); a ratio above relative_error_ceiling
+  !> (1e300: an expected value near the underflow limit) is reported as the
+  !> ceiling, which no RTOL accepts.
   pure real(dp) function relative_error(computed, expected) result(relative)
     real(dp), intent(in) :: computed, expected
     real(dp), parameter :: relative_error_ceiling = 1.0e300_dp
     real(dp) :: scale, difference, reference
-    scale = max(abs(computed), abs(expected))
     relative = 0.0_dp
-    if (scale == 0.0_dp .or. computed == expected) return
-    difference = abs(computed/scale - expected/scale)
-    reference = abs(expected)/scale
+    if (computed == expected) return
+    scale = 1.0_dp
+    if (max(abs(computed), abs(expected)) > 0.25_dp*huge(1.0_dp)) scale = 0.5_dp
+    difference = abs(scale*computed - scale*expected)
+    reference = scale*abs(expected)
     if (difference >= reference*relative_error_ceiling) then
       relative = relative_error_ceiling
     else

@@ -28,8 +28,9 @@ module visco2d_hdf5
     logical :: library_open = .false.
   end type h5_writer_t
 
-  !> The in-memory file grows by this many bytes at a time.
-  integer(size_t), parameter :: memory_increment = 1048576_size_t
+  !> The in-memory file grows by at least this many bytes at a time (more for a
+  !> file expected to be larger: h5_open_file's `expected_bytes`).
+  integer(size_t), parameter :: minimum_increment = 1048576_size_t
 
   interface h5_write
     module procedure write_real1, write_real2, write_real3, write_integer1, write_integer2
@@ -43,10 +44,12 @@ contains
 
   !> Start a file, in memory; h5_close_file writes it to `path` (replacing a
   !> file there), closes every object still open in it and shuts HDF5 down.
-  subroutine h5_open_file(writer, path)
+  subroutine h5_open_file(writer, path, expected_bytes)
     type(h5_writer_t), intent(out) :: writer
     character(*), intent(in) :: path
+    integer(int64), intent(in), optional :: expected_bytes   !< the size the file will have, about (one allocation)
     integer(hid_t) :: access
+    integer(size_t) :: increment
     integer :: status
     writer%failed = ''
     writer%path = path
@@ -56,7 +59,9 @@ contains
     call h5eset_auto_f(0, status); call check(writer, status, 'the HDF5 error printing (h5eset_auto)')
     call h5pcreate_f(H5P_FILE_ACCESS_F, access, status); call check(writer, status, 'the file access list')
     call h5pset_fclose_degree_f(access, H5F_CLOSE_STRONG_F, status); call check(writer, status, 'the file access list')
-    call h5pset_fapl_core_f(access, memory_increment, .false., status); call check(writer, status, 'the file access list')
+    increment = minimum_increment
+    if (present(expected_bytes)) increment = int(max(int(minimum_increment, int64), expected_bytes + expected_bytes/8), size_t)
+    call h5pset_fapl_core_f(access, increment, .false., status); call check(writer, status, 'the file access list')
     if (writer%status /= 0) return
     call h5fcreate_f(path, H5F_ACC_TRUNC_F, writer%file, status, access_prp=access)
     call check(writer, status, 'the file (h5fcreate)')

@@ -401,6 +401,29 @@ contains
     if (allocated(record%warnings)) run_warnings = size(record%warnings)
   end function run_warnings
 
+  !> About the size of results.h5: its arrays and 64 kB for groups and attributes.
+  function h5_bytes(deck, record) result(bytes)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(in) :: record
+    integer(int64) :: bytes
+    integer :: i
+    bytes = 65536_int64 + 8_int64*size(deck%mesh%xy, kind=int64) + 4_int64*size(deck%mesh%connectivity, kind=int64) &
+            + 12_int64*deck%mesh%nelem + 4_int64*deck%mesh%nnode + 64_int64*record%nsummary
+    if (allocated(record%history)) bytes = bytes + 8_int64*size(record%history, 1, kind=int64)*record%nrow
+    if (.not. allocated(record%snapshots)) return
+    do i = 1, size(record%snapshots)
+      associate (s => record%snapshots(i))
+      if (allocated(s%displacement)) bytes = bytes + 8_int64*size(s%displacement, kind=int64)
+      if (allocated(s%velocity)) bytes = bytes + 8_int64*size(s%velocity, kind=int64)
+      if (allocated(s%acceleration)) bytes = bytes + 8_int64*size(s%acceleration, kind=int64)
+      if (allocated(s%stress)) bytes = bytes + 8_int64*size(s%stress, kind=int64)
+      if (allocated(s%stress_gauss)) bytes = bytes + 8_int64*size(s%stress_gauss, kind=int64)
+      if (allocated(s%max_shear)) bytes = bytes + 8_int64*size(s%max_shear, kind=int64)
+      if (allocated(s%von_mises)) bytes = bytes + 8_int64*size(s%von_mises, kind=int64)
+      end associate
+    end do
+  end function h5_bytes
+
   !> ' x curve NAME' or '' (constant in time).
   function curve_text(deck, curve) result(text)
     type(deck_t), intent(in) :: deck
@@ -438,7 +461,7 @@ contains
     integer :: i, k
     real(dp), allocatable :: column(:)
 
-    call h5_open_file(writer, path)
+    call h5_open_file(writer, path, h5_bytes(deck, record))
     call h5_attribute(writer, writer%file, 'case', case_name)
     call h5_attribute(writer, writer%file, 'title', deck%title)
     call h5_attribute(writer, writer%file, 'geometry', geometry_name(deck%geometry))
