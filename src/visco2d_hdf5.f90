@@ -8,10 +8,11 @@
 !> an ordinary failed write, reported, and never a file HDF5 cannot close
 !> (HDF5 1.10 crashes in its exit handler on such a file).
 module visco2d_hdf5
-  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_loc, c_associated
   use, intrinsic :: iso_fortran_env, only: int8, int64
   use hdf5
   use visco2d_kinds, only: dp
+  use visco2d_system, only: file_open_write, file_write, file_close
   implicit none
   private
 
@@ -107,16 +108,16 @@ contains
     call check(writer, status, 'group (h5gclose)')
   end subroutine h5_close_group
 
-  !> The in-memory file to disk: Fortran stream output, then the file's size
-  !> must be the image's (the runtime may not report a failed write).
+  !> The in-memory file to disk (C stdio, every write checked), then the
+  !> file's size must be the image's.
   subroutine write_image(writer)
     type(h5_writer_t), intent(inout) :: writer
     integer(int8), allocatable, target :: image(:)
     type(c_ptr) :: buffer
     integer(size_t) :: bytes
     integer(int64) :: size_on_disk
-    integer :: status, unit
-    character(len=256) :: message
+    integer :: status
+    type(c_ptr) :: stream
     call h5fflush_f(writer%file, H5F_SCOPE_GLOBAL_F, status); call check(writer, status, 'the file (h5fflush)')
     buffer = c_null_ptr
     call h5fget_file_image_f(writer%file, buffer, 0_size_t, status, bytes)
@@ -130,15 +131,13 @@ contains
     buffer = c_loc(image)
     call h5fget_file_image_f(writer%file, buffer, bytes, status); call check(writer, status, 'the file image')
     if (writer%status /= 0) return
-    open(newunit=unit, file=writer%path, access='stream', form='unformatted', status='replace', action='write', &
-         iostat=status, iomsg=message)
-    if (status /= 0) then
-      call fail(writer, status, 'cannot create the file: '//trim(message)); return
+    stream = file_open_write(writer%path)
+    if (.not. c_associated(stream)) then
+      call fail(writer, -1, 'cannot create the file'); return
     end if
-    write(unit, iostat=status, iomsg=message) image
-    if (status /= 0) call fail(writer, status, 'writing failed: '//trim(message))
-    close(unit, iostat=status, iomsg=message)
-    if (status /= 0) call fail(writer, status, 'closing failed: '//trim(message))
+    if (file_write(stream, image) /= 0) call fail(writer, -1, 'writing failed (disk full or a file size limit?)')
+    if (file_close(stream) /= 0) call fail(writer, -1, 'writing failed when the file was closed (disk full or a '// &
+                                           'file size limit?)')
     if (writer%status /= 0) return
     inquire(file=writer%path, size=size_on_disk, iostat=status)
     if (status /= 0 .or. size_on_disk /= int(bytes, int64)) call fail(writer, -1, 'only '// &

@@ -1,11 +1,13 @@
 !> Output of one run into its case folder: the legacy-style `listing.txt`,
 !> `summary.txt` (`key = value`), `history.csv` and `results.h5`.
 !> Names and keys here are an interface: tools parse them.
-!> Every writer returns '' or a message saying what failed: each write and
-!> close is checked, and a text file's size is compared with the bytes meant
-!> for it (the Fortran runtime may not report a failed write: a full disk).
+!> Every writer returns '' or a message saying what failed: files are written
+!> through C stdio, whose every write and close is checked (the Fortran
+!> runtime does not report a write that fails when its buffer is flushed, and
+!> then keeps the unit), and a file's size is compared with the bytes meant for it.
 module visco2d_output
   use, intrinsic :: iso_fortran_env, only: int64
+  use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, gtoa
@@ -14,6 +16,7 @@ module visco2d_output
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
   use visco2d_mesh, only: edge_set_name
   use visco2d_record, only: record_t
+  use visco2d_system, only: file_open_write, file_write, file_close
   use visco2d_hdf5, only: h5_writer_t, h5_open_file, h5_close_file, h5_group, h5_close_group, &
                           h5_write, h5_attribute
   implicit none
@@ -25,11 +28,11 @@ module visco2d_output
   !> Node and element tables in the listing stop after this many rows.
   integer, parameter :: listing_row_limit = 2000
 
-  !> A text file written line by line: the first failure is kept, later lines are dropped.
+  !> A text file written line by line (C stdio: every failed write is
+  !> reported); the first failure is kept, later lines are dropped.
   type :: text_file_t
     character(:), allocatable :: path
-    integer :: unit = 0                    !< (newunit numbers are negative)
-    logical :: opened = .false.
+    type(c_ptr) :: stream = c_null_ptr
     integer(int64) :: bytes = 0            !< bytes meant for the file so far (lines and newlines)
     character(:), allocatable :: message   !< '' or what failed
   end type text_file_t
@@ -66,46 +69,51 @@ contains
   subroutine text_open(file, path)
     type(text_file_t), intent(out) :: file
     character(*), intent(in) :: path
-    character(len=256) :: text
-    integer :: status
     file%path = path
     file%message = ''
-    open(newunit=file%unit, file=path, status='replace', action='write', iostat=status, iomsg=text)
-    if (status /= 0) then
-      file%message = 'cannot create the file: '//trim(text)
-      return
-    end if
-    file%opened = .true.
+    file%stream = file_open_write(path)
+    if (.not. c_associated(file%stream)) file%message = 'cannot create the file'//open_reason(path)
   end subroutine text_open
+
+  !> ': <why>' of a file that cannot be created, from the Fortran runtime ('' if it can be after all).
+  function open_reason(path) result(reason)
+    character(*), intent(in) :: path
+    character(:), allocatable :: reason
+    character(len=256) :: text
+    integer :: unit, status
+    reason = ''
+    open(newunit=unit, file=path, status='replace', action='write', iostat=status, iomsg=text)
+    if (status /= 0) then
+      reason = ': '//trim(text)
+    else
+      close(unit, status='delete', iostat=status)
+    end if
+  end function open_reason
 
   !> Write one line (nothing after a failure).
   subroutine put(file, line)
     type(text_file_t), intent(inout) :: file
     character(*), intent(in) :: line
-    character(len=256) :: text
-    integer :: status
     if (len(file%message) > 0) return
-    write(file%unit, '(a)', iostat=status, iomsg=text) line
-    if (status /= 0) then
-      file%message = 'writing failed after '//itoa64(file%bytes)//' bytes: '//trim(text)
+    if (file_write(file%stream, line) /= 0 .or. file_write(file%stream, new_line('a')) /= 0) then
+      file%message = 'writing failed after '//itoa64(file%bytes)//' bytes (disk full or a file size limit?)'
       return
     end if
     file%bytes = file%bytes + len(line) + 1
   end subroutine put
 
-  !> Close the file; then its size must be the bytes written (a write the
-  !> runtime did not report as failed shows here: a full disk, a size limit).
+  !> Close the file (a failure to write what was still buffered shows here);
+  !> then its size must be the bytes written.
   subroutine text_close(file)
     type(text_file_t), intent(inout) :: file
-    character(len=256) :: text
     integer(int64) :: size
     integer :: status
-    if (.not. file%opened) return
-    close(file%unit, iostat=status, iomsg=text)
-    file%opened = .false.
+    if (.not. c_associated(file%stream)) return
+    status = file_close(file%stream)
+    file%stream = c_null_ptr
     if (len(file%message) > 0) return
     if (status /= 0) then
-      file%message = 'closing failed: '//trim(text)
+      file%message = 'writing failed when the file was closed (disk full or a file size limit?)'
       return
     end if
     inquire(file=file%path, size=size, iostat=status)

@@ -4,6 +4,7 @@
 !> file size limit reported as a failed write; an interrupt that undoes a
 !> case folder being written).
 module visco2d_system
+  use, intrinsic :: iso_fortran_env, only: int8
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_size_t, c_ptr, c_funptr, c_null_ptr, &
                                          c_null_funptr, c_intptr_t, c_f_pointer, c_associated, c_funloc
   implicit none
@@ -13,6 +14,7 @@ module visco2d_system
   public :: directory_exists, path_exists, remove_tree, process_alive, matching_paths, ignore_file_size_signal
   public :: path_t
   public :: install_interrupt_cleanup, interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
+  public :: file_open_write, file_write, file_close
 
   !> One path of a list (`matching_paths`).
   type :: path_t
@@ -97,7 +99,27 @@ module visco2d_system
       import :: c_int
       integer(c_int), value :: signal
     end function c_raise
+    type(c_ptr) function c_fopen(path, mode) bind(c, name='fopen')
+      import :: c_ptr, c_char
+      character(kind=c_char), intent(in) :: path(*), mode(*)
+    end function c_fopen
+    integer(c_size_t) function c_fwrite(buffer, size, count, stream) bind(c, name='fwrite')
+      import :: c_size_t, c_ptr
+      type(*), intent(in) :: buffer(*)
+      integer(c_size_t), value :: size, count
+      type(c_ptr), value :: stream
+    end function c_fwrite
+    integer(c_int) function c_fclose(stream) bind(c, name='fclose')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: stream
+    end function c_fclose
   end interface
+
+  !> Write a file through C stdio, which reports every failed write and a
+  !> failed close (the Fortran runtime may not, and may then keep the unit).
+  interface file_write
+    module procedure file_write_text, file_write_bytes
+  end interface file_write
 
 contains
 
@@ -299,6 +321,37 @@ contains
     previous = c_signal(signal, c_null_funptr)          ! SIG_DFL = (handler) 0
     status = c_raise(signal)
   end subroutine on_interrupt
+
+  !> Create (replace) a file for writing; a null pointer if that fails.
+  function file_open_write(path) result(stream)
+    character(*), intent(in) :: path
+    type(c_ptr) :: stream
+    stream = c_fopen(path//c_null_char, 'wb'//c_null_char)
+  end function file_open_write
+
+  !> Write text (as it is: add new_line('a') for a line); 0 if all of it was written.
+  integer function file_write_text(stream, text) result(status)
+    type(c_ptr), intent(in) :: stream
+    character(*), intent(in) :: text
+    status = 0
+    if (len(text) == 0) return
+    if (c_fwrite(text, 1_c_size_t, int(len(text), c_size_t), stream) /= int(len(text), c_size_t)) status = 1
+  end function file_write_text
+
+  !> Write bytes; 0 if all of them were written.
+  integer function file_write_bytes(stream, bytes) result(status)
+    type(c_ptr), intent(in) :: stream
+    integer(int8), intent(in) :: bytes(:)
+    status = 0
+    if (size(bytes) == 0) return
+    if (c_fwrite(bytes, 1_c_size_t, int(size(bytes), c_size_t), stream) /= int(size(bytes), c_size_t)) status = 1
+  end function file_write_bytes
+
+  !> Close a file (this writes what stdio still holds); 0 if that worked. The stream is freed either way.
+  integer function file_close(stream) result(status)
+    type(c_ptr), intent(in) :: stream
+    status = int(c_fclose(stream))
+  end function file_close
 
   !> True if the file descriptor (2 = stderr) is a terminal.
   logical function is_terminal(fd)
