@@ -281,8 +281,12 @@ contains
     print '(a)', '      --version   program version'
     print '(a)', ''
     print '(a)', 'Each case folder holds listing.txt, summary.txt (key = value), history.csv and'
-    print '(a)', 'results.h5. A deck that fails leaves no case folder behind; the run goes on with'
-    print '(a)', 'the next deck, and the exit status is 1 if any deck failed (2 for usage errors).'
+    print '(a)', 'results.h5, written under OUT/.<case>.partial.<pid>/ and moved into place only when'
+    print '(a)', 'all four are complete: a deck that fails (an error, a non-finite result, a full'
+    print '(a)', 'disk, an interrupt) leaves no case folder behind and an older one as it was. The'
+    print '(a)', 'run goes on with the next deck; the exit status is 1 if any deck failed, 2 for'
+    print '(a)', 'usage errors and an output folder that is empty or cannot be written (checked'
+    print '(a)', 'before any deck runs). Folders left by runs that no longer exist are removed.'
     print '(a)', 'Errors read  file:line:column: CARD: message.  The card format is in README.md.'
   end subroutine print_help
 end program visco2d
