@@ -7,7 +7,8 @@ program visco2d
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
-  use visco2d_driver, only: run_deck, check_deck, run_line
+  use visco2d_driver, only: run_deck, check_deck, run_line, prepare_output_root, expect_tally_t
+  use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: itoa
@@ -26,8 +27,9 @@ program visco2d
   integer :: i, count, failed, length
   logical :: quiet, checking, progress
   type(error_t), allocatable :: error
-  type(record_t) :: record
 
+  call ignore_file_size_signal()        ! past a file size limit a write fails and is reported (exit 1)
+  call install_interrupt_cleanup()      ! an interrupt while a case folder is written leaves no partial folder
   out_root = 'out'
   quiet = .false.
   progress = .false.
@@ -73,6 +75,7 @@ program visco2d
     i = i + 1
   end do
   if (count == 0) call usage_error('no deck given')
+  if (.not. checking) call prepare_output(out_root)
   call configure_progress()
 
   failed = 0
@@ -81,8 +84,7 @@ program visco2d
     if (checking) then
       call check_deck(decks(i)(1:length), error)
     else
-      call run_deck(decks(i)(1:length), out_root, record, error)
-      if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record)
+      call run_one(decks(i)(1:length), error)
     end if
     if (allocated(error)) then
       failed = failed + 1
@@ -93,9 +95,35 @@ program visco2d
   if (count > 1 .and. failed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
   flush(6)
   flush(0)
+  deallocate(decks, out_root)                 ! everything freed before exit (valgrind: nothing lost)
+  if (allocated(argument)) deallocate(argument)
   if (failed > 0) call c_exit(1_c_int)
 
 contains
+
+  !> Run a deck; print its one-line result unless quiet (the record is freed on return).
+  subroutine run_one(path, error)
+    character(*), intent(in) :: path
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: record
+    type(expect_tally_t) :: tally
+    call run_deck(path, out_root, record, error, tally)
+    if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
+  end subroutine run_one
+
+  !> Before any deck runs: the output root must be named and writable (exit
+  !> status 2, as for usage errors); folders that dead runs left in it are removed.
+  subroutine prepare_output(root)
+    character(*), intent(in) :: root
+    type(error_t), allocatable :: problem
+    if (len_trim(root) == 0) call usage_error('the output folder given with -o is empty: give a folder, e.g. -o out')
+    call prepare_output_root(root, problem)
+    if (allocated(problem)) then
+      write(0, '(a)') 'visco2d: error: '//error_text(problem)
+      flush(0)
+      call c_exit(2_c_int)
+    end if
+  end subroutine prepare_output
 
   !> Progress on stderr: --progress forces it on; otherwise -q turns it off;
   !> otherwise it shows when stderr is a terminal. VISCO2D_PROGRESS_DELAY
@@ -253,8 +281,12 @@ contains
     print '(a)', '      --version   program version'
     print '(a)', ''
     print '(a)', 'Each case folder holds listing.txt, summary.txt (key = value), history.csv and'
-    print '(a)', 'results.h5. A deck that fails leaves no case folder behind; the run goes on with'
-    print '(a)', 'the next deck, and the exit status is 1 if any deck failed (2 for usage errors).'
+    print '(a)', 'results.h5, written under OUT/.<case>.partial.<pid>/ and moved into place only when'
+    print '(a)', 'all four are complete: a deck that fails (an error, a non-finite result, a full'
+    print '(a)', 'disk, an interrupt) leaves no case folder behind and an older one as it was. The'
+    print '(a)', 'run goes on with the next deck; the exit status is 1 if any deck failed, 2 for'
+    print '(a)', 'usage errors and an output folder that is empty or cannot be written (checked'
+    print '(a)', 'before any deck runs). Folders left by runs that no longer exist are removed.'
     print '(a)', 'Errors read  file:line:column: CARD: message.  The card format is in README.md.'
   end subroutine print_help
 end program visco2d

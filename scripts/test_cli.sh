@@ -653,4 +653,281 @@ else
 fi
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- output root
+# The output root is checked before any deck runs: an empty name, a path
+# through a file, or a folder that cannot be made are refused with exit
+# status 2 (as for usage errors) and nothing is written anywhere.
+mkdir outroot && cd outroot || exit 0
+"$exe" -o "" ../decks/first.inp > empty.out 2> empty.err
+check_rc out_root_empty_exit_2 2 $?
+check out_root_empty_message "stderr: $(first_lines empty.err)" grep -q 'output folder given with -o is empty' empty.err
+check out_root_empty_nothing_at_root "/ holds: $(ls -A / | grep -F 'first' | tr '\n' ' ')" \
+  test -z "$(ls -A / 2>/dev/null | grep -F '.first.')"
+echo plain > plainfile
+"$exe" -o plainfile/sub ../decks/first.inp > through.out 2> through.err
+check_rc out_root_through_file_exit_2 2 $?
+check out_root_through_file_message "stderr: $(first_lines through.err)" grep -q '"plainfile/sub": plainfile is not a folder' through.err
+check out_root_through_file_untouched "plainfile changed" test "$(cat plainfile)" = plain
+"$exe" -o plainfile ../decks/first.inp > isfile.out 2> isfile.err
+check_rc out_root_is_file_exit_2 2 $?
+# /proc accepts no new folder, not even from root (a read-only place that works in CI).
+if [ -d /proc/self ]; then
+  "$exe" -o "/proc/visco2d_cli_$$" ../decks/first.inp > proc.out 2> proc.err
+  check_rc out_root_unwritable_exit_2 2 $?
+  check out_root_unwritable_message "stderr: $(first_lines proc.err)" \
+    grep -qF "visco2d: error: the output folder \"/proc/visco2d_cli_$$\" cannot be created" proc.err
+fi
+if [ "$(id -u)" != 0 ]; then                # permissions do not stop root
+  mkdir locked && chmod 555 locked
+  "$exe" -o locked/out ../decks/first.inp > locked.out 2> locked.err
+  check_rc out_root_read_only_exit_2 2 $?
+  chmod 755 locked
+fi
+# The root is not created before a deck succeeds: a failing deck leaves no folder at all.
+"$exe" -o fresh ../decks/bad.inp > fresh.out 2> fresh.err
+check_rc out_root_failed_deck_exit_1 1 $?
+check out_root_failed_deck_no_root "fresh/ was created: $(ls -A fresh 2>/dev/null | tr '\n' ' ')" test ! -e fresh
+# check never writes, so it does not look at -o.
+"$exe" check -o "" ../decks/first.inp > checkempty.out 2> checkempty.err
+check_rc out_root_check_ignores_root 0 $?
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- write faults
+# A full disk part-way through the outputs: a file size limit (ulimit -f, in
+# kB) makes writes past it fail (visco2d ignores SIGXFSZ; `trap '' XFSZ` too).
+# Each file in turn: a located error naming the file, exit 1 (never a crash),
+# no case folder and no partial folder. free_flight writes summary.txt 2.6 kB,
+# history.csv 11 kB, listing.txt 28 kB, results.h5 111 kB.
+mkdir faults && cd faults || exit 0
+cp "$root/inputs/free_flight.inp" free_flight.inp
+for pair in 2:summary.txt 16:listing.txt 64:results.h5; do
+  limit=${pair%%:*}
+  file=${pair#*:}
+  (ulimit -f "$limit"; trap '' XFSZ; exec "$exe" -q -o "full$limit" free_flight.inp) > "full$limit.out" 2> "full$limit.err"
+  status=$?
+  check_rc "disk_full_${file}_exit_1" 1 $status
+  check "disk_full_${file}_located" "stderr: $(first_lines "full$limit.err")" \
+    grep -qF "visco2d: error: free_flight.inp: cannot write full$limit/free_flight/$file: " "full$limit.err"
+  check "disk_full_${file}_one_line" "stderr: $(first_lines "full$limit.err")" \
+    test "$(wc -l < "full$limit.err")" = 1
+  check "disk_full_${file}_no_folder" "full$limit holds: $(ls -A "full$limit" 2>/dev/null | tr '\n' ' ')" \
+    test -z "$(ls -A "full$limit" 2>/dev/null)"
+done
+# Unlimited, the same run writes all four files (the limits above were the cause).
+"$exe" -q -o fine free_flight.inp > fine.out 2> fine.err
+check_rc disk_unlimited_exit_0 0 $?
+check disk_unlimited_results "fine/free_flight holds: $(ls fine/free_flight 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls fine/free_flight 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+# A failed rewrite keeps the previous case folder as it was.
+cp fine/free_flight/summary.txt previous_summary.txt
+(ulimit -f 64; exec "$exe" -q -o fine free_flight.inp) > refull.out 2> refull.err
+check_rc disk_full_rerun_exit_1 1 $?
+check disk_full_rerun_keeps_previous "fine/free_flight/summary.txt changed or missing" \
+  cmp -s previous_summary.txt fine/free_flight/summary.txt
+check disk_full_rerun_no_partial "fine holds: $(ls -A fine | tr '\n' ' ')" test "$(ls -A fine)" = free_flight
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- stale folders
+# A run stopped while writing leaves OUT/.<case>.partial.<pid>/ (and, when it
+# was replacing a case folder, OUT/.<case>.old.<pid>/). The next run into the
+# same root removes those of processes that no longer exist, puts back an old
+# folder whose case folder is missing, and keeps those of live processes.
+mkdir stale && cd stale || exit 0
+sh -c 'exit 0' & dead=$!
+wait "$dead"
+mkdir -p "out/.first.partial.$dead" "out/.last.partial.$dead" "out/.kept.old.$dead" "out/.other.old.$dead" \
+  out/other "out/.first.partial.1" "out/.first.partial.$$"
+echo half > "out/.first.partial.$dead/summary.txt"
+echo previous > "out/.kept.old.$dead/summary.txt"
+"$exe" -q -o out ../decks/first.inp > stale.out 2> stale.err
+check_rc stale_run_exit_0 0 $?
+check stale_dead_partial_removed "out holds: $(ls -A out | tr '\n' ' ')" \
+  test ! -e "out/.first.partial.$dead" -a ! -e "out/.last.partial.$dead"
+check stale_dead_old_put_back "out/kept/summary.txt: $(cat out/kept/summary.txt 2>/dev/null)" \
+  test "$(cat out/kept/summary.txt 2>/dev/null)" = previous
+check stale_dead_old_removed_beside_case "out holds: $(ls -A out | tr '\n' ' ')" \
+  test ! -e "out/.other.old.$dead" -a -d out/other
+check stale_live_partials_kept "out holds: $(ls -A out | tr '\n' ' ')" \
+  test -d out/.first.partial.1 -a -d "out/.first.partial.$$"
+check stale_notes "stderr: $(first_lines stale.err)" \
+  test "$(grep -c "^visco2d: note: .*(left by process $dead, which no longer runs)$" stale.err)" = 4
+check stale_run_result "out/first/summary.txt missing" test -s out/first/summary.txt
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- non-finite results
+# No NaN or Infinity reaches an output: a deck whose result is not finite
+# (a modulus at the edge of double precision: refused by the deck checks or
+# by the last check before writing) fails with an error naming the deck, exit 1, no folder.
+mkdir nonfinite && cd nonfinite || exit 0
+sed -e 's/E=200e9/E=1e308/' ../decks/first.inp > huge.inp
+"$exe" -o out huge.inp > huge.out 2> huge.err
+check_rc non_finite_exit_1 1 $?
+check non_finite_names_deck "stderr: $(first_lines huge.err)" grep -q '^visco2d: error: huge\.inp:[0-9]' huge.err
+check non_finite_no_folder "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test -z "$(ls -A out 2>/dev/null)"
+check non_finite_stdout_empty "stdout: $(first_lines huge.out)" test ! -s huge.out
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- EXPECT
+# One check per EXPECT card (run line "EXPECT k/n"); an expected 0 or a
+# second card for a key is refused at the card, before solving.
+mkdir expect && cd expect || exit 0
+"$exe" -q -o out ../decks/first.inp > /dev/null 2>&1
+value_in() { sed -n "s/^$1 = //p" out/first/summary.txt 2>/dev/null | head -1; }
+u=$(value_in max_displacement_m); w=$(value_in strain_energy_J)
+{ cat ../decks/first.inp | grep -v '^END'
+  echo "EXPECT max_displacement_m $u RTOL=1e-6"
+  echo "EXPECT strain_energy_J $w RTOL=1e-6"
+  echo "EXPECT external_work_J 1.0 RTOL=1e-6"
+  echo END; } > three.inp
+"$exe" -o out three.inp > three.out 2> three.err
+check_rc expect_three_exit_0 0 $?
+check expect_counts_cards "stdout: $(first_lines three.out)" grep -q '; EXPECT 2/3 within RTOL (worst rel. error ' three.out
+sed -e "s/^EXPECT strain_energy_J .*/EXPECT strain_energy_J 0/" three.inp > zero.inp
+"$exe" -o out zero.inp > zero.out 2> zero.err
+check_rc expect_zero_exit_1 1 $?
+check expect_zero_located "stderr: $(first_lines zero.err)" \
+  grep -q '^visco2d: error: zero\.inp:9:24: EXPECT: the expected value of strain_energy_j is 0' zero.err
+"$exe" check zero.inp > checkzero.out 2> checkzero.err
+check_rc expect_zero_check_exit_1 1 $?
+sed -e "s/^EXPECT external_work_J .*/EXPECT max_displacement_m 1.0/" three.inp > twice.inp
+"$exe" -o out twice.inp > twice.out 2> twice.err
+check_rc expect_twice_exit_1 1 $?
+check expect_twice_located "stderr: $(first_lines twice.err)" \
+  grep -q '^visco2d: error: twice\.inp:10:8: EXPECT: key max_displacement_m is already expected on line 8' twice.err
+check expect_no_nan "a NaN in out/: $(grep -rl NaN out 2>/dev/null | tr '\n' ' ')" test -z "$(grep -rl 'NaN\|Infinity' out 2>/dev/null)"
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- fuzz regressions
+# Decks the fuzzer found writing NaN/Infinity or numbers no reader parses
+# (an exponent without its letter, 1.0000000+300; a field of '*'). Each now
+# either fails with an error located in the deck (exit 1, no folder) or
+# writes outputs that hold only finite, readable numbers.
+mkdir fuzzreg && cd fuzzreg || exit 0
+cat > expect_denormal.inp <<'EOF'
+ANALYSIS DYNAMIC
+MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85
+MESH SPHERE R=0.0366 LEVEL=1
+GRAVITY G=9.8
+TIME DT=1e-5 TEND=2e-3
+EXPECT az_cm_m_s2 4.9e-324 RTOL=1e-9
+END
+EOF
+cat > hertz_tiny_bulk.inp <<'EOF'
+ANALYSIS DYNAMIC
+MATERIAL golden VISCOELASTIC K=1e-308 RHO=790
+PRONY G=0.099e6 BETA=35.26
+MESH SPHERE R=0.035 LEVEL=1
+INITIAL VZ=-0.7 AZ=-9.8
+TIME DT=1e-5 TEND=8e-3
+PLATE Z=0 STICK
+END
+EOF
+cat > gravity_huge.inp <<'EOF'
+ANALYSIS QUASISTATIC
+MATERIAL apple VISCOELASTIC K=1.756e6 RHO=790
+PRONY G=0.099e6 BETA=35.26
+MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2
+FIX BOTTOM Z
+TIME DT=1000 TEND=10000
+GRAVITY G=1e300
+END
+EOF
+cat > ring_huge.inp <<'EOF'
+ANALYSIS QUASISTATIC
+MATERIAL flesh VISCOELASTIC K=5.0e6 RHO=800
+PRONY G=0.5e6 BETA=0.1
+MESH RING R0=0.01 R1=1e308 NR=32 NT=32
+TIME DT=5     TEND=100
+END
+EOF
+cat > density_huge.inp <<'EOF'
+ANALYSIS STATIC
+MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=1e300
+MESH SPHERE R=0.0366 LEVEL=1
+FIX TOP Z
+END
+EOF
+cat > beta_denormal.inp <<'EOF'
+ANALYSIS DYNAMIC
+MATERIAL golden VISCOELASTIC K=1.756e6 RHO=790
+PRONY G=0.099e6 BETA=4.9e-324
+MESH SPHERE R=0.035 LEVEL=1
+TIME DT=2e-5 TEND=15e-3
+END
+EOF
+cp "$root/inputs/halfspace_wave.inp" halfspace_wave.inp    # probe values ~1e-179 ahead of the wave
+for deck in expect_denormal hertz_tiny_bulk gravity_huge ring_huge density_huge beta_denormal halfspace_wave; do
+  "$exe" -q -o out "$deck.inp" > "$deck.out" 2> "$deck.err"
+  status=$?
+  if [ $status = 0 ]; then
+    bad=$(grep -liE '(^|[^A-Za-z0-9_])[-+]?(nan|inf|infinity)([^A-Za-z0-9_]|$)' \
+          "out/$deck/summary.txt" "out/$deck/history.csv" 2>/dev/null | tr '\n' ' ')
+    check "fuzz_${deck}_finite" "non-finite in: $bad" test -z "$bad"
+    bad=$(grep -hoE '(^|[^A-Za-z0-9_.])[-+]?[0-9]+\.[0-9]+[-+][0-9]{2,}|\*\*' \
+          "out/$deck/summary.txt" "out/$deck/history.csv" "out/$deck/listing.txt" 2>/dev/null | head -3 | tr '\n' ' ')
+    check "fuzz_${deck}_readable" "unreadable numbers: $bad" test -z "$bad"
+    if command -v h5dump > /dev/null; then
+      bad=$(h5dump "out/$deck/results.h5" 2>/dev/null | grep -ciE '(^|[^a-z_])(nan|inf)([^a-z_]|$)')
+      check "fuzz_${deck}_h5_finite" "$bad lines with nan/inf in h5dump" test "$bad" = 0
+    fi
+  else
+    check_rc "fuzz_${deck}_exit_1" 1 $status
+    check "fuzz_${deck}_located" "stderr: $(first_lines "$deck.err")" \
+      grep -qE "^visco2d: error: $deck\.inp:[0-9]+(:[0-9]+)?: [A-Z]+: " "$deck.err"
+    check "fuzz_${deck}_no_folder" "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+      test -z "$(entries_matching out "$deck")"
+  fi
+done
+cd "$work" || exit 0
+
+# ------------------------------------------------------------- interrupt
+# SIGTERM while the case folder is being written (a tall strip whose
+# results.h5 takes a moment): the temporary folder is removed, a previous
+# case folder is kept whole, and the run ends as killed by the signal (143).
+# If the signal comes too late the run has finished (0) with its whole folder.
+mkdir interrupt && cd interrupt || exit 0
+cat > tall.inp <<'EOF'
+TITLE tall strip: 80000 elements, 20 MB of results.h5
+ANALYSIS STATIC
+GEOMETRY PLANESTRAIN
+MATERIAL steel ELASTIC E=200e9 NU=0.3
+MESH RECT R0=0 R1=0.01 Z0=0 Z1=10 NR=4 NZ=20000
+FIX BOTTOM RZ
+PRESSURE TOP P=1e6
+END
+EOF
+interrupted_run() {  # interrupted_run NAME: SIGTERM once out/.tall.partial.* appears
+  "$exe" -q -o out tall.inp > "$1.out" 2> "$1.err" &
+  local pid=$! i
+  for i in $(seq 1 5000); do
+    compgen -G "out/.tall.partial.*" > /dev/null && break
+    sleep 0.002
+  done
+  kill -TERM "$pid" 2> /dev/null
+  wait "$pid"
+}
+interrupted_run first
+status=$?
+check interrupt_first_status "exit status $status, expected 143 (or 0 if the signal came late)" \
+  test "$status" = 143 -o "$status" = 0
+check interrupt_first_no_partial "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(ls -A out 2>/dev/null | grep -F -e .partial. -e .old.)"
+if [ "$status" = 143 ]; then
+  check interrupt_first_no_case_folder "out holds: $(ls -A out | tr '\n' ' ')" test ! -e out/tall
+fi
+"$exe" -q -o out tall.inp > whole.out 2> whole.err
+check_rc interrupt_whole_run_exit_0 0 $?
+cp out/tall/summary.txt whole_summary.txt
+interrupted_run second
+status=$?
+check interrupt_rerun_status "exit status $status, expected 143 (or 0 if the signal came late)" \
+  test "$status" = 143 -o "$status" = 0
+check interrupt_rerun_no_partial "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test "$(ls -A out)" = tall
+check interrupt_rerun_keeps_folder "out/tall holds: $(ls out/tall 2>/dev/null | tr '\n' ' ')" \
+  test "$(ls out/tall 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+check interrupt_rerun_same_summary "out/tall/summary.txt differs from the whole run's (beyond cpu_s)" \
+  test "$(grep -v '^cpu_s' out/tall/summary.txt)" = "$(grep -v '^cpu_s' whole_summary.txt)"
+echo "# interrupt: the SIGTERMs ended the runs with status $status (143: during writing)"
+cd "$work" || exit 0
+
 exit 0

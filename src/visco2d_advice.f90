@@ -122,23 +122,23 @@ contains
     end subroutine add
   end subroutine time_step_warnings
 
-  !> After a dynamic run: a warning when the largest energy-balance error
-  !> (`relative`, of the energy put in) exceeds balance_warning_level.
-  subroutine energy_balance_warning(deck, relative)
-    type(deck_t), intent(inout) :: deck
+  !> After a dynamic run: the text of a warning (else '') when the largest
+  !> energy-balance error (`relative`, of the energy put in) exceeds
+  !> balance_warning_level; `line` is that of the first TIME card.
+  subroutine energy_balance_warning(deck, relative, message, line)
+    type(deck_t), intent(in) :: deck
     real(dp), intent(in) :: relative
-    type(warning_t) :: warning
-    integer :: line
-    if (.not. (relative > balance_warning_level)) return
+    character(:), allocatable, intent(out) :: message
+    integer, intent(out) :: line
+    message = ''
     line = 0
+    if (.not. (relative > balance_warning_level)) return
     if (allocated(deck%stages)) then
       if (size(deck%stages) > 0) line = deck%stages(1)%line
     end if
-    warning%text = deck%cards%file//':'//itoa(line)//': TIME: the energy balance is off by '// &
-      rtoa(100.0_dp*relative)//' % of the energy put into the body (above '// &
-      rtoa(100.0_dp*balance_warning_level)//' %): the time integration is inaccurate; a smaller DT '// &
+    message = 'the energy balance is off by '//rtoa(100.0_dp*relative)//' % of the energy put into the body '// &
+      '(above '//rtoa(100.0_dp*balance_warning_level)//' %): the time integration is inaccurate; a smaller DT '// &
       'brings it down (stable runs at a resolved DT stay below 0.1 %)'
-    deck%warnings = [deck%warnings, warning]
   end subroutine energy_balance_warning
 
   !> The element holding the node nearest the plate (the point of first contact); 0 if none.

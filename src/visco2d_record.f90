@@ -10,6 +10,7 @@ module visco2d_record
   public :: record_t, snapshot_t, summary_item_t
   public :: record_put, record_put_real, record_put_integer
   public :: history_define, history_append, record_add_snapshot, record_insert_snapshot, record_column
+  public :: run_warning_t, record_warn
 
   !> One `key = value` line of summary.txt. The key is kept whole, however
   !> long (expect_probe_<name>_..._within_rtol keys are long).
@@ -32,6 +33,11 @@ module visco2d_record
     real(dp), allocatable :: von_mises(:)       !< (nnode) Pa
   end type snapshot_t
 
+  !> A warning found while solving (`file:line: CARD: text`, like a deck's warning).
+  type :: run_warning_t
+    character(:), allocatable :: text
+  end type run_warning_t
+
   !> The results of one run.
   type :: record_t
     type(summary_item_t), allocatable :: summary(:)
@@ -40,6 +46,8 @@ module visco2d_record
     real(dp), allocatable :: history(:, :)                 !< (ncolumn, capacity)
     integer :: nrow = 0
     type(snapshot_t), allocatable :: snapshots(:)
+    type(run_warning_t), allocatable :: warnings(:)        !< run-time warnings (record_warn); the driver prints
+                                                           !< them and counts them in the summary's `warnings`
   end type record_t
 
 contains
@@ -81,6 +89,33 @@ contains
     integer, intent(in) :: value
     call record_put(record, key, itoa(value))
   end subroutine record_put_integer
+
+  !> Add a run-time warning, located like an error (`file:line: CARD: message`;
+  !> the parts not given are left out). The driver prints it on stderr after the
+  !> solve, lists it in listing.txt and counts it in the summary's `warnings`.
+  subroutine record_warn(record, message, file, line, card)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: message
+    character(*), intent(in), optional :: file, card
+    integer, intent(in), optional :: line
+    type(run_warning_t) :: warning
+    warning%text = ''
+    if (present(file)) then
+      if (len(file) > 0) then
+        warning%text = file
+        if (present(line)) then
+          if (line > 0) warning%text = warning%text//':'//itoa(line)
+        end if
+        warning%text = warning%text//': '
+      end if
+    end if
+    if (present(card)) then
+      if (len(card) > 0) warning%text = warning%text//card//': '
+    end if
+    warning%text = warning%text//message
+    if (.not. allocated(record%warnings)) allocate(record%warnings(0))
+    record%warnings = [record%warnings, warning]
+  end subroutine record_warn
 
   !> Define the history columns (names carry their unit, e.g. 't_ms').
   subroutine history_define(record, columns, capacity)

@@ -1,12 +1,50 @@
 !> Operating-system calls the driver needs (POSIX, through C interoperability):
-!> create and rename folders, remove files, process id, terminal test.
+!> create, rename and remove folders and files, list hidden entries of a
+!> folder by pattern, process id and liveness, terminal test, signals (a
+!> file size limit reported as a failed write; an interrupt that undoes a
+!> case folder being written).
 module visco2d_system
-  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char
+  use, intrinsic :: iso_fortran_env, only: int8
+  use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_size_t, c_ptr, c_funptr, c_null_ptr, &
+                                         c_null_funptr, c_intptr_t, c_f_pointer, c_associated, c_funloc
   implicit none
   private
 
   public :: make_directory, rename_path, remove_file, remove_directory, process_id, is_terminal
-  public :: directory_exists, remove_tree
+  public :: directory_exists, path_exists, remove_tree, process_alive, matching_paths, ignore_file_size_signal
+  public :: path_t
+  public :: install_interrupt_cleanup, interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
+  public :: file_open_write, file_write, file_close
+
+  !> One path of a list (`matching_paths`).
+  type :: path_t
+    character(:), allocatable :: path
+  end type path_t
+
+  !> POSIX glob_t: the fields read here come first in glibc and musl
+  !> (count, vector, offset, flags); the rest is reserved room.
+  type, bind(c) :: glob_t
+    integer(c_size_t) :: path_count = 0
+    type(c_ptr) :: paths = c_null_ptr
+    integer(c_size_t) :: offset = 0
+    integer(c_int) :: flags = 0
+    type(c_ptr) :: reserved(16) = c_null_ptr
+  end type glob_t
+
+  !> SIGXFSZ (file size limit exceeded) on Linux and the BSDs.
+  integer(c_int), parameter :: signal_file_size = 25
+  !> SIGHUP, SIGINT, SIGTERM: the signals that end a run early (POSIX numbers).
+  integer(c_int), parameter :: interrupt_signals(3) = [1_c_int, 2_c_int, 15_c_int]
+
+  !> What an interrupt must undo while a case folder is being written: the
+  !> files of the temporary folder and the folder, and a case folder moved
+  !> aside (old -> final). Null-terminated paths, set before the signal can
+  !> need them; the handler only calls unlink, rmdir, rename, signal and raise.
+  integer, parameter :: cleanup_length = 4096
+  integer, parameter :: cleanup_files = 5
+  character(kind=c_char, len=cleanup_length), save :: cleanup_path(cleanup_files) = c_null_char
+  character(kind=c_char, len=cleanup_length), save :: cleanup_old = c_null_char, cleanup_final = c_null_char
+  logical, volatile, save :: cleanup_armed = .false., cleanup_restore_old = .false.
 
   interface
     integer(c_int) function c_mkdir(path, mode) bind(c, name='mkdir')
@@ -29,11 +67,59 @@ module visco2d_system
     integer(c_int) function c_getpid() bind(c, name='getpid')
       import :: c_int
     end function c_getpid
+    integer(c_int) function c_kill(pid, signal) bind(c, name='kill')
+      import :: c_int
+      integer(c_int), value :: pid, signal
+    end function c_kill
     integer(c_int) function c_isatty(fd) bind(c, name='isatty')
       import :: c_int
       integer(c_int), value :: fd
     end function c_isatty
+    integer(c_int) function c_glob(pattern, flags, on_error, result) bind(c, name='glob')
+      import :: c_int, c_char, c_funptr, glob_t
+      character(kind=c_char), intent(in) :: pattern(*)
+      integer(c_int), value :: flags
+      type(c_funptr), value :: on_error
+      type(glob_t), intent(inout) :: result
+    end function c_glob
+    subroutine c_globfree(result) bind(c, name='globfree')
+      import :: glob_t
+      type(glob_t), intent(inout) :: result
+    end subroutine c_globfree
+    integer(c_size_t) function c_strlen(text) bind(c, name='strlen')
+      import :: c_size_t, c_ptr
+      type(c_ptr), value :: text
+    end function c_strlen
+    type(c_funptr) function c_signal(signal, handler) bind(c, name='signal')
+      import :: c_int, c_funptr
+      integer(c_int), value :: signal
+      type(c_funptr), value :: handler
+    end function c_signal
+    integer(c_int) function c_raise(signal) bind(c, name='raise')
+      import :: c_int
+      integer(c_int), value :: signal
+    end function c_raise
+    type(c_ptr) function c_fopen(path, mode) bind(c, name='fopen')
+      import :: c_ptr, c_char
+      character(kind=c_char), intent(in) :: path(*), mode(*)
+    end function c_fopen
+    integer(c_size_t) function c_fwrite(buffer, size, count, stream) bind(c, name='fwrite')
+      import :: c_size_t, c_ptr
+      type(*), intent(in) :: buffer(*)
+      integer(c_size_t), value :: size, count
+      type(c_ptr), value :: stream
+    end function c_fwrite
+    integer(c_int) function c_fclose(stream) bind(c, name='fclose')
+      import :: c_int, c_ptr
+      type(c_ptr), value :: stream
+    end function c_fclose
   end interface
+
+  !> Write a file through C stdio, which reports every failed write and a
+  !> failed close (the Fortran runtime may not, and may then keep the unit).
+  interface file_write
+    module procedure file_write_text, file_write_bytes
+  end interface file_write
 
 contains
 
@@ -56,6 +142,12 @@ contains
     inquire(file=path//'/.', exist=directory_exists)
   end function directory_exists
 
+  !> True if anything (file, folder, device) exists at the path.
+  logical function path_exists(path)
+    character(*), intent(in) :: path
+    inquire(file=path, exist=path_exists)
+  end function path_exists
+
   integer function rename_path(old, new) result(status)
     character(*), intent(in) :: old, new
     status = c_rename(old//c_null_char, new//c_null_char)
@@ -71,26 +163,195 @@ contains
     status = c_rmdir(path//c_null_char)
   end function remove_directory
 
-  !> rm -rf of a folder (used only for an older copy of a case folder).
-  subroutine remove_tree(path)
+  !> rm -rf of a folder (used only for folders this program names: older or
+  !> stale copies of case folders). Each entry is first unlinked, which removes
+  !> a file or a symbolic link (never followed); what cannot be unlinked is a
+  !> folder, emptied the same way and removed.
+  recursive subroutine remove_tree(path)
     character(*), intent(in) :: path
-    character(:), allocatable :: quoted
-    integer :: i, status
-    quoted = "'"
-    do i = 1, len(path)
-      if (path(i:i) == "'") then
-        quoted = quoted//"'\''"
-      else
-        quoted = quoted//path(i:i)
-      end if
+    type(path_t), allocatable :: entries(:)
+    character(len=6), parameter :: patterns(3) = [character(len=6) :: '*', '.[!.]*', '..?*']   ! all but . and ..
+    integer :: k, p, status
+    if (c_unlink(path//c_null_char) == 0) return
+    do p = 1, size(patterns)
+      entries = matching_paths(path, trim(patterns(p)))
+      do k = 1, size(entries)
+        if (c_unlink(entries(k)%path//c_null_char) /= 0) call remove_tree(entries(k)%path)
+      end do
     end do
-    quoted = quoted//"'"
-    call execute_command_line('rm -rf -- '//quoted, exitstat=status)
+    status = c_rmdir(path//c_null_char)
   end subroutine remove_tree
 
   integer function process_id()
     process_id = int(c_getpid())
   end function process_id
+
+  !> True if a process with this id exists (kill(pid, 0); where that is refused,
+  !> because the process belongs to another user, /proc/<pid> tells). Ids < 1 are never alive.
+  logical function process_alive(pid) result(alive)
+    integer, intent(in) :: pid
+    character(len=16) :: text
+    alive = .false.
+    if (pid < 1) return
+    alive = c_kill(int(pid, c_int), 0_c_int) == 0
+    if (alive) return
+    write(text, '(i0)') pid
+    if (directory_exists('/proc/self')) then
+      alive = directory_exists('/proc/'//trim(text))
+    else
+      alive = .true.                  ! no /proc: cannot tell "no such process" from "not ours"; keep
+    end if
+  end function process_alive
+
+  !> The paths matching a shell pattern (glob(3), sorted); none if nothing
+  !> matches. `folder` is taken literally (its *, ? and [ are escaped) and
+  !> `pattern` is a pattern for the names in it ('.*.partial.*').
+  function matching_paths(folder, pattern) result(paths)
+    character(*), intent(in) :: folder, pattern
+    type(path_t), allocatable :: paths(:)
+    type(glob_t) :: found
+    type(c_ptr), pointer :: vector(:)
+    character(kind=c_char, len=1), pointer :: characters(:)
+    integer :: k, n, length, i
+    allocate(paths(0))
+    if (c_glob(escaped(folder)//'/'//pattern//c_null_char, 0_c_int, c_null_funptr, found) /= 0) then
+      call c_globfree(found)
+      return
+    end if
+    n = int(found%path_count)
+    if (n > 0 .and. c_associated(found%paths)) then
+      call c_f_pointer(found%paths, vector, [n])
+      deallocate(paths)
+      allocate(paths(n))
+      do k = 1, n
+        length = int(c_strlen(vector(k)))
+        call c_f_pointer(vector(k), characters, [length])
+        allocate(character(len=length) :: paths(k)%path)
+        do i = 1, length
+          paths(k)%path(i:i) = characters(i)
+        end do
+      end do
+    end if
+    call c_globfree(found)
+  end function matching_paths
+
+  !> A path with the glob(3) special characters escaped by a backslash.
+  pure function escaped(path) result(text)
+    character(*), intent(in) :: path
+    character(:), allocatable :: text
+    integer :: i
+    text = ''
+    do i = 1, len(path)
+      if (index('*?[]\', path(i:i)) > 0) text = text//'\'
+      text = text//path(i:i)
+    end do
+  end function escaped
+
+  !> Ignore SIGXFSZ: a write past a file size limit (ulimit -f) then fails
+  !> with an error the writer reports, instead of killing the process.
+  subroutine ignore_file_size_signal()
+    type(c_funptr) :: previous
+    previous = c_signal(signal_file_size, transfer(1_c_intptr_t, c_null_funptr))   ! SIG_IGN = (handler) 1
+  end subroutine ignore_file_size_signal
+
+  !> On SIGHUP, SIGINT or SIGTERM, undo a case folder being written (see
+  !> interrupt_cleanup_arm), then end as the signal would have (default action).
+  subroutine install_interrupt_cleanup()
+    type(c_funptr) :: previous
+    integer :: k
+    do k = 1, size(interrupt_signals)
+      previous = c_signal(interrupt_signals(k), c_funloc(on_interrupt))
+    end do
+  end subroutine install_interrupt_cleanup
+
+  !> From now on an interrupt removes these files (at most 4) and then the folder.
+  subroutine interrupt_cleanup_arm(folder, files)
+    character(*), intent(in) :: folder
+    type(path_t), intent(in) :: files(:)
+    integer :: k
+    cleanup_armed = .false.
+    cleanup_restore_old = .false.
+    cleanup_path = c_null_char
+    do k = 1, min(size(files), cleanup_files - 1)
+      cleanup_path(k) = c_text(files(k)%path)
+    end do
+    cleanup_path(cleanup_files) = c_text(folder)
+    cleanup_armed = len(folder) < cleanup_length
+  end subroutine interrupt_cleanup_arm
+
+  !> The case folder `final` has been moved to `old`: an interrupt now also moves it back.
+  subroutine interrupt_cleanup_restore(old, final)
+    character(*), intent(in) :: old, final
+    cleanup_old = c_text(old)
+    cleanup_final = c_text(final)
+    cleanup_restore_old = len(old) < cleanup_length .and. len(final) < cleanup_length
+  end subroutine interrupt_cleanup_restore
+
+  !> Nothing left to undo.
+  subroutine interrupt_cleanup_disarm()
+    cleanup_armed = .false.
+    cleanup_restore_old = .false.
+  end subroutine interrupt_cleanup_disarm
+
+  !> A path as a null-terminated C string ('' if too long: nothing is removed then).
+  pure function c_text(path) result(text)
+    character(*), intent(in) :: path
+    character(kind=c_char, len=cleanup_length) :: text
+    text = c_null_char
+    if (len(path) < cleanup_length) text = path//c_null_char
+  end function c_text
+
+  !> The signal handler: async-signal-safe calls only.
+  subroutine on_interrupt(signal) bind(c)
+    integer(c_int), value :: signal
+    type(c_funptr) :: previous
+    integer(c_int) :: status
+    integer :: k
+    if (cleanup_armed) then
+      do k = 1, cleanup_files
+        if (cleanup_path(k)(1:1) == c_null_char) cycle
+        if (k < cleanup_files) then
+          status = c_unlink(cleanup_path(k))
+        else
+          status = c_rmdir(cleanup_path(k))
+        end if
+      end do
+      if (cleanup_restore_old) status = c_rename(cleanup_old, cleanup_final)
+    end if
+    previous = c_signal(signal, c_null_funptr)          ! SIG_DFL = (handler) 0
+    status = c_raise(signal)
+  end subroutine on_interrupt
+
+  !> Create (replace) a file for writing; a null pointer if that fails.
+  function file_open_write(path) result(stream)
+    character(*), intent(in) :: path
+    type(c_ptr) :: stream
+    stream = c_fopen(path//c_null_char, 'wb'//c_null_char)
+  end function file_open_write
+
+  !> Write text (as it is: add new_line('a') for a line); 0 if all of it was written.
+  integer function file_write_text(stream, text) result(status)
+    type(c_ptr), intent(in) :: stream
+    character(*), intent(in) :: text
+    status = 0
+    if (len(text) == 0) return
+    if (c_fwrite(text, 1_c_size_t, int(len(text), c_size_t), stream) /= int(len(text), c_size_t)) status = 1
+  end function file_write_text
+
+  !> Write bytes; 0 if all of them were written.
+  integer function file_write_bytes(stream, bytes) result(status)
+    type(c_ptr), intent(in) :: stream
+    integer(int8), intent(in) :: bytes(:)
+    status = 0
+    if (size(bytes) == 0) return
+    if (c_fwrite(bytes, 1_c_size_t, int(size(bytes), c_size_t), stream) /= int(size(bytes), c_size_t)) status = 1
+  end function file_write_bytes
+
+  !> Close a file (this writes what stdio still holds); 0 if that worked. The stream is freed either way.
+  integer function file_close(stream) result(status)
+    type(c_ptr), intent(in) :: stream
+    status = int(c_fclose(stream))
+  end function file_close
 
   !> True if the file descriptor (2 = stderr) is a terminal.
   logical function is_terminal(fd)
