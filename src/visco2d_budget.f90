@@ -45,28 +45,40 @@ module visco2d_budget
   !> default integer.
   integer(int64), parameter :: max_mesh_entities = 100000000_int64
 
-  !> A run estimated to take longer than this (s) is announced on stderr before it starts.
-  real(dp), parameter :: long_run_seconds = 60.0_dp
+  !> A run estimated to take longer than this (s) is announced on stderr
+  !> before it starts (the shipped decks take at most a few seconds).
+  real(dp), parameter :: long_run_seconds = 20.0_dp
 
-  ! Fitted constants of the memory model (bytes).
-  real(dp), parameter :: base_bytes = 20.0e6_dp          !< program, libraries, deck
+  ! Fitted constants of the memory model (bytes), at the peak of each analysis
+  ! (STATIC: while the factor is held, before the snapshot is made).
+  real(dp), parameter :: base_bytes = 17.5e6_dp           !< program, libraries, deck
   real(dp), parameter :: mesh_node_bytes = 64.0_dp        !< coordinates, numbers, lookup, renumbering
   real(dp), parameter :: mesh_element_bytes = 96.0_dp     !< connectivity, numbers, lines, material names
-  real(dp), parameter :: static_element_bytes = 600.0_dp  !< strains and stresses at 4 Gauss points, scratch
-  real(dp), parameter :: quasistatic_element_bytes = 800.0_dp
-  real(dp), parameter :: dynamic_element_bytes = 2400.0_dp !< B at 4 Gauss points (1 kB) and 5 state arrays
+  real(dp), parameter :: static_element_bytes = 260.0_dp  !< strains and stresses at 4 Gauss points
+  real(dp), parameter :: quasistatic_element_bytes = 300.0_dp !< stresses, trial stresses, moduli
+  real(dp), parameter :: dynamic_element_bytes = 2200.0_dp !< B at 4 Gauss points (1 kB), 5 state arrays, kept maxima
   real(dp), parameter :: term_bytes = 128.0_dp            !< one Prony term's history at 4 Gauss points
   real(dp), parameter :: static_equation_bytes = 80.0_dp  !< load, displacement, reaction, scratch
-  real(dp), parameter :: stepping_equation_bytes = 240.0_dp !< the time-stepping vectors
+  real(dp), parameter :: quasistatic_equation_bytes = 100.0_dp
+  real(dp), parameter :: dynamic_equation_bytes = 240.0_dp !< the Wilson-theta vectors
   real(dp), parameter :: snapshot_node_bytes = 96.0_dp    !< u, v, a, 4 stresses, 2 invariants
   real(dp), parameter :: snapshot_element_bytes = 128.0_dp !< stresses at 4 Gauss points
+  !> Kept contact columns per equation the plate may hold (their array grows by doubling).
+  real(dp), parameter :: contact_column_factor = 1.5_dp
 
   ! Fitted constants of the time model (s), measured on one core of the
   ! development machine (AMD EPYC, OpenBLAS); see `run_size`.
-  real(dp), parameter :: factor_seconds = 6.0e-11_dp      !< per n (b + 1)^2 (dpbtrf)
-  real(dp), parameter :: solve_seconds = 2.4e-9_dp        !< per n (b + 1) per step (back-substitutions)
-  real(dp), parameter :: element_seconds = 3.0e-7_dp      !< per element per step
-  real(dp), parameter :: term_seconds = 1.0e-7_dp         !< per Prony term per element per step
+  real(dp), parameter :: factor_seconds = 3.0e-11_dp      !< per n (b + 1)^2 (dpbtrf)
+  real(dp), parameter :: solve_seconds = 1.2e-9_dp        !< per n (b + 1) per step (back-substitutions)
+  real(dp), parameter :: equation_seconds = 2.0e-8_dp     !< per equation per step (vector updates)
+  real(dp), parameter :: output_value_seconds = 5.0e-7_dp !< per history value written (text and HDF5)
+  !> Bytes on disk per history value: ~14 characters in history.csv, 8 in results.h5.
+  real(dp), parameter :: output_value_bytes = 22.0_dp
+  real(dp), parameter :: static_element_seconds = 2.0e-6_dp  !< per element: assembly and stresses
+  real(dp), parameter :: quasistatic_element_seconds = 3.0e-7_dp  !< per element per step
+  real(dp), parameter :: dynamic_element_seconds = 1.5e-7_dp      !< per element per step
+  real(dp), parameter :: quasistatic_term_seconds = 1.2e-7_dp     !< per Prony term per element per step
+  real(dp), parameter :: dynamic_term_seconds = 3.5e-7_dp
 
   !> The size of a run, by part.
   type :: run_size_t
@@ -81,6 +93,7 @@ module visco2d_budget
     real(dp) :: history_bytes = 0.0_dp     !< the history table
     real(dp) :: contact_bytes = 0.0_dp     !< kept contact columns
     real(dp) :: total_bytes = 0.0_dp       !< all of the above and the base
+    real(dp) :: disk_bytes = 0.0_dp        !< the output files (history and snapshots)
     real(dp) :: seconds = 0.0_dp           !< rough CPU time on one core
   end type run_size_t
 
@@ -131,7 +144,9 @@ contains
   !>
   !> The time model: a Cholesky factorization costs n (b + 1)^2 operations
   !> (one per stage, and per new Delta t); a step costs the back-substitutions,
-  !> n (b + 1) each, and a sweep over the elements and their Prony terms.
+  !> n (b + 1) each, vector updates (n) and a sweep over the elements and their
+  !> Prony terms; writing the history costs per value. Fitted to runs of 200
+  !> to 180,000 equations, it was within a factor 1.6 of their CPU time.
   !> STOP AT= may end a run before its last step, so the steps (and the time)
   !> are an upper bound.
   pure function run_size(analysis, nodes, elements, half_bandwidth, steps, stages, history_terms, &
@@ -143,10 +158,10 @@ contains
     integer(int64), intent(in) :: history_terms      !< Prony terms with memory, summed over the elements
     integer(int64), intent(in) :: history_rows       !< rows of the history table
     integer, intent(in) :: history_columns           !< its columns
-    integer, intent(in) :: snapshots                 !< field snapshots kept
+    integer, intent(in) :: snapshots                 !< field snapshots held at the peak
     integer(int64), intent(in) :: contact_equations  !< equations the plate may hold (kept columns)
     type(run_size_t) :: size
-    real(dp) :: n, b, elements_real, element_each, equation_each, factorizations
+    real(dp) :: n, b, elements_real, element_each, equation_each, factorizations, element_time, term_time
 
     size%nodes = nodes
     size%elements = elements
@@ -164,16 +179,22 @@ contains
     case (budget_static)
       element_each = static_element_bytes
       equation_each = static_equation_bytes
+      element_time = static_element_seconds
+      term_time = 0.0_dp
     case (budget_quasistatic)
       element_each = quasistatic_element_bytes
-      equation_each = stepping_equation_bytes
+      equation_each = quasistatic_equation_bytes
+      element_time = quasistatic_element_seconds
+      term_time = quasistatic_term_seconds
       if (history_terms > 0) then                     ! new relaxed moduli at every new Delta t
         size%band_copies = 3
         factorizations = real(stages + 1, dp)
       end if
     case default
       element_each = dynamic_element_bytes
-      equation_each = stepping_equation_bytes
+      equation_each = dynamic_equation_bytes
+      element_time = dynamic_element_seconds
+      term_time = dynamic_term_seconds
       if (history_terms > 0) element_each = element_each + 128.0_dp   ! the history stress over dt
       if (stages > 1) size%band_copies = 3
       factorizations = real(max(stages, 1), dp)
@@ -184,13 +205,17 @@ contains
                          + real(history_terms, dp)*term_bytes
     size%vector_bytes = real(nodes, dp)*(mesh_node_bytes + snapshots*snapshot_node_bytes) + n*equation_each
     size%history_bytes = real(history_rows, dp)*history_columns*8.0_dp
-    size%contact_bytes = n*2.0_dp*real(contact_equations, dp)*8.0_dp   ! capacity grows by doubling
+    size%contact_bytes = n*contact_column_factor*real(contact_equations, dp)*8.0_dp
     size%total_bytes = base_bytes + size%band_bytes + size%element_bytes + size%vector_bytes &
                        + size%history_bytes + size%contact_bytes
 
-    size%seconds = factorizations*factor_seconds*n*(b + 1.0_dp)**2 &
-                   + real(max(steps, 1_int64), dp)*(solve_seconds*n*(b + 1.0_dp) &
-                       + element_seconds*elements_real + term_seconds*real(history_terms, dp))
+    size%disk_bytes = real(history_rows, dp)*history_columns*output_value_bytes &
+                      + max(snapshots, 1)*(real(nodes, dp)*snapshot_node_bytes + elements_real*snapshot_element_bytes)
+
+    size%seconds = output_value_seconds*real(history_rows, dp)*history_columns &
+                   + factorizations*factor_seconds*n*(b + 1.0_dp)**2 &
+                   + real(max(steps, 1_int64), dp)*(solve_seconds*n*(b + 1.0_dp) + equation_seconds*n &
+                       + element_time*elements_real + term_time*real(history_terms, dp))
   end function run_size
 
   !> This machine's memory in bytes (MemTotal of /proc/meminfo, read once), 0 if unknown.
@@ -374,7 +399,7 @@ contains
     character(:), allocatable :: text
     character(len=32) :: buffer
     if (seconds < 10.0_dp) then
-      write(buffer, '(f0.1, a)') max(seconds, 0.1_dp), ' s'
+      write(buffer, '(f3.1, a)') max(seconds, 0.1_dp), ' s'
     else if (seconds < 120.0_dp) then
       write(buffer, '(i0, a)') nint(seconds), ' s'
     else if (seconds < 7200.0_dp) then

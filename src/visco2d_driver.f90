@@ -18,6 +18,7 @@ module visco2d_driver
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
                             directory_exists, remove_tree
+  use visco2d_estimate, only: run_size_t, estimate_run, check_run_size, print_estimate, size_before_work
   implicit none
   private
 
@@ -41,7 +42,11 @@ contains
     character(*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: error
     type(deck_t) :: deck
+    type(run_size_t) :: estimate
     call read_deck(path, deck, error)
+    if (allocated(error)) return
+    estimate = estimate_run(deck)                          ! size before work: over the memory limit, an error
+    call check_run_size(deck, estimate, error)
     if (allocated(error)) return
     call print_warnings(deck)
     print '(a)', path//': ok'
@@ -70,6 +75,7 @@ contains
     print '(a)', '  equations       '//itoa(2*deck%mesh%nnode)
     print '(a)', '  half-bandwidth  '//itoa(deck%mesh%half_bandwidth_before)//' as input, '// &
                  itoa(deck%mesh%half_bandwidth)//' after reverse Cuthill-McKee'
+    call print_estimate(estimate)
   end subroutine check_deck
 
   !> Run one deck into out_root/<case>/. `record` is returned for the caller's report.
@@ -91,6 +97,8 @@ contains
     call read_deck(path, deck, error)
     if (allocated(error)) return
     call print_warnings(deck)
+    call size_before_work(path, deck, error)    ! refused over the memory limit; a long run is announced
+    if (allocated(error)) return
     effects = scene_effects(deck)
 
     call record_put(record, 'case', case_name)

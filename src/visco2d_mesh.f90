@@ -758,7 +758,8 @@ contains
       message = 'element '//itoa(mesh%element_id(second))//' overlaps element '//named(first)// &
         ': their areas intersect (each part of the body must be meshed once)'
     case (overlap_coincident_nodes)
-      message = 'nodes '//node_pair(finding%nodes)//' are at the same point (r = '// &
+      message = 'nodes '//itoa(mesh%node_id(finding%nodes(1)))//' and '//itoa(mesh%node_id(finding%nodes(2)))// &
+        ' are at the same point (r = '// &
         rtoa(mesh%xy(1, finding%nodes(1)))//', z = '//rtoa(mesh%xy(2, finding%nodes(1)))//') but are two '// &
         'nodes: elements '//named(first)//' and '//named(second)//' are not joined there (a crack, whose '// &
         'faces would pass through each other unseen); give both elements one node'

@@ -121,18 +121,22 @@ contains
   !> touching. Call after check_edges (elements that share an edge are then on
   !> either side of it and are not tested again). Reports an area overlap
   !> before the others.
-  subroutine check_overlaps(xy, connectivity, tolerance, finding)
+  subroutine check_overlaps(xy, connectivity, tolerance, finding, pairs)
     real(dp), intent(in) :: xy(:, :)
     integer, intent(in) :: connectivity(:, :)
     real(dp), intent(in) :: tolerance
     type(overlap_t), intent(out) :: finding
+    integer(int64), intent(out), optional :: pairs   !< pairs of elements tested (boxes meet)
     real(dp), allocatable :: lower(:, :), upper(:, :)
     integer, allocatable :: range(:, :), start(:), items(:), fill(:)
     real(dp) :: origin(2), extent(2), cell, log_sum
     integer :: nelem, e, nx, ny, c, a, b, ix, iy, owner
     integer(int64) :: cells, insertions
     type(overlap_t) :: other, pair
+    integer(int64) :: tested
 
+    tested = 0
+    if (present(pairs)) pairs = 0
     nelem = size(connectivity, 2)
     if (nelem < 2) return
     allocate(lower(2, nelem), upper(2, nelem), range(4, nelem))
@@ -194,10 +198,12 @@ contains
           ! Test the pair once: in the cell of the lower-left corner of the boxes' intersection.
           owner = cell_of(max(lower(2, i), lower(2, j)), 2, ny)*nx + cell_of(max(lower(1, i), lower(1, j)), 1, nx) + 1
           if (owner /= c) cycle
+          tested = tested + 1
           call test_pair(min(i, j), max(i, j), pair)
           end associate
           if (pair%kind == overlap_area) then
             finding = pair
+            if (present(pairs)) pairs = tested
             return
           end if
           if (pair%kind /= overlap_none .and. other%kind == overlap_none) other = pair
@@ -205,6 +211,7 @@ contains
       end do
     end do
     finding = other
+    if (present(pairs)) pairs = tested
 
   contains
 
@@ -218,61 +225,65 @@ contains
     subroutine test_pair(i, j, pair)
       integer, intent(in) :: i, j
       type(overlap_t), intent(out) :: pair
-      integer :: shared, p, q, side
+      integer :: shared, p
       shared = 0
       do p = 1, 4
         if (any(connectivity(:, j) == connectivity(p, i))) shared = shared + 1
       end do
-      if (shared >= 2) return                    ! a common edge: on either side of it (check_edges)
+      if (shared >= 2) return                    ! a common side: on either side of it (check_edges)
       if (quads_overlap(xy(:, connectivity(:, i)), xy(:, connectivity(:, j)), tolerance)) then
         pair%kind = overlap_area
         pair%elements = [i, j, 0]
         return
       end if
-      do p = 1, 4
-        do q = 1, 4
-          associate (m => connectivity(p, i), n => connectivity(q, j))
-          if (m == n) cycle
+      call node_on_boundary(i, j, pair)
+      if (pair%kind == overlap_none) call node_on_boundary(j, i, pair)
+    end subroutine test_pair
+
+    !> A node of element `other` at a node of `element` (not the same node: a
+    !> crack) or inside one of its sides (a hanging node). Only nodes inside
+    !> the element's box can be.
+    subroutine node_on_boundary(element, other, pair)
+      integer, intent(in) :: element, other
+      type(overlap_t), intent(inout) :: pair
+      integer :: q, k, m
+      do q = 1, 4
+        m = connectivity(q, other)
+        if (any(xy(:, m) < lower(:, element) - tolerance) .or. any(xy(:, m) > upper(:, element) + tolerance)) cycle
+        if (any(connectivity(:, element) == m)) cycle
+        do k = 1, 4
+          associate (n => connectivity(k, element))
           if (all(abs(xy(:, m) - xy(:, n)) <= tolerance)) then
             pair%kind = overlap_coincident_nodes
-            pair%elements = [i, j, 0]
+            pair%elements = [min(element, other), max(element, other), 0]
             pair%nodes = [min(m, n), max(m, n)]
             return
           end if
           end associate
         end do
-      end do
-      do side = 1, 4                               ! a node of one inside a side of the other
-        do q = 1, 4
-          if (on_side(connectivity(:, i), side, connectivity(q, j))) then
+        do k = 1, 4
+          if (on_side(connectivity(:, element), k, m)) then
             pair%kind = overlap_hanging_node
-            pair%elements = [j, i, 0]
-            pair%nodes = [connectivity(q, j), 0]
-            return
-          end if
-          if (on_side(connectivity(:, j), side, connectivity(q, i))) then
-            pair%kind = overlap_hanging_node
-            pair%elements = [i, j, 0]
-            pair%nodes = [connectivity(q, i), 0]
+            pair%elements = [other, element, 0]
+            pair%nodes = [m, 0]
             return
           end if
         end do
       end do
-    end subroutine test_pair
+    end subroutine node_on_boundary
 
-    !> True if node m lies on side `side` of the element with nodes `element`,
-    !> strictly between its ends, and is not one of the element's nodes.
+    !> True if node m (not one of the element's) lies on side `side` of the
+    !> element with nodes `element`, strictly between its ends.
     pure logical function on_side(element, side, m)
       integer, intent(in) :: element(4), side, m
       real(dp) :: d(2), w(2), length, along
       on_side = .false.
-      if (any(element == m)) return
       d = xy(:, element(mod(side, 4) + 1)) - xy(:, element(side))
       w = xy(:, m) - xy(:, element(side))
-      length = norm2(d)
-      along = dot_product(w, d)/length
-      if (along <= tolerance .or. along >= length - tolerance) return
-      on_side = abs(d(1)*w(2) - d(2)*w(1))/length <= tolerance
+      length = sqrt(d(1)**2 + d(2)**2)
+      if (abs(d(1)*w(2) - d(2)*w(1)) > tolerance*length) return
+      along = (w(1)*d(1) + w(2)*d(2))/length
+      on_side = along > tolerance .and. along < length - tolerance
     end function on_side
   end subroutine check_overlaps
 
@@ -286,14 +297,16 @@ contains
     !> An edge of a whose outward side holds all of b (within the tolerance).
     pure logical function separates(a, b)
       real(dp), intent(in) :: a(2, 4), b(2, 4)
-      real(dp) :: normal(2), length
-      integer :: k
+      real(dp) :: normal(2), length, nearest
+      integer :: k, l
       separates = .false.
       do k = 1, 4
-        normal = [a(2, mod(k, 4) + 1) - a(2, k), a(1, k) - a(1, mod(k, 4) + 1)]   ! outward for counter-clockwise
-        length = norm2(normal)
+        l = mod(k, 4) + 1
+        normal = [a(2, l) - a(2, k), a(1, k) - a(1, l)]             ! outward for counter-clockwise
+        length = sqrt(normal(1)**2 + normal(2)**2)
         if (length == 0.0_dp) cycle
-        if (minval(matmul(normal, b) - dot_product(normal, a(:, k)))/length >= -tolerance) then
+        nearest = minval(normal(1)*(b(1, :) - a(1, k)) + normal(2)*(b(2, :) - a(2, k)))
+        if (nearest >= -tolerance*length) then
           separates = .true.
           return
         end if
