@@ -23,7 +23,8 @@
 !> The limit is the smaller of the user's limit (`--max-memory SIZE`, or the
 !> environment variable VISCO2D_MAX_MEMORY) and this machine's memory
 !> (MemTotal in /proc/meminfo); without a user limit it is half of the
-!> machine's memory, which leaves room for the system and one more job.
+!> machine's memory, which leaves room for the system and one more job. A
+!> process address-space limit (`ulimit -v`) lowers it too.
 module visco2d_budget
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
@@ -33,7 +34,7 @@ module visco2d_budget
   public :: run_size_t, mesh_run_size, run_size
   public :: budget_static, budget_quasistatic, budget_dynamic
   public :: sphere_mesh_counts, grid_mesh_counts
-  public :: memory_limit, set_memory_limit, machine_memory, parse_memory_size
+  public :: memory_limit, set_memory_limit, machine_memory, address_space_limit, parse_memory_size
   public :: bytes_text, count_text, seconds_text
   public :: max_mesh_entities, long_run_seconds
 
@@ -102,6 +103,12 @@ module visco2d_budget
   character(len=64), save :: user_limit_origin = ''
   logical, save :: environment_read = .false.
   integer(int64), save :: machine_bytes = -1     ! MemTotal, read once (-1: not yet)
+  integer(int64), save :: address_space_bytes = -1  ! the soft RLIMIT_AS, read once (0: none)
+
+  !> Address space the program needs besides what the model counts (its
+  !> libraries, thread stacks and BLAS buffers: a small run does not start
+  !> under `ulimit -v` 200 MB and does under 250 MB).
+  real(dp), parameter :: address_space_reserve = 256.0_dp*1024.0_dp**2
 
 contains
 
@@ -245,6 +252,36 @@ contains
     machine_bytes = bytes
   end function machine_memory
 
+  !> The soft limit of this process's address space (`ulimit -v`, "Max
+  !> address space" in /proc/self/limits, read once) in bytes, 0 if none.
+  function address_space_limit() result(bytes)
+    integer(int64) :: bytes
+    character(len=256) :: line
+    character(len=32) :: soft
+    integer :: unit, ios
+    if (address_space_bytes >= 0) then
+      bytes = address_space_bytes
+      return
+    end if
+    bytes = 0
+    open(newunit=unit, file='/proc/self/limits', status='old', action='read', iostat=ios)
+    if (ios == 0) then
+      do
+        read(unit, '(a)', iostat=ios) line
+        if (ios /= 0) exit
+        if (index(line, 'Max address space') == 1) then
+          read(line(len('Max address space') + 1:), *, iostat=ios) soft
+          if (ios == 0 .and. verify(trim(soft), '0123456789') == 0 .and. len_trim(soft) <= 18) &
+            read(soft, *, iostat=ios) bytes
+          if (ios /= 0) bytes = 0
+          exit
+        end if
+      end do
+      close(unit)
+    end if
+    address_space_bytes = bytes
+  end function address_space_limit
+
   !> A memory size: a number of bytes with an optional binary unit K, M, G
   !> or T (KiB ... TiB; "8G", "8GB", "8GiB", "512m", "1.5G"). ok is false for
   !> anything else, for 0 and for more than 2^62 bytes.
@@ -345,6 +382,14 @@ contains
     else
       limit = 4.0_dp*1024.0_dp**3
       origin = 'the default limit of '//bytes_text(limit)//" (this machine's memory is unknown)"
+    end if
+    if (address_space_limit() > 0) then
+      if (real(address_space_limit(), dp) - address_space_reserve < limit) then
+        limit = max(real(address_space_limit(), dp) - address_space_reserve, 0.0_dp)
+        origin = "this process's address-space limit (ulimit -v, "//bytes_text(real(address_space_limit(), dp))// &
+                 ', less '//bytes_text(address_space_reserve)//' for the program)'
+        raisable = .false.
+      end if
     end if
   end subroutine memory_limit
 

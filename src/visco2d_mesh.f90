@@ -731,15 +731,17 @@ contains
     character(:), allocatable :: message
 
     call check_edges(mesh%connectivity, keys, edge_order, finding)
-    if (finding%kind == overlap_none) call check_overlaps(mesh%xy, mesh%connectivity, &
+    if (finding%kind == overlap_none) call check_overlaps(mesh%xy, mesh%connectivity, keys, edge_order, &
                                                           geometry_tolerance*mesh%size, finding)
     if (finding%kind == overlap_none) return
     ! The element defined last is the one in error; the other is named with its line.
     first = finding%elements(1)
     second = finding%elements(2)
-    if (finding%kind /= overlap_hanging_node .and. mesh%element_line(first) > mesh%element_line(second)) then
-      first = finding%elements(2)
-      second = finding%elements(1)
+    if (finding%kind /= overlap_hanging_node .and. second > 0) then
+      if (mesh%element_line(first) > mesh%element_line(second)) then
+        first = finding%elements(2)
+        second = finding%elements(1)
+      end if
     end if
     select case (finding%kind)
     case (overlap_same_nodes)
@@ -755,8 +757,14 @@ contains
       message = 'elements '//named(first)//' and '//itoa(mesh%element_id(second))//' lie on the same side of '// &
         'their common side '//node_pair(finding%nodes)//': they overlap'
     case (overlap_area)
-      message = 'element '//itoa(mesh%element_id(second))//' overlaps element '//named(first)// &
-        ': their areas intersect (each part of the body must be meshed once)'
+      if (second == 0) then
+        second = first
+        message = 'element '//itoa(mesh%element_id(first))//' lies where the mesh covers the body twice '// &
+          '(each part of the body must be meshed once)'
+      else
+        message = 'element '//itoa(mesh%element_id(second))//' overlaps element '//named(first)// &
+          ': their areas intersect (each part of the body must be meshed once)'
+      end if
     case (overlap_coincident_nodes)
       message = 'nodes '//itoa(mesh%node_id(finding%nodes(1)))//' and '//itoa(mesh%node_id(finding%nodes(2)))// &
         ' are at the same point (r = '// &
