@@ -144,6 +144,27 @@ program test_mesh_guards
   lines = two_elements('NODE 5 2 1', 'NODE 6 2 2', 'ELEMENT 2 3 5 6 7 MAT=m', 'NODE 7 1 2')
   call expect_valid('neighbours_share_a_corner', lines)
 
+  ! A body with a hole (the centre element left out), and a second body in the hole: fine.
+  lines = block()
+  lines(10) = 'ELEMENT 4 5 6 10 9 MAT=m'
+  lines = [character(len=100) :: lines(1:10), 'ELEMENT 6 7 8 12 11 MAT=m', lines(11:)]
+  call expect_valid('hole', lines)
+  lines = [character(len=100) :: lines(1:11), 'NODE 31 0.012 0.012', 'NODE 32 0.018 0.012', 'NODE 33 0.018 0.018', &
+           'NODE 34 0.012 0.018', 'ELEMENT 40 31 32 33 34 MAT=m', lines(12:)]
+  call expect_valid('body_in_the_hole', lines)
+  ! A strip that turns back over its first element (sharing one node with it).
+  lines = [character(len=100) :: 'TITLE fold', 'ANALYSIS STATIC', 'GEOMETRY PLANESTRAIN', &
+    'MATERIAL m ELASTIC E=5e6 NU=0.3', 'NODE 1 0 0', 'NODE 2 1 0', 'NODE 3 1 1', 'NODE 4 0 1', 'NODE 5 3 0', &
+    'NODE 6 3 1', 'NODE 7 3 2', 'NODE 8 1 2', 'NODE 9 0 1.5', 'NODE 10 0 0.5', 'ELEMENT 1 1 2 3 4 MAT=m', &
+    'ELEMENT 2 2 5 6 3 MAT=m', 'ELEMENT 3 3 6 7 8 MAT=m', 'ELEMENT 4 3 8 9 10 MAT=m', 'FIX 1 RZ', 'FIX 2 Z', 'END']
+  call expect_error('fold', lines, 18, 9, 'ELEMENT', 'element 4 overlaps element 1 (line 15)')
+  ! Folded further, on a new node: its last element lies across the first and the third.
+  lines(13) = 'NODE 9 -0.5 1.5'
+  lines(14) = 'NODE 10 -0.5 0.5'
+  lines(18) = 'ELEMENT 4 11 8 9 10 MAT=m'
+  lines = [character(len=100) :: lines(1:14), 'NODE 11 1.2 0.8', lines(15:)]
+  call expect_error('fold_apart', lines, 19, 9, 'ELEMENT', 'element 4 overlaps element ')
+
   ! ------------------------------------------------------ cracks and hanging nodes
   ! Two rows of nodes at z = 0.01 (5-8 and 17-20): the rows of elements are not joined.
   lines = block()
