@@ -14,6 +14,7 @@ program visco2d
   use visco2d_strings, only: itoa
   use visco2d_timers, only: timers_enable
   use visco2d_progress, only: progress_configure, progress_auto, progress_on, progress_off
+  use visco2d_budget, only: set_memory_limit
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   interface
@@ -22,7 +23,7 @@ program visco2d
       integer(c_int), value :: status
     end subroutine c_exit
   end interface
-  character(:), allocatable :: out_root, argument
+  character(:), allocatable :: out_root, argument, message
   character(len=:), allocatable :: decks(:)
   integer :: i, count, failed, length
   logical :: quiet, checking, progress
@@ -60,6 +61,12 @@ program visco2d
       progress = .true.
     case ('--timing')
       call timers_enable(.true.)
+    case ('--max-memory')
+      if (i == command_argument_count()) call usage_error('option '//argument//' needs a size (e.g. 8G)')
+      i = i + 1
+      call get_argument(i, argument)
+      call set_memory_limit(argument, '--max-memory', message)
+      if (len(message) > 0) call usage_error(message)
     case ('check')
       if (count == 0 .and. .not. checking) then
         checking = .true.
@@ -277,6 +284,14 @@ contains
     print '(a)', '                  it shows only when stderr is a terminal. The delay before'
     print '(a)', '                  the first line: VISCO2D_PROGRESS_DELAY=<seconds> (default 2)'
     print '(a)', '  --timing        print the time of each phase of each run (make bench)'
+    print '(a)', '  --max-memory SIZE'
+    print '(a)', '                  refuse a deck whose run is estimated to need more memory than'
+    print '(a)', '                  SIZE (e.g. 8G, 512M; K, M, G, T are powers of 1024). Also'
+    print '(a)', '                  VISCO2D_MAX_MEMORY=SIZE; the default is half of the machine''s'
+    print '(a)', '                  memory, and no run may need more than all of it (or than'
+    print '(a)', '                  ulimit -v allows). `check` prints the estimate (memory,'
+    print '(a)', '                  output size, a rough run time); a run estimated past 20 s'
+    print '(a)', '                  is announced by a note on stderr'
     print '(a)', '  -h, --help      this text'
     print '(a)', '      --version   program version'
     print '(a)', ''

@@ -928,6 +928,30 @@ check interrupt_rerun_keeps_folder "out/tall holds: $(ls out/tall 2>/dev/null | 
 check interrupt_rerun_same_summary "out/tall/summary.txt differs from the whole run's (beyond cpu_s)" \
   test "$(grep -v '^cpu_s' out/tall/summary.txt)" = "$(grep -v '^cpu_s' whole_summary.txt)"
 echo "# interrupt: the SIGTERMs ended the runs with status $status (143: during writing)"
+# ---- size before work: the estimate, --max-memory and VISCO2D_MAX_MEMORY
+mkdir -p "$work/size" && cd "$work/size" || exit 0
+cp "$good_source" sphere.inp
+"$exe" check sphere.inp > size_check.out 2> size_check.err
+check_rc size_check_exit_0 0 $?
+check size_check_memory "stdout: $(first_lines size_check.out)" grep -q '^  memory          about [0-9.]* [KMG]iB (limit ' size_check.out
+check size_check_time "stdout: $(first_lines size_check.out)" grep -q '^  run time        roughly ' size_check.out
+"$exe" --max-memory 1x check sphere.inp > size_bad.out 2> size_bad.err
+check_rc size_bad_option_exit_2 2 $?
+check size_bad_option_message "stderr: $(first_lines size_bad.err)" grep -qF -- '--max-memory "1x" is not a memory size' size_bad.err
+"$exe" --max-memory 1M check sphere.inp > size_low.out 2> size_low.err
+check_rc size_low_check_exit_1 1 $?
+check size_low_check_located "stderr: $(first_lines size_low.err)" \
+  grep -q '^visco2d: error: sphere.inp:[0-9]*:[0-9]*: MESH: .*need.*more than the limit of 1.00 MiB set by --max-memory' size_low.err
+VISCO2D_MAX_MEMORY=1M "$exe" -o out sphere.inp > size_env.out 2> size_env.err
+check_rc size_env_run_exit_1 1 $?
+check size_env_names_variable "stderr: $(first_lines size_env.err)" grep -q 'set by VISCO2D_MAX_MEMORY' size_env.err
+check size_env_no_output "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test -z "$(ls -A out 2>/dev/null)"
+VISCO2D_MAX_MEMORY=lots "$exe" -q -o out sphere.inp > size_junk.out 2> size_junk.err
+check_rc size_env_junk_exit_0 0 $?
+check size_env_junk_warns "stderr: $(first_lines size_junk.err)" \
+  grep -q '^visco2d: warning: VISCO2D_MAX_MEMORY "lots" is not a memory size' size_junk.err
+check size_help_option "--help does not mention --max-memory" grep -q -- '--max-memory' ../usage/help.out
+check size_help_variable "--help does not mention VISCO2D_MAX_MEMORY" grep -q VISCO2D_MAX_MEMORY ../usage/help.out
 cd "$work" || exit 0
 
 exit 0

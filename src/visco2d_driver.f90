@@ -22,6 +22,7 @@ module visco2d_driver
                             directory_exists, path_exists, remove_tree, process_alive, matching_paths, path_t, &
                             interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_estimate, only: run_size_t, estimate_run, check_run_size, print_estimate, size_before_work
   implicit none
   private
 
@@ -60,12 +61,16 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(deck_t) :: deck
     type(time_scales_t) :: scales
+    type(run_size_t) :: estimate
     call read_deck(path, deck, error)
     if (.not. allocated(error)) call check_expect_cards(deck, error)
     if (allocated(error)) then
       call name_the_deck(error, path)
       return
     end if
+    estimate = estimate_run(deck)                          ! size before work: over the memory limit, an error
+    call check_run_size(deck, estimate, error)
+    if (allocated(error)) return
     call time_step_warnings(deck)
     call print_warnings(deck)
     print '(a)', path//': ok'
@@ -102,6 +107,7 @@ contains
     print '(a)', '  equations       '//itoa(2*deck%mesh%nnode)
     print '(a)', '  half-bandwidth  '//itoa(deck%mesh%half_bandwidth_before)//' as input, '// &
                  itoa(deck%mesh%half_bandwidth)//' after reverse Cuthill-McKee'
+    call print_estimate(estimate)
   end subroutine check_deck
 
   !> Run one deck into out_root/<case>/. `record` is returned for the caller's report.
@@ -140,6 +146,8 @@ contains
     if (allocated(error)) return
     call time_step_warnings(deck)
     call print_warnings(deck)
+    call size_before_work(path, deck, error)    ! refused over the memory limit; a long run is announced
+    if (allocated(error)) return
     effects = scene_effects(deck)
 
     call record_put(record, 'case', case_name)
