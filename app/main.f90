@@ -14,7 +14,7 @@ program visco2d
   use visco2d_strings, only: itoa
   use visco2d_timers, only: timers_enable
   use visco2d_progress, only: progress_configure, progress_auto, progress_on, progress_off
-  use visco2d_budget, only: set_memory_limit
+  use visco2d_budget, only: set_memory_limit, set_time_limit
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   interface
@@ -66,6 +66,12 @@ program visco2d
       i = i + 1
       call get_argument(i, argument)
       call set_memory_limit(argument, '--max-memory', message)
+      if (len(message) > 0) call usage_error(message)
+    case ('--max-time')
+      if (i == command_argument_count()) call usage_error('option '//argument//' needs a number of seconds')
+      i = i + 1
+      call get_argument(i, argument)
+      call set_time_limit(argument, '--max-time', message)
       if (len(message) > 0) call usage_error(message)
     case ('check')
       if (count == 0 .and. .not. checking) then
@@ -292,6 +298,10 @@ contains
     print '(a)', '                  ulimit -v allows). `check` prints the estimate (memory,'
     print '(a)', '                  output size, a rough run time); a run estimated past 20 s'
     print '(a)', '                  is announced by a note on stderr'
+    print '(a)', '  --max-time SECONDS'
+    print '(a)', '                  refuse a deck whose run is estimated (roughly, within a factor'
+    print '(a)', '                  of 2) to take longer than SECONDS on one core. Also'
+    print '(a)', '                  VISCO2D_MAX_TIME=SECONDS; no limit by default'
     print '(a)', '  -h, --help      this text'
     print '(a)', '      --version   program version'
     print '(a)', ''

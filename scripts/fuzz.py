@@ -9,8 +9,9 @@ Takes the seed decks (inputs/*.inp and test/fuzz/*.inp; LEVEL=1 meshes and at mo
 steps per TIME stage, so that most runs take well under a second), makes N mutated decks
 from them (deterministically: deck i depends only on --seed, i and the seed decks, not on
 --jobs), runs each with the visco2d executable into a fresh output root under a wall-time
-bound and a 4 GB address-space limit (a tenth of the decks go to 'visco2d check DECK'
-instead), and classifies the run.  A run passes when it exits 0, 1 or 2 and none of
+bound and a 4 GB address-space limit (and VISCO2D_MAX_TIME = a quarter of the bound,
+so a run estimated to be longer is refused up front; a tenth of the decks go to
+'visco2d check DECK' instead), and classifies the run.  A run passes when it exits 0, 1 or 2 and none of
 these holds:
 
   CRASH       a signal, an exit status other than 0/1/2, or runtime-error text in
@@ -1581,6 +1582,11 @@ def main():
         with open(options.exe, 'rb') as handle:
             options.mem_mb = 0 if b'libasan' in handle.read() else 4096
     options.env = dict(os.environ, VISCO2D_PROGRESS_DELAY='1e9')
+    # A run whose estimated time exceeds a quarter of the bound (the estimate is
+    # within a factor of 2, and jobs share the cores) is refused up front with a
+    # located error (visco2d --max-time): what is then still running at the
+    # bound is a hang, not an announced long run.
+    options.env.setdefault('VISCO2D_MAX_TIME', '%g' % (options.bound/4.0))
     options.env.setdefault('ASAN_OPTIONS', 'halt_on_error=1:detect_leaks=1:exitcode=86:max_allocation_size_mb=4096')
     options.env.setdefault('UBSAN_OPTIONS', 'halt_on_error=1:print_stacktrace=1:exitcode=87')
     kinds = [k for k in options.kinds.split(',') if k]

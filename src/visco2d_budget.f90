@@ -25,6 +25,11 @@
 !> (MemTotal in /proc/meminfo); without a user limit it is half of the
 !> machine's memory, which leaves room for the system and one more job. A
 !> process address-space limit (`ulimit -v`) lowers it too.
+!>
+!> A time limit is only the user's (`--max-time SECONDS`, or the environment
+!> variable VISCO2D_MAX_TIME; none by default): a run whose rough time
+!> estimate exceeds it is refused before it starts. Batch and fuzz runs use
+!> it to bound what one deck may cost.
 module visco2d_budget
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
@@ -37,6 +42,7 @@ module visco2d_budget
   public :: memory_limit, set_memory_limit, machine_memory, address_space_limit, parse_memory_size
   public :: bytes_text, count_text, seconds_text
   public :: max_mesh_entities, long_run_seconds
+  public :: time_limit, set_time_limit
 
   !> Analysis kinds as the cost model sees them.
   integer, parameter :: budget_static = 1, budget_quasistatic = 2, budget_dynamic = 3
@@ -103,6 +109,10 @@ module visco2d_budget
   character(len=64), save :: user_limit_origin = ''
   logical, save :: environment_read = .false.
   integer(int64), save :: machine_bytes = -1     ! MemTotal, read once (-1: not yet)
+  ! The user's time limit (s; 0: none) and where it came from.
+  real(dp), save :: user_seconds = 0.0_dp
+  character(len=64), save :: user_seconds_origin = ''
+  logical, save :: time_environment_read = .false.
   integer(int64), save :: address_space_bytes = -1  ! the soft RLIMIT_AS, read once (0: none)
 
   !> Address space the program needs besides what the model counts (its
@@ -458,4 +468,45 @@ contains
     end if
     text = trim(buffer)
   end function seconds_text
+  !> Set the user's time limit from the text of `--max-time` (seconds > 0);
+  !> message is '' if the text is such a number, else why not.
+  subroutine set_time_limit(text, origin, message)
+    character(*), intent(in) :: text, origin
+    character(:), allocatable, intent(out) :: message
+    real(dp) :: seconds
+    integer :: ios
+    message = ''
+    seconds = -1.0_dp
+    if (verify(trim(adjustl(text)), '0123456789.eE+-') == 0 .and. len_trim(text) > 0) &
+      read(text, *, iostat=ios) seconds
+    if (.not. (seconds > 0.0_dp .and. seconds < 1.0e12_dp)) then
+      message = origin//' "'//text//'" is not a number of seconds > 0'
+      return
+    end if
+    user_seconds = seconds
+    user_seconds_origin = origin
+    time_environment_read = .true.     ! the option overrides the environment
+  end subroutine set_time_limit
+
+  !> The user's time limit (s; 0: none) and what set it. Reads
+  !> VISCO2D_MAX_TIME the first time unless --max-time was given; a value that
+  !> is not a number of seconds is reported on stderr and ignored.
+  subroutine time_limit(seconds, origin)
+    real(dp), intent(out) :: seconds
+    character(:), allocatable, intent(out) :: origin
+    character(:), allocatable :: text, message
+    integer :: n, status
+    if (.not. time_environment_read) then
+      time_environment_read = .true.
+      call get_environment_variable('VISCO2D_MAX_TIME', length=n, status=status)
+      if (status == 0 .and. n > 0) then
+        allocate(character(len=n) :: text)
+        call get_environment_variable('VISCO2D_MAX_TIME', text)
+        call set_time_limit(text, 'VISCO2D_MAX_TIME', message)
+        if (len(message) > 0) write(0, '(a)') 'visco2d: warning: '//message//'; no time limit'
+      end if
+    end if
+    seconds = user_seconds
+    origin = trim(user_seconds_origin)
+  end subroutine time_limit
 end module visco2d_budget

@@ -9,12 +9,12 @@ module visco2d_estimate
   use visco2d_deck, only: deck_t, analysis_static, analysis_quasistatic, analysis_dynamic
   use visco2d_material, only: has_memory
   use visco2d_mesh, only: side_nodes
-  use visco2d_budget, only: run_size_t, run_size, budget_static, budget_quasistatic, budget_dynamic, &
+  use visco2d_budget, only: run_size_t, run_size, time_limit, budget_static, budget_quasistatic, budget_dynamic, &
                             memory_limit, bytes_text, count_text, seconds_text, long_run_seconds
   implicit none
   private
 
-  public :: run_size_t, estimate_run, check_run_size, estimate_line, long_run_note, print_estimate, size_before_work
+  public :: run_size_t, estimate_run, check_run_size, check_run_time, estimate_line, long_run_note, print_estimate, size_before_work
 
   !> Contact iterations assumed for a STATIC run with a PLATE (one
   !> factorization each; the shipped static contact runs take 3 to 15).
@@ -119,6 +119,34 @@ contains
       column=deck%mesh%column, card=deck%mesh%card)
   end subroutine check_run_size
 
+  !> Refuse a run whose rough time estimate exceeds the user's time limit
+  !> (--max-time, VISCO2D_MAX_TIME; none by default): an error located at the
+  !> first TIME card (the MESH card of a STATIC run), with the estimate.
+  subroutine check_run_time(deck, size, error)
+    type(deck_t), intent(in) :: deck
+    type(run_size_t), intent(in) :: size
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: limit
+    character(:), allocatable :: origin, what
+    integer :: line
+    call time_limit(limit, origin)
+    if (limit <= 0.0_dp .or. size%seconds <= limit) return
+    what = 'this run is estimated to take roughly '//seconds_text(size%seconds)//' ('// &
+      count_text(size%steps)//' steps of '//count_text(size%equations)//' equations, half-bandwidth '// &
+      count_text(size%half_bandwidth)//'), more than the limit of '//seconds_text(limit)//' set by '// &
+      origin//' (a larger DT, a shorter TEND or a coarser mesh; or raise the limit)'
+    line = 0
+    if (allocated(deck%stages)) then
+      if (ubound(deck%stages, 1) >= 1) line = deck%stages(1)%line
+    end if
+    if (line > 0) then
+      call set_error(error, what, file=deck%cards%file, line=line, card='TIME')
+    else
+      call set_error(error, what, file=deck%cards%file, line=deck%mesh%line, column=deck%mesh%column, &
+                     card=deck%mesh%card)
+    end if
+  end subroutine check_run_time
+
   !> "stiffness and factor 1.2 GiB, elements 30 MiB, ...": the parts of an estimate.
   function parts_text(size) result(text)
     type(run_size_t), intent(in) :: size
@@ -195,6 +223,8 @@ contains
     character(:), allocatable :: note
     size = estimate_run(deck)
     call check_run_size(deck, size, error)
+    if (allocated(error)) return
+    call check_run_time(deck, size, error)
     if (allocated(error)) return
     note = long_run_note(path, size)
     if (len(note) > 0) then

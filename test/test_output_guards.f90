@@ -227,7 +227,7 @@ contains
       'EXPECT strain_energy_J 0', 'END'])
     call run_deck(folder//'/zero.inp', folder//'/expect', record, error)
     call check_text_contains('expect_zero_refused', text_of(error), &
-      folder//'/zero.inp:8:24: EXPECT: the expected value of strain_energy_j is 0')
+      folder//'/zero.inp:8:24: EXPECT: expected value must be nonzero')
     call write_deck(folder//'/twice.inp', [character(len=80) :: block_deck(1:7), &
       'EXPECT strain_energy_J 1.0', 'EXPECT strain_energy_J 2.0', 'END'])
     call run_deck(folder//'/twice.inp', folder//'/expect', record, error)
