@@ -1,4 +1,4 @@
-!> What an impact on the plate reports (DESIGN.md's keys), measured after
+!> What an impact on the plate reports (the summary keys of README.md, Outputs), measured after
 !> every step of a dynamic run with a PLATE: first contact (t = 0 of the
 !> results), alpha = the approach of the centre of mass since then, the plate
 !> force and the pressure at the pole, the contact radius, the centre's
@@ -255,7 +255,7 @@ contains
            impact%accel_centre/g_unit, real(impact%contact_nodes, dp)]
   end function impact_row
 
-  !> The impact keys of the summary (DESIGN.md), the Hertz reference for
+  !> The impact keys of the summary (README.md, Outputs), the Hertz reference for
   !> `mass` (kg, whole body), the warnings, and the history columns t_ms and
   !> alpha_mm from t_s and uz_cm_m now that first contact is known.
   subroutine impact_summary(impact, deck, contact, record, mass, t_end)
