@@ -364,14 +364,11 @@ contains
     character(:), allocatable, intent(out) :: origin
     logical, intent(out) :: raisable
     character(:), allocatable :: text, message
-    integer :: n, status
     real(dp) :: machine
     if (.not. environment_read) then
       environment_read = .true.
-      call get_environment_variable('VISCO2D_MAX_MEMORY', length=n, status=status)
-      if (status == 0 .and. n > 0) then
-        allocate(character(len=n) :: text)
-        call get_environment_variable('VISCO2D_MAX_MEMORY', text)
+      text = environment_value('VISCO2D_MAX_MEMORY')
+      if (len(text) > 0) then
         call set_memory_limit(text, 'VISCO2D_MAX_MEMORY', message)
         if (len(message) > 0) write(0, '(a)') 'visco2d: warning: '//message//'; using the default limit'
       end if
@@ -495,13 +492,10 @@ contains
     real(dp), intent(out) :: seconds
     character(:), allocatable, intent(out) :: origin
     character(:), allocatable :: text, message
-    integer :: n, status
     if (.not. time_environment_read) then
       time_environment_read = .true.
-      call get_environment_variable('VISCO2D_MAX_TIME', length=n, status=status)
-      if (status == 0 .and. n > 0) then
-        allocate(character(len=n) :: text)
-        call get_environment_variable('VISCO2D_MAX_TIME', text)
+      text = environment_value('VISCO2D_MAX_TIME')
+      if (len(text) > 0) then
         call set_time_limit(text, 'VISCO2D_MAX_TIME', message)
         if (len(message) > 0) write(0, '(a)') 'visco2d: warning: '//message//'; no time limit'
       end if
@@ -509,4 +503,17 @@ contains
     seconds = user_seconds
     origin = trim(user_seconds_origin)
   end subroutine time_limit
+
+  !> The value of an environment variable ('' when it is not set or empty).
+  function environment_value(name) result(text)
+    character(*), intent(in) :: name
+    character(:), allocatable :: text
+    integer :: n, status
+    text = ''
+    call get_environment_variable(name, length=n, status=status)
+    if (status /= 0 .or. n <= 0) return
+    deallocate(text)
+    allocate(character(len=n) :: text)
+    call get_environment_variable(name, text)
+  end function environment_value
 end module visco2d_budget

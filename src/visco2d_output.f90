@@ -96,7 +96,7 @@ contains
     character(*), intent(in) :: line
     if (len(file%message) > 0) return
     if (file_write(file%stream, line) /= 0 .or. file_write(file%stream, new_line('a')) /= 0) then
-      file%message = 'writing failed after '//itoa64(file%bytes)//' bytes (disk full or a file size limit?)'
+      file%message = 'writing failed after '//itoa(file%bytes)//' bytes (disk full or a file size limit?)'
       return
     end if
     file%bytes = file%bytes + len(line) + 1
@@ -117,18 +117,10 @@ contains
       return
     end if
     inquire(file=file%path, size=size, iostat=status)
-    if (status /= 0 .or. size /= file%bytes) file%message = 'only '//itoa64(max(size, 0_int64))//' of '// &
-      itoa64(file%bytes)//' bytes reached the disk (disk full or a file size limit?)'
+    if (status /= 0 .or. size /= file%bytes) file%message = 'only '//itoa(max(size, 0_int64))//' of '// &
+      itoa(file%bytes)//' bytes reached the disk (disk full or a file size limit?)'
   end subroutine text_close
 
-  !> A 64-bit integer as text.
-  pure function itoa64(value) result(text)
-    integer(int64), intent(in) :: value
-    character(:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(i0)') value
-    text = trim(buffer)
-  end function itoa64
 
   !> summary.txt: one `key = value` per line.
   subroutine write_summary(path, record, message)

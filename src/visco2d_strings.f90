@@ -1,21 +1,36 @@
 !> Small text helpers: numbers to strings for messages and listings.
 module visco2d_strings
+  use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
   implicit none
   private
 
   public :: itoa, rtoa, gtoa, es_field, short_real, compact_real, to_upper, to_lower, nearest_word
 
+  !> Integer (default or 64-bit) as text without blanks.
+  interface itoa
+    module procedure itoa_default, itoa_int64
+  end interface itoa
+
 contains
 
   !> Integer as text without blanks.
-  pure function itoa(value) result(text)
+  pure function itoa_default(value) result(text)
     integer, intent(in) :: value
     character(:), allocatable :: text
     character(len=16) :: buffer
     write(buffer, '(i0)') value
     text = trim(buffer)
-  end function itoa
+  end function itoa_default
+
+  !> 64-bit integer as text without blanks.
+  pure function itoa_int64(value) result(text)
+    integer(int64), intent(in) :: value
+    character(:), allocatable :: text
+    character(len=24) :: buffer
+    write(buffer, '(i0)') value
+    text = trim(buffer)
+  end function itoa_int64
 
   !> Real as text with 4 significant decimals (for messages): 1.8110E+07,
   !> and a three-digit exponent where one is needed (1.0000E-300, never the

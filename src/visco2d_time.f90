@@ -67,18 +67,11 @@ contains
     end do
     if (total > max_steps) then
       steps = total - stage%steps
-      call card_error(error, cards, card, 'the TIME stages add up to '//itoa64(total)//' steps, more than '// &
-                      itoa(max_steps)//' (the stages before this one take '//itoa64(steps)//')', &
+      call card_error(error, cards, card, 'the TIME stages add up to '//itoa(total)//' steps, more than '// &
+                      itoa(max_steps)//' (the stages before this one take '//itoa(steps)//')', &
                       field_column(card, 'DT')); return
     end if
     stages = [stages, stage]
   end subroutine read_time
 
-  pure function itoa64(value) result(text)
-    integer(int64), intent(in) :: value
-    character(:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(i0)') value
-    text = trim(buffer)
-  end function itoa64
 end module visco2d_time
