@@ -15,7 +15,7 @@ module visco2d_impact
   use visco2d_viscoelastic, only: step_coefficients_t, viscoelastic_state_t, element_terms, history_stress
   use visco2d_contact, only: contact_t, contact_count, contact_pressure, contact_force, contact_radius, &
                              nearest_free_node, put_hertz_summary
-  use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column
+  use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column, record_warn
   implicit none
   private
 
@@ -275,8 +275,8 @@ contains
     call record_put_integer(record, 'contact_iterations', contact%iterations)
     call record_put_integer(record, 'contact_nodes_max', m%contact_nodes_max)
     if (m%t_contact < 0.0_dp) then
-      write(0, '(a)') 'visco2d: warning: '//deck%cards%file//': the body never touched the plate (PLATE Z = '// &
-        short_real(deck%plate%z)//' m): no contact results'
+      call record_warn(record, 'the body never touched the plate (PLATE Z = '//short_real(deck%plate%z)// &
+        ' m): no contact results', file=deck%cards%file, line=deck%plate%line, card='PLATE')
       call record_put(record, 'contact', 'none')
     else
       call record_put_real(record, 'time_first_contact_s', m%t_contact)
@@ -306,8 +306,10 @@ contains
       end if
       call put_hertz_summary(deck, record, mass, m%v_cm_contact)
     end if
-    if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) write(0, '(a)') 'visco2d: warning: '// &
-      deck%cards%file//': the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)
+    if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) call record_warn(record, &
+      'the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)//': alpha_max_mm and '// &
+      'the other maxima are those of the time simulated, not of the whole impact; a later TEND reaches them', &
+      file=deck%cards%file, line=stop_line(deck), card='STOP')
     t_column = record_column(record, 't_s')
     uz_column = record_column(record, 'uz_cm_m')
     t_ms_column = record_column(record, 't_ms')
@@ -350,4 +352,11 @@ contains
     end if
     alpha_peak = m%alpha_max - slope**2/(4.0_dp*curvature)
   end subroutine peak_of_parabola
+  !> The line of the STOP card, or of the PLATE card when STOP is not given
+  !> (the default criterion comes with the plate).
+  pure integer function stop_line(deck)
+    type(deck_t), intent(in) :: deck
+    stop_line = deck%stop_line
+    if (stop_line == 0) stop_line = deck%plate%line
+  end function stop_line
 end module visco2d_impact

@@ -185,6 +185,29 @@ contains
     if (allocated(error)) return
     call check('Table 1 at DT = 1 ms: warnings = 3 (contact steps, body transit, energy balance)', &
                summary_value(record, 'warnings') == '3', 'warnings = '//summary_value(record, 'warnings'))
+    ! TEND = 1 ms, before maximum deformation (1.46 ms): the maxima are those
+    ! of the time simulated; a warning, counted, says so.
+    coarse = paper
+    coarse(7) = 'TIME DT=1e-5 TEND=1e-3'
+    call write_deck(folder//'/short_tend.inp', coarse)
+    call run_deck(folder//'/short_tend.inp', out_root, record, error)
+    call check('Table 1 to TEND = 1 ms runs', .not. allocated(error))
+    if (allocated(error)) return
+    call check('Table 1 to TEND = 1 ms: stop_reason = end of time', &
+               summary_value(record, 'stop_reason') == 'end of time', summary_value(record, 'stop_reason'))
+    call check('Table 1 to TEND = 1 ms: the criterion not reached is a counted warning (warnings = 1)', &
+               summary_value(record, 'warnings') == '1', 'warnings = '//summary_value(record, 'warnings'))
+    ! A plate the body never reaches in 1 ms: two counted warnings (never
+    ! touched; the default STOP AT=MAXDEFORMATION not reached).
+    coarse = paper
+    coarse(8) = 'PLATE Z=-0.01 STICK'
+    coarse(7) = 'TIME DT=1e-5 TEND=1e-3'
+    call write_deck(folder//'/no_touch.inp', coarse)
+    call run_deck(folder//'/no_touch.inp', out_root, record, error)
+    call check('a plate 10 mm below, 1 ms: runs', .not. allocated(error))
+    if (allocated(error)) return
+    call check('a plate never touched: warnings = 2 (never touched, criterion not reached)', &
+               summary_value(record, 'warnings') == '2', 'warnings = '//summary_value(record, 'warnings'))
   end subroutine time_step_warnings_counted
 
   function rtoa_(value) result(text)
