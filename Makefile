@@ -3,6 +3,8 @@
 #               then print the impact results beside the paper's (scripts/paper_table.py)
 #   make test   install what is missing, run the tests and the reference-output diffs
 #   make figures  pictures of the paper's figures into out/figures/ (scripts/figures.py)
+#   make fuzz     N mutated decks through the release build (scripts/fuzz.py; N=10000: ~4 min)
+#   make checked  every deck under -fcheck=all and the address/undefined-behaviour sanitizers
 # and, on purpose only:
 #   make bless  regenerate reference_outputs/ from the current code (say why in the commit)
 
