@@ -18,7 +18,7 @@ program test_input_guards
   use visco2d_cards, only: parse_real, max_line_length
   use visco2d_curve, only: curve_t, curve_value
   use visco2d_strings, only: itoa, rtoa, gtoa, es_field, short_real, compact_real
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, message_of
   use visco2d_test_decks, only: deck_line_length, square, creep, impact_in_gravity, try_read_deck
   implicit none
 
@@ -560,13 +560,6 @@ contains
     character(*), intent(in) :: name, actual, expected
     call check(name, actual == expected, 'got "'//actual//'", expected "'//expected//'"')
   end subroutine check_text
-
-  function message_of(error) result(text)
-    type(error_t), allocatable, intent(in) :: error
-    character(:), allocatable :: text
-    text = ''
-    if (allocated(error)) text = error_text(error)
-  end function message_of
 
   subroutine expect_valid(name, deck_lines)
     character(*), intent(in) :: name
