@@ -360,43 +360,49 @@ contains
   !> E = 1e308: the stiffness overflows. Refused (when the deck is read, or
   !> by the solver: "not a finite number"), never "did not settle" nor NaN results.
   subroutine overflowed()
-    type(deck_t) :: deck
-    type(record_t) :: record
-    type(error_t), allocatable :: error
-    character(:), allocatable :: file, text
-    file = folder//'/overflow.inp'
-    call write_deck(file, [character(len=80) :: 'TITLE overflow', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL m ELASTIC E=1e308 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=2', 'PLATE Z=0 STICK', &
-      'GRAVITY G=300', 'END'])
-    call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
-    call check('E = 1e308: refused', allocated(error))
-    if (.not. allocated(error)) return
-    text = error_text(error)
-    print '(a)', text
-    call check('E = 1e308: not reported as a contact set that did not settle', index(text, 'did not settle') == 0, text)
+    character(:), allocatable :: text
+    logical :: refused
+    call expect_refused('E = 1e308', folder//'/overflow.inp', [character(len=80) :: 'TITLE overflow', &
+      'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', 'MATERIAL m ELASTIC E=1e308 NU=0.219 RHO=756.85', &
+      'MESH SPHERE R=0.0366 LEVEL=2', 'PLATE Z=0 STICK', 'GRAVITY G=300', 'END'], refused, text)
+    if (refused) call check('E = 1e308: not reported as a contact set that did not settle', &
+                            index(text, 'did not settle') == 0, text)
   end subroutine overflowed
 
   !> A block pulled off the plate: nothing holds it once every bottom node is
   !> freed at lambda = 0. The singular stiffness is reported at the PLATE card
   !> (line 6), with the advice about a body that only rests on the plate.
   subroutine lifted_off()
-    type(deck_t) :: deck
-    type(record_t) :: record
-    type(error_t), allocatable :: error
     character(:), allocatable :: file, text
+    logical :: refused
     file = folder//'/lifted.inp'
-    call write_deck(file, [character(len=80) :: 'TITLE lifted', 'ANALYSIS STATIC', 'GEOMETRY PLANESTRAIN', &
-      'MATERIAL m ELASTIC E=5.0e6 NU=0.3', 'MESH RECT R0=0 R1=0.02 Z0=0 Z1=0.01 NR=4 NZ=2', 'PLATE Z=0 SLIP', &
-      'FORCE 15 FZ=5', 'FIX AXIS R', 'END'])
-    call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
-    call check('lifted block: refused', allocated(error))
-    if (.not. allocated(error)) return
-    text = error_text(error)
-    print '(a)', text
+    call expect_refused('lifted block', file, [character(len=80) :: 'TITLE lifted', 'ANALYSIS STATIC', &
+      'GEOMETRY PLANESTRAIN', 'MATERIAL m ELASTIC E=5.0e6 NU=0.3', 'MESH RECT R0=0 R1=0.02 Z0=0 Z1=0.01 NR=4 NZ=2', &
+      'PLATE Z=0 SLIP', 'FORCE 15 FZ=5', 'FIX AXIS R', 'END'], refused, text)
+    if (.not. refused) return
     call check('lifted block: located at the PLATE card', index(text, file//':6: PLATE: ') == 1, text)
     call check('lifted block: says why', index(text, '0 node(s) on the plate') > 0 .and. &
                index(text, 'only rests on the plate') > 0, text)
   end subroutine lifted_off
+
+  !> The deck, written to `file`, is read and solved with static contact: it
+  !> must be refused (check `<name>: refused`). The error's text is printed
+  !> and returned ('' if the deck was not refused).
+  subroutine expect_refused(name, file, deck_lines, refused, text)
+    character(*), intent(in) :: name, file, deck_lines(:)
+    logical, intent(out) :: refused
+    character(:), allocatable, intent(out) :: text
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    call write_deck(file, deck_lines)
+    call read_deck(file, deck, error)
+    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
+    refused = allocated(error)
+    call check(name//': refused', refused)
+    text = ''
+    if (.not. refused) return
+    text = error_text(error)
+    print '(a)', text
+  end subroutine expect_refused
 end program test_contact_stick
