@@ -10,7 +10,7 @@ program test_bad_decks
                          stop_at_max_deformation, stop_at_separation
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, read_lines
   use visco2d_test_decks, only: deck_line_length, square, creep, dynamic, impact, press, try_read_deck, &
                                 check_error_location
   implicit none
@@ -619,18 +619,15 @@ contains
     character(*), intent(in) :: path
     character(:), allocatable :: entries
     character(*), parameter :: list = 'build/test_decks/bad_listing.txt'
-    character(len=1024) :: buffer
-    integer :: unit, ios
+    character(:), allocatable :: names(:)
+    logical :: found
+    integer :: k
     entries = ''
     call execute_command_line('ls -A '//path//' > '//list//' 2>/dev/null')
-    open(newunit=unit, file=list, status='old', action='read', iostat=ios)
-    if (ios /= 0) return
-    do
-      read(unit, '(a)', iostat=ios) buffer
-      if (ios /= 0) exit
-      entries = entries//trim(buffer)//' '
+    call read_lines(list, names, found, delete=.true.)
+    do k = 1, size(names)
+      entries = entries//trim(names(k))//' '
     end do
-    close(unit, status='delete')
     entries = trim(entries)
   end function folder_entries
 

@@ -18,7 +18,8 @@ program test_input_guards
   use visco2d_cards, only: parse_real, max_line_length
   use visco2d_curve, only: curve_t, curve_value
   use visco2d_strings, only: itoa, rtoa, gtoa, es_field, short_real, compact_real
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, message_of
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, message_of, &
+                             read_lines
   use visco2d_test_decks, only: deck_line_length, square, creep, impact_in_gravity, try_read_deck
   implicit none
 
@@ -461,10 +462,9 @@ contains
   !> output as NaN/Infinity or made an unreadable one on the old reader.
   subroutine fuzz_findings()
     character(len=deck_line_length), allocatable :: fuzz(:)
-    character(:), allocatable :: text
-    integer :: unit, ios
-    character(len=4096) :: row
-    logical :: malformed
+    character(:), allocatable :: text, listing(:)
+    integer :: k
+    logical :: found, malformed
     fuzz = [character(len=deck_line_length) :: 'ANALYSIS DYNAMIC', &
       'MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=1', 'GRAVITY G=9.8', &
       'TIME DT=1e-5 TEND=2e-3', 'EXPECT az_cm_m_s2 4.9e-324 RTOL=1e-9', 'END']
@@ -498,16 +498,13 @@ contains
       call check('fuzz_d000032_runs', .not. allocated(error), message_of(error))
       if (allocated(error)) return
       text = out_root//'/fuzz_d000032_listing/listing.txt'
+      call read_lines(text, listing, found)
+      call check('fuzz_d000032_listing_exists', found, text)
+      if (.not. found) return
       malformed = .false.
-      open(newunit=unit, file=text, status='old', action='read', iostat=ios)
-      call check('fuzz_d000032_listing_exists', ios == 0, text)
-      if (ios /= 0) return
-      do
-        read(unit, '(a)', iostat=ios) row
-        if (ios /= 0) exit
-        malformed = malformed .or. has_bare_exponent(trim(row))
+      do k = 1, size(listing)
+        malformed = malformed .or. has_bare_exponent(trim(listing(k)))
       end do
-      close(unit)
       call check('fuzz_d000032_listing_exponents', .not. malformed, 'a number like 1.0-200 (no E) in '//text)
     end block
   end subroutine fuzz_findings

@@ -21,7 +21,7 @@ program test_mesh_guards
   use visco2d_budget, only: run_size_t, parse_memory_size, set_memory_limit, memory_limit, bytes_text, count_text, &
                             seconds_text, sphere_mesh_counts, grid_mesh_counts, machine_memory
   use visco2d_estimate, only: estimate_run, check_run_size, long_run_note
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, read_lines
   use visco2d_strings, only: itoa
   use visco2d_test_decks, only: deck_line_length, square, try_read_deck, check_error_location
   implicit none
@@ -485,25 +485,21 @@ contains
   !> No shipped deck trips a mesh check (no false alarm).
   subroutine check_shipped_decks()
     character(*), parameter :: list = 'build/test_decks/mesh_guards_inputs.txt'
-    character(len=512) :: path
+    character(:), allocatable :: paths(:)
     type(deck_t) :: deck
     type(error_t), allocatable :: error
-    integer :: unit, ios, count
+    logical :: found
+    integer :: k
     call execute_command_line('ls inputs/*.inp > '//list)
-    open(newunit=unit, file=list, status='old', action='read', iostat=ios)
-    call check('inputs_listed', ios == 0)
-    if (ios /= 0) return
-    count = 0
-    do
-      read(unit, '(a)', iostat=ios) path
-      if (ios /= 0) exit
-      count = count + 1
-      call read_deck(trim(path), deck, error)
+    call read_lines(list, paths, found, delete=.true.)
+    call check('inputs_listed', found)
+    if (.not. found) return
+    do k = 1, size(paths)
+      call read_deck(trim(paths(k)), deck, error)
       if (allocated(error)) print '(a)', '  '//error_text(error)
-      call check('input_reads_'//trim(path), .not. allocated(error))
+      call check('input_reads_'//trim(paths(k)), .not. allocated(error))
       if (allocated(error)) deallocate(error)
     end do
-    close(unit, status='delete')
-    call check('inputs_found', count >= 10, itoa(count)//' decks')
+    call check('inputs_found', size(paths) >= 10, itoa(size(paths))//' decks')
   end subroutine check_shipped_decks
 end program test_mesh_guards

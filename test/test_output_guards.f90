@@ -27,7 +27,7 @@ program test_output_guards
   use visco2d_driver, only: run_deck, prepare_output_root, remove_stale_folders, relative_error, expect_tally_t, &
                             run_line, summary_value, run_warning_count
   use visco2d_system, only: make_directory, directory_exists, path_exists, process_id, process_alive, remove_tree
-  use visco2d_testing, only: check, check_text_contains, test_summary, write_deck, message_of
+  use visco2d_testing, only: check, check_text_contains, test_summary, write_deck, message_of, read_lines
   implicit none
 
   character(*), parameter :: folder = 'build/test_output_guards'
@@ -370,10 +370,8 @@ contains
     type(deck_t) :: deck
     type(record_t) :: record
     type(error_t), allocatable :: error
-    character(:), allocatable :: message
-    character(len=512) :: line
-    integer :: unit, status
-    logical :: listed
+    character(:), allocatable :: message, listing(:)
+    logical :: found
     call read_deck(folder//'/block.inp', deck, error)
     if (allocated(error)) return
     call clean_record(deck, record)
@@ -386,14 +384,8 @@ contains
     call check('run_warning_plain', record%warnings(2)%text == 'no location', record%warnings(2)%text)
     call write_listing(folder//'/listing.txt', 'block', deck, 'none', record, message)
     call check('run_warnings_listing_written', len(message) == 0, message)
-    listed = .false.
-    open(newunit=unit, file=folder//'/listing.txt', status='old', action='read')
-    do
-      read(unit, '(a)', iostat=status) line
-      if (status /= 0) exit
-      if (trim(line) == '   d.inp:12: TIME: the energy balance error is 7 % of the input') listed = .true.
-    end do
-    close(unit)
-    call check('run_warnings_in_listing', listed)
+    call read_lines(folder//'/listing.txt', listing, found)
+    call check('run_warnings_in_listing', &
+               any(listing == '   d.inp:12: TIME: the energy balance error is 7 % of the input'))
   end subroutine test_run_warnings
 end program test_output_guards

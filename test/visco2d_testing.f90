@@ -11,7 +11,7 @@ module visco2d_testing
   private
 
   public :: check, check_close, check_text_contains, test_summary, failures, write_deck
-  public :: history_index, history_column, history_last, summary_real, message_of, exact_text
+  public :: history_index, history_column, history_last, summary_real, message_of, exact_text, read_lines
 
   integer, save :: passes = 0, failures = 0
 
@@ -142,4 +142,42 @@ contains
     write(buffer, '(es24.16)') value
     text = trim(adjustl(buffer))
   end function exact_text
+
+  !> The lines of a text file (of at most 4096 characters each), all as long
+  !> as the longest; `found` is false, and there are no lines, if the file
+  !> cannot be opened. `delete`: remove the file once read.
+  subroutine read_lines(path, lines, found, delete)
+    character(*), intent(in) :: path
+    character(:), allocatable, intent(out) :: lines(:)
+    logical, intent(out) :: found
+    logical, intent(in), optional :: delete
+    character(len=4096) :: buffer
+    integer :: unit, status, count, width, k
+    allocate(character(len=0) :: lines(0))
+    open(newunit=unit, file=path, status='old', action='read', iostat=status)
+    found = status == 0
+    if (.not. found) return
+    count = 0
+    width = 0
+    do
+      read(unit, '(a)', iostat=status) buffer
+      if (status /= 0) exit
+      count = count + 1
+      width = max(width, len_trim(buffer))
+    end do
+    rewind(unit)
+    deallocate(lines)
+    allocate(character(len=width) :: lines(count))
+    do k = 1, count
+      read(unit, '(a)') lines(k)
+    end do
+    close(unit, status=merge('delete', 'keep  ', present_and_true(delete)))
+  end subroutine read_lines
+
+  !> An optional flag that is present and true.
+  pure logical function present_and_true(flag)
+    logical, intent(in), optional :: flag
+    present_and_true = .false.
+    if (present(flag)) present_and_true = flag
+  end function present_and_true
 end module visco2d_testing
