@@ -49,6 +49,7 @@ program test_contact_static
   use visco2d_driver, only: summary_value
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text, history_column
+  use visco2d_test_decks, only: pressed_sphere
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_contact_static'
@@ -330,10 +331,7 @@ contains
     character(*), intent(in) :: name
     character(:), allocatable :: file
     file = folder//'/'//name//'.inp'
-    call write_deck(file, [character(len=80) :: &
-      'TITLE Static indentation of the Table-1 sphere on a rigid plate', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &
-      'PLATE Z=0 SLIP', 'GRAVITY G='//exact_text(g), 'END'])
+    call write_deck(file, pressed_sphere('Static indentation of the Table-1 sphere on a rigid plate', level, 'SLIP', g))
   end function static_deck
 
   !> Whole-body mass of the level's sphere mesh (2 pi rho int dV).

@@ -37,6 +37,7 @@ program test_contact_stick
   use visco2d_driver, only: summary_value
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
+  use visco2d_test_decks, only: pressed_sphere
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_contact_stick'
@@ -84,9 +85,10 @@ contains
     type(error_t), allocatable :: error
     real(dp), allocatable :: weight(:)
     real(dp) :: mass
+    character(*), parameter :: title = 'Static indentation of the Table-1 sphere'
     ! The mesh's own mass (2 pi rho int dV), so that the plate carries F exactly.
     file = folder//'/'//name//'.inp'
-    call write_deck(file, sphere_lines(level, mode, 1.0_dp))
+    call write_deck(file, pressed_sphere(title, level, mode, 1.0_dp))
     call read_deck(file, deck, error)
     if (allocated(error)) then
       call check(name//': reads', .false., error_text(error))
@@ -94,19 +96,8 @@ contains
     end if
     weight = volume_weights(deck)
     mass = 2.0_dp*pi*756.85_dp*sum(weight(2::2))
-    call write_deck(file, sphere_lines(level, mode, force/mass))
+    call write_deck(file, pressed_sphere(title, level, mode, force/mass))
   end function sphere_deck
-
-  !> The lines of the sphere deck with GRAVITY G = g.
-  function sphere_lines(level, mode, g) result(text)
-    integer, intent(in) :: level
-    character(*), intent(in) :: mode
-    real(dp), intent(in) :: g
-    character(len=80), allocatable :: text(:)
-    text = [character(len=80) :: 'TITLE Static indentation of the Table-1 sphere', 'ANALYSIS STATIC', &
-            'GEOMETRY AXISYMMETRIC', 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
-            'MESH SPHERE R=0.0366 LEVEL='//itoa(level), 'PLATE Z=0 '//mode, 'GRAVITY G='//exact_text(g), 'END']
-  end function sphere_lines
 
   !> Solve a static contact deck; check that it settles with an admissible state.
   subroutine press(file, tag, record, nodes, r_out, ok)

@@ -1,16 +1,18 @@
-!> Small valid decks and the checks of a refused deck, shared by the tests of
-!> the card reader (test_bad_decks, test_input_guards, test_mesh_guards).
+!> Small valid decks shared by the tests, and the checks of a refused deck
+!> (the tests of the card reader: test_bad_decks, test_input_guards,
+!> test_mesh_guards; the static contact tests: pressed_sphere).
 !> A deck is an array of lines: line k of the file is element k (the number
 !> beside each card), so a test replaces or splices cards by their line.
 module visco2d_test_decks
+  use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_strings, only: itoa
-  use visco2d_testing, only: check, check_text_contains, write_deck
+  use visco2d_testing, only: check, check_text_contains, write_deck, exact_text
   implicit none
   private
 
-  public :: deck_line_length, square, creep, dynamic, impact, impact_in_gravity, press
+  public :: deck_line_length, square, creep, dynamic, impact, impact_in_gravity, press, pressed_sphere
   public :: try_read_deck, check_error_location
 
   !> The length of a deck line in these tests (room for every card they write).
@@ -109,6 +111,24 @@ contains
       'PLATE Z=0 SLIP', &                                 ! 7
       'END']                                              ! 8
   end function press
+
+  !> The Table-1 sphere (E = 18.11 MPa, nu = 0.219, rho = 756.85 kg/m^3,
+  !> R = 36.6 mm; MESH SPHERE at `level`) on PLATE Z=0 `mode` (STICK or
+  !> SLIP), pressed onto it by GRAVITY G = `g`: a STATIC deck titled `title`.
+  function pressed_sphere(title, level, mode, g) result(deck_lines)
+    character(*), intent(in) :: title, mode
+    integer, intent(in) :: level
+    real(dp), intent(in) :: g
+    character(len=deck_line_length), allocatable :: deck_lines(:)
+    deck_lines = [character(len=deck_line_length) :: 'TITLE '//title, &     ! 1
+      'ANALYSIS STATIC', &                                                   ! 2
+      'GEOMETRY AXISYMMETRIC', &                                             ! 3
+      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &              ! 4
+      'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &                          ! 5
+      'PLATE Z=0 '//mode, &                                                  ! 6
+      'GRAVITY G='//exact_text(g), &                                         ! 7
+      'END']                                                                 ! 8
+  end function pressed_sphere
 
   !> Read the deck at `path` (written from `deck_lines` first, if given):
   !> `refused` if read_deck returned an error, `message` its text ('' if none).
