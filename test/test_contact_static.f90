@@ -48,7 +48,8 @@ program test_contact_static
   use visco2d_record, only: record_t
   use visco2d_driver, only: summary_value
   use visco2d_strings, only: itoa
-  use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text, history_column
+  use visco2d_test_decks, only: pressed_sphere
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_contact_static'
@@ -83,33 +84,9 @@ program test_contact_static
 
 contains
 
-  !> A real summary value (a failed check, and NaN, if absent).
-  real(dp) function value_of(record, key) result(x)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: key
-    character(:), allocatable :: text
-    integer :: ios
-    text = summary_value(record, key)
-    x = ieee_nan()
-    if (len(text) == 0) then
-      call check('summary key '//key, .false., 'absent')
-      return
-    end if
-    read(text, *, iostat=ios) x
-    if (ios /= 0) call check('summary key '//key, .false., 'not a number: '//text)
-  end function value_of
-
   real(dp) function ieee_nan()
     ieee_nan = ieee_value(1.0_dp, ieee_quiet_nan)
   end function ieee_nan
-
-  function real_text(x) result(text)
-    real(dp), intent(in) :: x
-    character(:), allocatable :: text
-    character(len=32) :: buffer
-    write(buffer, '(es24.16)') x
-    text = trim(adjustl(buffer))
-  end function real_text
 
   ! ------------------------------------------------------------------------
   ! 1. Pressure projection
@@ -172,8 +149,8 @@ contains
       ! Nodes row by row (n = j (nr + 1) + i + 1), elements counter-clockwise.
       do j = 0, nz
         do i = 0, nr
-          lines = [character(len=120) :: lines, 'NODE '//itoa(j*(nr + 1) + i + 1)//' '//real_text(r_nodes(i + 1))// &
-                   ' '//real_text(height*j/nz)]
+          lines = [character(len=120) :: lines, 'NODE '//itoa(j*(nr + 1) + i + 1)//' '//exact_text(r_nodes(i + 1))// &
+                   ' '//exact_text(height*j/nz)]
         end do
       end do
       do j = 0, nz - 1
@@ -201,9 +178,9 @@ contains
     ! Round-off: the uniaxial state is exact in the element space, so the
     ! errors are those of a small banded solve (~1e-14) and of the summary's
     ! 10 significant digits (5e-10 relative): 1e-9.
-    q_lib = 1.0e6_dp*value_of(record, 'q_MPa')
-    force = value_of(record, 'force_N')
-    nodes = nint(value_of(record, 'contact_nodes'))
+    q_lib = 1.0e6_dp*summary_real(record, 'q_MPa')
+    force = summary_real(record, 'force_N')
+    nodes = nint(summary_real(record, 'contact_nodes'))
     if (axisymmetric) then
       exact_force = p*pi*width**2
     else
@@ -248,20 +225,20 @@ contains
     call contact_pressure(deck, contact, reaction, pressure, q0)
     p_dev = maxval(abs(pack(pressure, contact%active)/p - 1.0_dp))
     call check(tag//': projection on the undeformed boundary: p at every contact node (1e-9)', &
-               p_dev <= 1.0e-9_dp, 'max |p_i/p - 1| = '//real_text(p_dev))
+               p_dev <= 1.0e-9_dp, 'max |p_i/p - 1| = '//exact_text(p_dev))
     ! The library's q_MPa is that projection's value at the pole: p.
     call check_close(tag//': q_MPa = p', q_lib, p, 1.0e-9_dp)
     if (axisymmetric) then
       ! int_0^h (1 - r/h) r dr = h^2/6 per radian.
       axis_dev = solution%reaction(2, axis_node)/(p*h**2/6.0_dp) - 1.0_dp
       naive = solution%reaction(2, axis_node)/(h**2/8.0_dp)/p
-      call check(tag//': axis reaction = p h^2/6 per radian (1e-9)', abs(axis_dev) <= 1.0e-9_dp, real_text(axis_dev))
+      call check(tag//': axis reaction = p h^2/6 per radian (1e-9)', abs(axis_dev) <= 1.0e-9_dp, exact_text(axis_dev))
       call check_close(tag//': naive tributary q = R_axis/(h^2/8) = 4/3 p', naive, 4.0_dp/3.0_dp, 1.0e-9_dp)
     else
       ! Plane strain: int_0^h (1 - x/h) dx = h/2, the tributary length.
       axis_dev = solution%reaction(2, axis_node)/(p*h/2.0_dp) - 1.0_dp
       naive = solution%reaction(2, axis_node)/(h/2.0_dp)/p
-      call check(tag//': edge-node reaction = p h/2 per metre (1e-9)', abs(axis_dev) <= 1.0e-9_dp, real_text(axis_dev))
+      call check(tag//': edge-node reaction = p h/2 per metre (1e-9)', abs(axis_dev) <= 1.0e-9_dp, exact_text(axis_dev))
     end if
     end associate
     print '(a, i0, a, 5(es10.2, a), f12.9, a)', '| '//name//' | ', nodes, ' | ', p_dev, ' | ', q0/p - 1.0_dp, ' | ', &
@@ -295,7 +272,7 @@ contains
     print '(a)', ''
     print '(a)', '## 2. hertz_impact(E=18.11e6, nu=0.219, R=0.0366, V=0.9982) against Table 1 (T&G row)'
     print '(a)', ''
-    print '(a)', '| quantity | M = 0.155 kg | M = rho (4/3) pi R^3 = '//real_text(mass_sphere)//' kg | paper |'
+    print '(a)', '| quantity | M = 0.155 kg | M = rho (4/3) pi R^3 = '//exact_text(mass_sphere)//' kg | paper |'
     print '(a)', '|---|---|---|---|'
     print '(a, f9.5, a, f9.5, a)', '| alpha_m (mm) | ', 1.0e3_dp*hertz%alpha_max, ' | ', 1.0e3_dp*sphere%alpha_max, &
       ' | 1.097 |'
@@ -354,10 +331,7 @@ contains
     character(*), intent(in) :: name
     character(:), allocatable :: file
     file = folder//'/'//name//'.inp'
-    call write_deck(file, [character(len=80) :: &
-      'TITLE Static indentation of the Table-1 sphere on a rigid plate', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &
-      'PLATE Z=0 SLIP', 'GRAVITY G='//real_text(g), 'END'])
+    call write_deck(file, pressed_sphere('Static indentation of the Table-1 sphere on a rigid plate', level, 'SLIP', g))
   end function static_deck
 
   !> Whole-body mass of the level's sphere mesh (2 pi rho int dV).
@@ -404,9 +378,9 @@ contains
       dyn_alpha(k) = ieee_nan()
       return
     end if
-    dyn_force(k) = value_of(record, 'force_max_N')
-    dyn_alpha(k) = 1.0e-3_dp*value_of(record, 'alpha_max_mm')
-    dyn_mass(k) = value_of(record, 'body_mass_kg')
+    dyn_force(k) = summary_real(record, 'force_max_N')
+    dyn_alpha(k) = 1.0e-3_dp*summary_real(record, 'alpha_max_mm')
+    dyn_mass(k) = summary_real(record, 'body_mass_kg')
     call check_close(tag//': body_mass_kg = 2 pi rho int dV of the mesh', dyn_mass(k), sphere_mass(levels(k)), &
                      1.0e-9_dp)
     ! int F d(alpha) along the history, trapezoid, up to the maximum of alpha.
@@ -415,7 +389,7 @@ contains
     peak = maxloc(alpha, dim=1)
     ! alpha_max_mm is the parabola's vertex between steps; the largest sample is alpha_max_step_mm.
     call check_close(tag//': the history maximum of alpha_mm is alpha_max_step_mm', alpha(peak), &
-                     1.0e-3_dp*value_of(record, 'alpha_max_step_mm'), 1.0e-9_dp)
+                     1.0e-3_dp*summary_real(record, 'alpha_max_step_mm'), 1.0e-9_dp)
     call check(tag//': the vertex alpha_max_mm is at or above the largest sample', dyn_alpha(k) >= alpha(peak))
     dyn_work(k) = 0.0_dp
     do i = 1, peak - 1
@@ -462,17 +436,17 @@ contains
 
     print '(a)', ''
     print '(a)', '## 3. Static indentation, MESH SPHERE LEVEL='//itoa(levels(k))//', PLATE Z=0 SLIP, '// &
-                 'GRAVITY G = F/M (M = '//real_text(mass)//' kg)'
+                 'GRAVITY G = F/M (M = '//exact_text(mass)//' kg)'
     print '(a)', ''
     print '(a)', '| F (N) | a_H/R | contact nodes | alpha (mm) | alpha_H (mm) | alpha/alpha_H - 1 | '// &
                  'r_c (mm) | r_out (mm) | h (mm) | a_H (mm) | (a_H - r_out)/h | q (MPa) | q_0 (MPa) | q_H (MPa) | '// &
                  'q/q_H - 1 | q_0/q_H - 1 |'
     print '(a)', '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|'
     do i = 1, n
-      call press(levels(k), forces(i)/mass, tag//' F = '//real_text(forces(i)), f(i), alpha(i), nodes(i), rc(i), &
+      call press(levels(k), forces(i)/mass, tag//' F = '//exact_text(forces(i)), f(i), alpha(i), nodes(i), rc(i), &
                  r_out(i), h(i), q(i), q0(i))
       ! Global equilibrium: the plate carries the whole weight M G (summary's 10 digits).
-      call check_close(tag//': force_N = M G at F = '//real_text(forces(i)), f(i), forces(i), 1.0e-9_dp)
+      call check_close(tag//': force_N = M G at F = '//exact_text(forces(i)), f(i), forces(i), 1.0e-9_dp)
       a_h(i) = (3.0_dp*f(i)*radius/(4.0_dp*modulus))**(1.0_dp/3.0_dp)
       alpha_h = (9.0_dp*f(i)**2/(16.0_dp*modulus**2*radius))**(1.0_dp/3.0_dp)
       q_h = 3.0_dp*f(i)/(2.0_dp*pi*a_h(i)**2)
@@ -489,8 +463,8 @@ contains
       ! Hertz's linear theory: the reported contact_radius_mm (r_c) is the
       ! deformed radius, which with SLIP is smaller by the inward slide u_r of
       ! the edge node (~0.16 mm at 193 N, 0.3 h on level 4).
-      call check(tag//': |a_H - r_out| <= h (outermost contact node, undeformed) at F = '//real_text(f(i)), &
-                 abs(a_h(i) - r_out(i)) <= h(i), '(a_H - r_out)/h = '//real_text((a_h(i) - r_out(i))/h(i)))
+      call check(tag//': |a_H - r_out| <= h (outermost contact node, undeformed) at F = '//exact_text(f(i)), &
+                 abs(a_h(i) - r_out(i)) <= h(i), '(a_H - r_out)/h = '//exact_text((a_h(i) - r_out(i))/h(i)))
     end do
     i_table = minloc(abs(f - table1_force), dim=1)
     i_dyn = findloc(kind, 3, dim=1)
@@ -511,7 +485,7 @@ contains
     qh_193(k) = 3.0_dp*f(i_table)/(2.0_dp*pi*a_h(i_table)**2)
     ! (iii) At the Table-1 force (a/R = 0.178) the finite sphere's centroid approaches less than Hertz.
     call check(tag//': at 193 N (a/R = 0.178) alpha < alpha_H (the centroid approaches less than Hertz)', &
-               dev(i_table) < 0.0_dp, real_text(dev(i_table)))
+               dev(i_table) < 0.0_dp, exact_text(dev(i_table)))
     if (k == nlevel) then
       ! (ii) On the finest level the deviation shrinks monotonically as a/R -> 0 over the
       ! sequence (a/R steps of >= 0.03: the trend, ~0.6 per unit a/R, moves the deviation
@@ -527,16 +501,16 @@ contains
       end do
       call check(tag//': |alpha/alpha_H - 1| grows monotonically with a/R (shrinks as a/R -> 0)', monotone)
       ! ... and is below 3 % at a/R = 0.03 (4 contact nodes on level 4).
-      call check(tag//': |alpha/alpha_H - 1| < 3 % at a/R = 0.03', abs(dev(1)) < 0.03_dp, real_text(dev(1)))
+      call check(tag//': |alpha/alpha_H - 1| < 3 % at a/R = 0.03', abs(dev(1)) < 0.03_dp, exact_text(dev(1)))
       call check(tag//': at least 4 contact nodes at a/R = 0.03', nodes(1) >= 4, itoa(nodes(1)))
       ! Linear in a/R: on level 4 the seven loads lie on a line to 0.15 % (measured);
       ! the bound 0.5 % guards that, and the intercept (the deviation extrapolated to
       ! a/R = 0, where Hertz is exact) is zero to within the mesh error, which at
       ! 193 N is ~0.7 % between levels 3 and 4 (below): |intercept| < 1 %.
       call check(tag//': alpha/alpha_H - 1 is linear in a/R (max residual < 0.5 %)', residual < 0.005_dp, &
-                 real_text(residual))
+                 exact_text(residual))
       call check(tag//': the line through the deviations passes within 1 % of 0 at a/R = 0', &
-                 abs(intercept) < 0.01_dp, real_text(intercept))
+                 abs(intercept) < 0.01_dp, exact_text(intercept))
     end if
 
     ! 4b. The dynamic peak on the static curve: the static alpha at the dynamic peak force.
@@ -601,11 +575,11 @@ contains
       call check(tag//': solves', .false., error_text(error))
       return
     end if
-    force = value_of(record, 'force_N')
-    alpha = 1.0e-3_dp*value_of(record, 'alpha_mm')
-    rc = 1.0e-3_dp*value_of(record, 'contact_radius_mm')
-    q = 1.0e6_dp*value_of(record, 'q_MPa')
-    nodes = nint(value_of(record, 'contact_nodes'))
+    force = summary_real(record, 'force_N')
+    alpha = 1.0e-3_dp*summary_real(record, 'alpha_mm')
+    rc = 1.0e-3_dp*summary_real(record, 'contact_radius_mm')
+    q = 1.0e6_dp*summary_real(record, 'q_MPa')
+    nodes = nint(summary_real(record, 'contact_nodes'))
 
     associate (mesh => deck%mesh)
     displacement = record%snapshots(size(record%snapshots))%displacement

@@ -36,13 +36,15 @@ program test_contact_stick
   use visco2d_record, only: record_t
   use visco2d_driver, only: summary_value
   use visco2d_strings, only: itoa
-  use visco2d_testing, only: check, check_close, test_summary, write_deck
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
+  use visco2d_test_decks, only: pressed_sphere
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_contact_stick'
   real(dp), parameter :: young = 18.11e6_dp, poisson = 0.219_dp, radius = 0.0366_dp
   real(dp), parameter :: modulus = young/(1.0_dp - poisson**2)
   real(dp), parameter :: loads(3) = [50.0_dp, 100.0_dp, 200.0_dp]
+  real(dp), parameter :: absent = -huge(1.0_dp)   ! an absent summary value: nint and the table stay NaN-free
   integer :: level, k
 
   call execute_command_line('mkdir -p '//folder)
@@ -73,30 +75,6 @@ program test_contact_stick
 
 contains
 
-  function real_text(x) result(text)
-    real(dp), intent(in) :: x
-    character(:), allocatable :: text
-    character(len=32) :: buffer
-    write(buffer, '(es24.16)') x
-    text = trim(adjustl(buffer))
-  end function real_text
-
-  !> A real summary value (NaN-free: -huge and a failed check if absent).
-  real(dp) function value_of(record, key) result(x)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: key
-    character(:), allocatable :: text
-    integer :: ios
-    text = summary_value(record, key)
-    x = -huge(1.0_dp)
-    if (len(text) == 0) then
-      call check('summary key '//key, .false., 'absent')
-      return
-    end if
-    read(text, *, iostat=ios) x
-    if (ios /= 0) call check('summary key '//key, .false., 'not a number: '//text)
-  end function value_of
-
   !> The sphere deck at `level` pressed by `force` (N) with PLATE ... `mode`.
   function sphere_deck(level, force, mode, name) result(file)
     integer, intent(in) :: level
@@ -107,9 +85,10 @@ contains
     type(error_t), allocatable :: error
     real(dp), allocatable :: weight(:)
     real(dp) :: mass
+    character(*), parameter :: title = 'Static indentation of the Table-1 sphere'
     ! The mesh's own mass (2 pi rho int dV), so that the plate carries F exactly.
     file = folder//'/'//name//'.inp'
-    call write_deck(file, sphere_lines(level, mode, 1.0_dp))
+    call write_deck(file, pressed_sphere(title, level, mode, 1.0_dp))
     call read_deck(file, deck, error)
     if (allocated(error)) then
       call check(name//': reads', .false., error_text(error))
@@ -117,19 +96,8 @@ contains
     end if
     weight = volume_weights(deck)
     mass = 2.0_dp*pi*756.85_dp*sum(weight(2::2))
-    call write_deck(file, sphere_lines(level, mode, force/mass))
+    call write_deck(file, pressed_sphere(title, level, mode, force/mass))
   end function sphere_deck
-
-  !> The lines of the sphere deck with GRAVITY G = g.
-  function sphere_lines(level, mode, g) result(text)
-    integer, intent(in) :: level
-    character(*), intent(in) :: mode
-    real(dp), intent(in) :: g
-    character(len=80), allocatable :: text(:)
-    text = [character(len=80) :: 'TITLE Static indentation of the Table-1 sphere', 'ANALYSIS STATIC', &
-            'GEOMETRY AXISYMMETRIC', 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
-            'MESH SPHERE R=0.0366 LEVEL='//itoa(level), 'PLATE Z=0 '//mode, 'GRAVITY G='//real_text(g), 'END']
-  end function sphere_lines
 
   !> Solve a static contact deck; check that it settles with an admissible state.
   subroutine press(file, tag, record, nodes, r_out, ok)
@@ -191,9 +159,10 @@ contains
       end if
     end do
     nodes = count(contact%active)
-    call check(tag//': the nodes on the plate are the contact_nodes', nodes == nint(value_of(record, 'contact_nodes')), &
+    call check(tag//': the nodes on the plate are the contact_nodes', &
+               nodes == nint(summary_real(record, 'contact_nodes', absent)), &
                itoa(nodes)//' vs '//summary_value(record, 'contact_nodes'))
-    call check(tag//': no free node through the plate', deepest >= -contact%tolerance, real_text(deepest))
+    call check(tag//': no free node through the plate', deepest >= -contact%tolerance, exact_text(deepest))
     values = merge(u, 0.0_dp, held)
     call solve_static(deck, solution, error, held, values)
     if (allocated(error)) then
@@ -203,7 +172,7 @@ contains
     reaction = band_vector(mesh, solution%reaction)
     change = maxval(abs(band_vector(mesh, solution%displacement) - u))/maxval(abs(u))
     ! Round-off of a banded solve and of the snapshot: 1e-9 relative.
-    call check(tag//': held where they are, the state solves to itself', change <= 1.0e-9_dp, real_text(change))
+    call check(tag//': held where they are, the state solves to itself', change <= 1.0e-9_dp, exact_text(change))
     largest = 0.0_dp
     pull = 0.0_dp
     do i = 1, size(contact%candidates)
@@ -212,7 +181,7 @@ contains
       largest = max(largest, abs(reaction(node_dof(mesh, node, 2))))
       pull = min(pull, reaction(node_dof(mesh, node, 2)))
     end do
-    call check(tag//': every node on the plate pushes', pull >= -1.0e-9_dp*largest, real_text(pull/max(largest, &
+    call check(tag//': every node on the plate pushes', pull >= -1.0e-9_dp*largest, exact_text(pull/max(largest, &
                tiny(1.0_dp))))
     end associate
   end subroutine admissible
@@ -233,13 +202,13 @@ contains
                stick, n_stick, r_stick, ok_stick)
     if (.not. (ok_slip .and. ok_stick)) return
     ! The plate carries the whole weight M G = F (the summary's 10 digits).
-    call check_close(tag//' STICK: force_N = F', value_of(stick, 'force_N'), force, 1.0e-9_dp)
+    call check_close(tag//' STICK: force_N = F', summary_real(stick, 'force_N', absent), force, 1.0e-9_dp)
     call check(tag//' STICK: no node had to slide', summary_value(stick, 'contact_sliding_nodes') == '0', &
                summary_value(stick, 'contact_sliding_nodes'))
-    alpha_slip = value_of(slip, 'alpha_mm')
-    alpha_stick = value_of(stick, 'alpha_mm')
+    alpha_slip = summary_real(slip, 'alpha_mm', absent)
+    alpha_stick = summary_real(stick, 'alpha_mm', absent)
     call check(tag//': STICK approaches less than SLIP (bonded is stiffer)', alpha_stick < alpha_slip, &
-               real_text(alpha_stick)//' vs '//real_text(alpha_slip))
+               exact_text(alpha_stick)//' vs '//exact_text(alpha_slip))
     call check(tag//': STICK touches with no more nodes than SLIP', n_stick <= n_slip)
     a_h = (3.0_dp*force*radius/(4.0_dp*modulus))**(1.0_dp/3.0_dp)
     alpha_h = a_h**2/radius
@@ -248,8 +217,8 @@ contains
       force, ' | ', alpha_slip, ' | ', alpha_stick, ' | ', 1.0e3_dp*alpha_h, ' | ', &
       alpha_slip/(1.0e3_dp*alpha_h) - 1.0_dp, ' | ', alpha_stick/(1.0e3_dp*alpha_h) - 1.0_dp, ' | ', &
       alpha_stick/alpha_slip - 1.0_dp, ' | ', n_slip, ' | ', n_stick, ' | ', 1.0e3_dp*r_slip, ' | ', &
-      1.0e3_dp*r_stick, ' | ', 1.0e3_dp*a_h, ' | ', value_of(slip, 'q_MPa'), ' | ', value_of(stick, 'q_MPa'), ' | ', &
-      1.0e-6_dp*q_h, ' |'
+      1.0e3_dp*r_stick, ' | ', 1.0e3_dp*a_h, ' | ', summary_real(slip, 'q_MPa', absent), ' | ', &
+      summary_real(stick, 'q_MPa', absent), ' | ', 1.0e-6_dp*q_h, ' |'
   end subroutine stick_and_slip
 
   !> Section 2.
@@ -261,24 +230,25 @@ contains
       exact = log(3.0_dp - 4.0_dp*nus(i))*(1.0_dp - nus(i))/(1.0_dp - 2.0_dp*nus(i))
       do level = 3, 4
         ratio(i, level) = patch_ratio(level, nus(i), 'BBAR')
-        call check('patch level '//itoa(level)//' nu = '//real_text(nus(i))//': bonded is stiffer (exact)', &
-                   ratio(i, level) > 1.0_dp, real_text(ratio(i, level)))
+        call check('patch level '//itoa(level)//' nu = '//exact_text(nus(i))//': bonded is stiffer (exact)', &
+                   ratio(i, level) > 1.0_dp, exact_text(ratio(i, level)))
       end do
       ! Toward the half-space value with the mesh (measured, B-bar, 2.5 mm patch:
       ! share of the excess 0.82, 0.93, 1.00 on levels 3, 4, 5 at nu = 0;
       ! 0.64, 0.77, 0.87 at nu = 0.219: the finite sphere's own compliance,
       ! the same for both, dilutes the ratio, less as the mesh resolves the patch).
       if (nus(i) < 0.3_dp) then
-        call check('patch nu = '//real_text(nus(i))//': level 4 nearer the half-space ratio than level 3', &
+        call check('patch nu = '//exact_text(nus(i))//': level 4 nearer the half-space ratio than level 3', &
                    abs(ratio(i, 4) - exact) < abs(ratio(i, 3) - exact))
-        call check('patch nu = '//real_text(nus(i))//': level 4 has 70-110 % of the half-space excess', &
+        call check('patch nu = '//exact_text(nus(i))//': level 4 has 70-110 % of the half-space excess', &
                    (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) > 0.7_dp .and. &
-                   (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) < 1.1_dp, real_text((ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp)))
+                   (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) < 1.1_dp, &
+                   exact_text((ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp)))
       else
         ! Near incompressibility the difference vanishes (0.0028 on a half-space);
         ! the standard element locks under the extra constraints and shows ~0.013.
         call check('patch nu = 0.45: bonded and frictionless within 0.5 % (B-bar, level 4)', &
-                   ratio(i, 4) - 1.0_dp < 0.005_dp, real_text(ratio(i, 4)))
+                   ratio(i, 4) - 1.0_dp < 0.005_dp, exact_text(ratio(i, 4)))
         standard = patch_ratio(4, nus(i), 'STANDARD')
       end if
     end do
@@ -302,7 +272,7 @@ contains
     character(:), allocatable :: file
     file = folder//'/patch.inp'
     call write_deck(file, [character(len=80) :: 'TITLE patch', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
-      'FORMULATION '//formulation, 'MATERIAL m ELASTIC E=18.11e6 NU='//real_text(nu)//' RHO=756.85', &
+      'FORMULATION '//formulation, 'MATERIAL m ELASTIC E=18.11e6 NU='//exact_text(nu)//' RHO=756.85', &
       'MESH SPHERE R=0.0366 LEVEL='//itoa(level), 'PLATE Z=0 STICK', 'GRAVITY G=100', 'END'])
     ratio = 0.0_dp
     call read_deck(file, deck, error)
@@ -381,43 +351,49 @@ contains
   !> E = 1e308: the stiffness overflows. Refused (when the deck is read, or
   !> by the solver: "not a finite number"), never "did not settle" nor NaN results.
   subroutine overflowed()
-    type(deck_t) :: deck
-    type(record_t) :: record
-    type(error_t), allocatable :: error
-    character(:), allocatable :: file, text
-    file = folder//'/overflow.inp'
-    call write_deck(file, [character(len=80) :: 'TITLE overflow', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL m ELASTIC E=1e308 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=2', 'PLATE Z=0 STICK', &
-      'GRAVITY G=300', 'END'])
-    call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
-    call check('E = 1e308: refused', allocated(error))
-    if (.not. allocated(error)) return
-    text = error_text(error)
-    print '(a)', text
-    call check('E = 1e308: not reported as a contact set that did not settle', index(text, 'did not settle') == 0, text)
+    character(:), allocatable :: text
+    logical :: refused
+    call expect_refused('E = 1e308', folder//'/overflow.inp', [character(len=80) :: 'TITLE overflow', &
+      'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', 'MATERIAL m ELASTIC E=1e308 NU=0.219 RHO=756.85', &
+      'MESH SPHERE R=0.0366 LEVEL=2', 'PLATE Z=0 STICK', 'GRAVITY G=300', 'END'], refused, text)
+    if (refused) call check('E = 1e308: not reported as a contact set that did not settle', &
+                            index(text, 'did not settle') == 0, text)
   end subroutine overflowed
 
   !> A block pulled off the plate: nothing holds it once every bottom node is
   !> freed at lambda = 0. The singular stiffness is reported at the PLATE card
   !> (line 6), with the advice about a body that only rests on the plate.
   subroutine lifted_off()
-    type(deck_t) :: deck
-    type(record_t) :: record
-    type(error_t), allocatable :: error
     character(:), allocatable :: file, text
+    logical :: refused
     file = folder//'/lifted.inp'
-    call write_deck(file, [character(len=80) :: 'TITLE lifted', 'ANALYSIS STATIC', 'GEOMETRY PLANESTRAIN', &
-      'MATERIAL m ELASTIC E=5.0e6 NU=0.3', 'MESH RECT R0=0 R1=0.02 Z0=0 Z1=0.01 NR=4 NZ=2', 'PLATE Z=0 SLIP', &
-      'FORCE 15 FZ=5', 'FIX AXIS R', 'END'])
-    call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
-    call check('lifted block: refused', allocated(error))
-    if (.not. allocated(error)) return
-    text = error_text(error)
-    print '(a)', text
+    call expect_refused('lifted block', file, [character(len=80) :: 'TITLE lifted', 'ANALYSIS STATIC', &
+      'GEOMETRY PLANESTRAIN', 'MATERIAL m ELASTIC E=5.0e6 NU=0.3', 'MESH RECT R0=0 R1=0.02 Z0=0 Z1=0.01 NR=4 NZ=2', &
+      'PLATE Z=0 SLIP', 'FORCE 15 FZ=5', 'FIX AXIS R', 'END'], refused, text)
+    if (.not. refused) return
     call check('lifted block: located at the PLATE card', index(text, file//':6: PLATE: ') == 1, text)
     call check('lifted block: says why', index(text, '0 node(s) on the plate') > 0 .and. &
                index(text, 'only rests on the plate') > 0, text)
   end subroutine lifted_off
+
+  !> The deck, written to `file`, is read and solved with static contact: it
+  !> must be refused (check `<name>: refused`). The error's text is printed
+  !> and returned ('' if the deck was not refused).
+  subroutine expect_refused(name, file, deck_lines, refused, text)
+    character(*), intent(in) :: name, file, deck_lines(:)
+    logical, intent(out) :: refused
+    character(:), allocatable, intent(out) :: text
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    call write_deck(file, deck_lines)
+    call read_deck(file, deck, error)
+    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
+    refused = allocated(error)
+    call check(name//': refused', refused)
+    text = ''
+    if (.not. refused) return
+    text = error_text(error)
+    print '(a)', text
+  end subroutine expect_refused
 end program test_contact_stick

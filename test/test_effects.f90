@@ -24,7 +24,7 @@ program test_effects
   use visco2d_record, only: record_t
   use visco2d_strings, only: rtoa
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
-                             history_index, history_last
+                             history_index, history_last, read_lines
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/effects'
@@ -223,22 +223,18 @@ contains
   !> The value of the `effects` line of a listing ('' if absent).
   function listing_effects(path) result(text)
     character(*), intent(in) :: path
-    character(:), allocatable :: text
-    character(len=400) :: line
-    integer :: unit, ios
+    character(:), allocatable :: text, lines(:), line
+    logical :: found
+    integer :: k
     text = ''
-    open(newunit=unit, file=path, status='old', action='read', iostat=ios)
-    if (ios /= 0) return
-    do
-      read(unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      line = adjustl(line)
+    call read_lines(path, lines, found)
+    do k = 1, size(lines)
+      line = adjustl(lines(k))
       if (index(line, 'effects ') == 1) then
         text = trim(adjustl(line(9:)))
         exit
       end if
     end do
-    close(unit)
   end function listing_effects
 
   subroutine contact_present(name, record)

@@ -33,7 +33,7 @@ program test_lame
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_element, only: element_gauss_points, strain_displacement, gauss_count, gauss_xi, gauss_eta
   use visco2d_testing, only: check, check_close, test_summary
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: itoa, rtoa
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks'
@@ -157,13 +157,13 @@ contains
     !    centre, nodal displacement): measured 1.96..2.00; bound 1.8 on the last
     !    three refinements (asymptotic range), which an O(h) defect would fail.
     call check(trim(tag)//': observed Gauss-point stress order >= 0.9 on every refinement', &
-               all(order(2:) >= 0.9_dp), 'min order '//rtoa3(minval(order(2:))))
+               all(order(2:) >= 0.9_dp), 'min order '//rtoa(minval(order(2:))))
     call check(trim(tag)//': observed Gauss-point sigma_zz order >= 0.9 on every refinement', &
-               all(zz_order(2:) >= 0.9_dp), 'min order '//rtoa3(minval(zz_order(2:))))
+               all(zz_order(2:) >= 0.9_dp), 'min order '//rtoa(minval(zz_order(2:))))
     call check(trim(tag)//': observed element-centre stress order >= 1.8 on the last three refinements', &
-               all(centre_order(nmesh - 2:) >= 1.8_dp), 'min order '//rtoa3(minval(centre_order(nmesh - 2:))))
+               all(centre_order(nmesh - 2:) >= 1.8_dp), 'min order '//rtoa(minval(centre_order(nmesh - 2:))))
     call check(trim(tag)//': observed bore displacement order >= 1.8 on the last three refinements', &
-               all(bore_order(nmesh - 2:) >= 1.8_dp), 'min order '//rtoa3(minval(bore_order(nmesh - 2:))))
+               all(bore_order(nmesh - 2:) >= 1.8_dp), 'min order '//rtoa(minval(bore_order(nmesh - 2:))))
     ! The brief's accuracy target for the finest mesh: 0.5 % (relative L2 of
     ! (sigma_r, sigma_theta) at the Gauss points, and bore u_r). Not applied to
     ! sigma_zz: sigma_r + sigma_theta = 2A is smaller than |sigma_theta| (up to
@@ -274,12 +274,4 @@ contains
       st = sig(3)
     end if
   end subroutine polar
-
-  function rtoa3(x) result(text)
-    real(dp), intent(in) :: x
-    character(:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(f8.3)') x
-    text = trim(adjustl(buffer))
-  end function rtoa3
 end program test_lame

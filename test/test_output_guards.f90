@@ -17,8 +17,8 @@ program test_output_guards
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_negative_inf, &
                                            ieee_is_finite
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: gtoa
-  use visco2d_error, only: error_t, error_text
+  use visco2d_strings, only: gtoa, itoa
+  use visco2d_error, only: error_t
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, history_define, history_append, &
                             record_add_snapshot, record_warn
@@ -27,7 +27,7 @@ program test_output_guards
   use visco2d_driver, only: run_deck, prepare_output_root, remove_stale_folders, relative_error, expect_tally_t, &
                             run_line, summary_value, run_warning_count
   use visco2d_system, only: make_directory, directory_exists, path_exists, process_id, process_alive, remove_tree
-  use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
+  use visco2d_testing, only: check, check_text_contains, test_summary, write_deck, message_of, read_lines
   implicit none
 
   character(*), parameter :: folder = 'build/test_output_guards'
@@ -117,11 +117,11 @@ contains
 
     call clean_record(deck, record)
     call check_finite_outputs(deck, record, error)
-    call check('guard_clean_record_passes', .not. allocated(error), 'error: '//text_of(error))
+    call check('guard_clean_record_passes', .not. allocated(error), 'error: '//message_of(error))
 
     call record_put_real(record, 'max_displacement_m', nan)
     call check_finite_outputs(deck, record, error)
-    text = text_of(error)
+    text = message_of(error)
     call check('guard_summary_nan_refused', allocated(error))
     call check_text_contains('guard_summary_nan_located', text, folder//'/block.inp:2: ANALYSIS: ')
     call check_text_contains('guard_summary_nan_names_analysis', text, 'the STATIC analysis produced a non-finite')
@@ -130,34 +130,34 @@ contains
     call clean_record(deck, record)
     call record_put_real(record, 'hertz_alpha_max_mm', infinity)
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_hertz_infinity_names_reference', text_of(error), &
+    call check_text_contains('guard_hertz_infinity_names_reference', message_of(error), &
                              'the Hertz reference of the STATIC analysis produced a non-finite result: '// &
                              'summary key hertz_alpha_max_mm = Infinity')
 
     call clean_record(deck, record)
     record%history(3, 2) = -infinity
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_history_names_cell', text_of(error), &
+    call check_text_contains('guard_history_names_cell', message_of(error), &
       'history column alpha_mm = -Infinity in row 2 of 3 (step 1, t_ms = 1.000000000E-001)')
 
     call clean_record(deck, record)
     record%snapshots(1)%stress(2, 5) = nan
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_snapshot_names_field', text_of(error), &
+    call check_text_contains('guard_snapshot_names_field', message_of(error), &
       'field stress of snapshot step_000002 (final) at t = 2.000000000E-004 s = NaN at node '// &
-      itoa_local(deck%mesh%node_id(5))//', component 2')
+      itoa(deck%mesh%node_id(5))//', component 2')
 
     call clean_record(deck, record)
     record%snapshots(1)%stress_gauss(1, 3, 2) = infinity
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_gauss_names_element', text_of(error), &
+    call check_text_contains('guard_gauss_names_element', message_of(error), &
       'field stress_gauss of snapshot step_000002 (final) at t = 2.000000000E-004 s = Infinity at element '// &
-      itoa_local(deck%mesh%element_id(2))//', Gauss point 3, component 1')
+      itoa(deck%mesh%element_id(2))//', Gauss point 3, component 1')
 
     call clean_record(deck, record)
     record%snapshots(1)%time = nan
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_snapshot_time', text_of(error), 'the time of snapshot step_000002 (final) = NaN')
+    call check_text_contains('guard_snapshot_time', message_of(error), 'the time of snapshot step_000002 (final) = NaN')
   end subroutine test_results_guard
 
   !> The deck's numbers the listing echoes: located at their card.
@@ -171,19 +171,19 @@ contains
     deck%materials(1)%bulk = infinity
     record%history(3, 2) = nan          ! the input is reported first: it explains the result
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_material_located', text_of(error), &
+    call check_text_contains('guard_material_located', message_of(error), &
       folder//'/block.inp:4: MATERIAL: the bulk modulus K of material STEEL is Infinity')
     call read_deck(folder//'/block.inp', deck, error)
     deck%pressures(1)%value = -infinity
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_pressure_located', text_of(error), &
+    call check_text_contains('guard_pressure_located', message_of(error), &
       folder//'/block.inp:7: PRESSURE: the pressure is -Infinity')
     call read_deck(folder//'/block.inp', deck, error)
     call clean_record(deck, record)
     deck%mesh%xy(2, 3) = nan
     call check_finite_outputs(deck, record, error)
-    call check_text_contains('guard_node_named', text_of(error), &
-      'node '//itoa_local(deck%mesh%node_id(3))//' has a non-finite coordinate')
+    call check_text_contains('guard_node_named', message_of(error), &
+      'node '//itoa(deck%mesh%node_id(3))//' has a non-finite coordinate')
   end subroutine test_deck_numbers_guard
 
   !> |c - e|/|e| without overflow; finite for every finite pair with e /= 0.
@@ -207,7 +207,7 @@ contains
     type(expect_tally_t) :: tally
     character(:), allocatable :: displacement, energy, line
     call run_deck(folder//'/block.inp', folder//'/expect', record, error)
-    call check('expect_block_runs', .not. allocated(error), text_of(error))
+    call check('expect_block_runs', .not. allocated(error), message_of(error))
     if (allocated(error)) return
     displacement = summary_value(record, 'max_displacement_m')
     energy = summary_value(record, 'strain_energy_J')
@@ -216,7 +216,7 @@ contains
       'EXPECT strain_energy_J '//energy//' RTOL=1e-6', &
       'EXPECT external_work_J 1.0 RTOL=1e-6', 'END'])
     call run_deck(folder//'/three.inp', folder//'/expect', record, error, tally)
-    call check('expect_three_runs', .not. allocated(error), text_of(error))
+    call check('expect_three_runs', .not. allocated(error), message_of(error))
     call check('expect_three_counted', tally%count == 3 .and. tally%within == 2)
     call check('expect_three_worst_finite', ieee_is_finite(tally%worst) .and. tally%worst > 1.0e-6_dp)
     line = run_line(record, tally)
@@ -226,12 +226,12 @@ contains
     call write_deck(folder//'/zero.inp', [character(len=80) :: block_deck(1:7), &
       'EXPECT strain_energy_J 0', 'END'])
     call run_deck(folder//'/zero.inp', folder//'/expect', record, error)
-    call check_text_contains('expect_zero_refused', text_of(error), &
+    call check_text_contains('expect_zero_refused', message_of(error), &
       folder//'/zero.inp:8:24: EXPECT: expected value must be nonzero')
     call write_deck(folder//'/twice.inp', [character(len=80) :: block_deck(1:7), &
       'EXPECT strain_energy_J 1.0', 'EXPECT strain_energy_J 2.0', 'END'])
     call run_deck(folder//'/twice.inp', folder//'/expect', record, error)
-    call check_text_contains('expect_twice_refused', text_of(error), &
+    call check_text_contains('expect_twice_refused', message_of(error), &
       folder//'/twice.inp:9:8: EXPECT: key strain_energy_j is already expected on line 8')
   end subroutine test_expect_cards
 
@@ -246,7 +246,7 @@ contains
       'MATERIAL steel ELASTIC E=1e308 NU=0.3', block_deck(5:8)])
     call run_deck(folder//'/huge.inp', root, record, error)
     call check('non_finite_run_refused', allocated(error))
-    call check_text_contains('non_finite_run_names_deck', text_of(error), folder//'/huge.inp:')
+    call check_text_contains('non_finite_run_names_deck', message_of(error), folder//'/huge.inp:')
     call check('non_finite_run_no_output', .not. path_exists(root), root//' exists')
   end subroutine test_non_finite_run
 
@@ -284,22 +284,22 @@ contains
     type(error_t), allocatable :: error
     integer :: unit
     call prepare_output_root('', error)
-    call check_text_contains('root_empty_refused', text_of(error), 'the output folder name is empty')
+    call check_text_contains('root_empty_refused', message_of(error), 'the output folder name is empty')
     open(newunit=unit, file=folder//'/plain', status='replace', action='write')
     write(unit, '(a)') 'plain'
     close(unit)
     call prepare_output_root(folder//'/plain/out', error)
-    call check_text_contains('root_through_file_refused', text_of(error), folder//'/plain is not a folder')
+    call check_text_contains('root_through_file_refused', message_of(error), folder//'/plain is not a folder')
     if (directory_exists('/proc/self')) then
       call prepare_output_root('/proc/visco2d_test_output_guards', error)
-      call check_text_contains('root_uncreatable_refused', text_of(error), 'cannot be created')
+      call check_text_contains('root_uncreatable_refused', message_of(error), 'cannot be created')
     end if
     call prepare_output_root(folder//'/fresh/nested/out', error)
-    call check('root_fresh_accepted', .not. allocated(error), text_of(error))
+    call check('root_fresh_accepted', .not. allocated(error), message_of(error))
     call check('root_fresh_not_created', .not. path_exists(folder//'/fresh'))
     call prepare_output_root(folder, error)
-    call check('root_existing_accepted', .not. allocated(error), text_of(error))
-    call check('root_existing_no_probe_left', .not. path_exists(folder//'/.visco2d-probe.'//itoa_local(process_id())))
+    call check('root_existing_accepted', .not. allocated(error), message_of(error))
+    call check('root_existing_no_probe_left', .not. path_exists(folder//'/.visco2d-probe.'//itoa(process_id())))
   end subroutine test_output_root
 
   !> Stale folders of a dead process go (an old folder comes back if its case
@@ -314,13 +314,13 @@ contains
     open(newunit=unit, file=folder//'/dead.pid', status='old', action='read')
     read(unit, *) dead
     close(unit)
-    call check('stale_pid_is_dead', .not. process_alive(dead), 'process '//itoa_local(dead)//' is alive')
+    call check('stale_pid_is_dead', .not. process_alive(dead), 'process '//itoa(dead)//' is alive')
     call check('stale_own_pid_alive', process_alive(process_id()))
     call check('stale_pid_zero_never_alive', .not. process_alive(0) .and. .not. process_alive(-1))
-    dead_text = itoa_local(dead)
+    dead_text = itoa(dead)
     call make_one(root, '.a.partial.'//dead_text)
     call make_one(root, '.b.partial.1')
-    call make_one(root, '.c.partial.'//itoa_local(process_id()))
+    call make_one(root, '.c.partial.'//itoa(process_id()))
     call make_one(root, '.d.old.'//dead_text)
     call make_one(root, '.e.old.'//dead_text)
     call make_one(root, 'e')
@@ -346,7 +346,7 @@ contains
     call check('stale_link_not_followed', path_exists(folder//'/outside/keep.txt'))
     call check('stale_pattern_characters_removed', .not. path_exists(root//'/.h*[x].partial.'//dead_text))
     call check('stale_live_partial_kept', directory_exists(root//'/.b.partial.1'))
-    call check('stale_own_partial_kept', directory_exists(root//'/.c.partial.'//itoa_local(process_id())))
+    call check('stale_own_partial_kept', directory_exists(root//'/.c.partial.'//itoa(process_id())))
     call check('stale_old_put_back', path_exists(root//'/d/summary.txt') .and. &
                .not. path_exists(root//'/.d.old.'//dead_text))
     call check('stale_old_removed_beside_case', .not. path_exists(root//'/.e.old.'//dead_text) .and. &
@@ -370,10 +370,8 @@ contains
     type(deck_t) :: deck
     type(record_t) :: record
     type(error_t), allocatable :: error
-    character(:), allocatable :: message
-    character(len=512) :: line
-    integer :: unit, status
-    logical :: listed
+    character(:), allocatable :: message, listing(:)
+    logical :: found
     call read_deck(folder//'/block.inp', deck, error)
     if (allocated(error)) return
     call clean_record(deck, record)
@@ -386,29 +384,8 @@ contains
     call check('run_warning_plain', record%warnings(2)%text == 'no location', record%warnings(2)%text)
     call write_listing(folder//'/listing.txt', 'block', deck, 'none', record, message)
     call check('run_warnings_listing_written', len(message) == 0, message)
-    listed = .false.
-    open(newunit=unit, file=folder//'/listing.txt', status='old', action='read')
-    do
-      read(unit, '(a)', iostat=status) line
-      if (status /= 0) exit
-      if (trim(line) == '   d.inp:12: TIME: the energy balance error is 7 % of the input') listed = .true.
-    end do
-    close(unit)
-    call check('run_warnings_in_listing', listed)
+    call read_lines(folder//'/listing.txt', listing, found)
+    call check('run_warnings_in_listing', &
+               any(listing == '   d.inp:12: TIME: the energy balance error is 7 % of the input'))
   end subroutine test_run_warnings
-
-  function text_of(error) result(text)
-    type(error_t), allocatable, intent(in) :: error
-    character(:), allocatable :: text
-    text = ''
-    if (allocated(error)) text = error_text(error)
-  end function text_of
-
-  pure function itoa_local(value) result(text)
-    integer, intent(in) :: value
-    character(:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(i0)') value
-    text = trim(buffer)
-  end function itoa_local
 end program test_output_guards

@@ -14,6 +14,7 @@ program test_progress
     progress_step, progress_end, progress_enabled, progress_estimate, progress_format, progress_expect_end, &
     progress_impact_end
   use visco2d_testing, only: check, check_close, test_summary
+  use visco2d_strings, only: itoa, rtoa
   implicit none
   integer, parameter :: max_lines = 100
   character(len=200) :: line, lines(max_lines)
@@ -108,7 +109,7 @@ program test_progress
   ! Whole lines come at most once a second after the first: count - 1 step
   ! lines, the first at ~0 s, the others >= 1 s apart, within the run's time.
   call check('on_rate_limited', count - 1 <= 1 + int(elapsed_run/1.0_dp), &
-             itoa(count - 1)//' step lines in '//real_text(elapsed_run)//' s')
+             itoa(count - 1)//' step lines in '//rtoa(elapsed_run)//' s')
 
   ! ------------------------------------------ a delay: nothing before it
   ! 0.3 s delay, 12 steps of 50 ms: the first line at the first step whose
@@ -123,9 +124,9 @@ program test_progress
   if (first_shown > 1) then
     ! after_begin <= the module's start <= ... : guaranteed orderings only.
     call check('delay_not_before', after(first_shown) >= 0.3_dp, &
-               'step '//itoa(first_shown)//' shown '//real_text(after(first_shown))//' s after begin')
+               'step '//itoa(first_shown)//' shown '//rtoa(after(first_shown))//' s after begin')
     call check('delay_not_late', before(first_shown - 1) < 0.3_dp, &
-               'step '//itoa(first_shown - 1)//' not shown at '//real_text(before(first_shown - 1))//' s')
+               'step '//itoa(first_shown - 1)//' not shown at '//rtoa(before(first_shown - 1))//' s')
   end if
 
   ! ------------------------------------------------- short runs stay silent
@@ -315,20 +316,4 @@ contains
     call system_clock(finish)
     seconds = real(finish - start, dp)/real(rate, dp)/calls
   end function call_cost
-
-  function itoa(i) result(text)
-    integer, intent(in) :: i
-    character(:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(i0)') i
-    text = trim(buffer)
-  end function itoa
-
-  function real_text(x) result(text)
-    real(dp), intent(in) :: x
-    character(:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(f0.4)') x
-    text = trim(buffer)
-  end function real_text
 end program test_progress

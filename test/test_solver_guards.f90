@@ -21,6 +21,7 @@ program test_solver_guards
   use visco2d_contact, only: hertz_impact, hertz_t
   use visco2d_kinds, only: pi
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
+  use visco2d_strings, only: rtoa
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_solver_guards'
@@ -174,7 +175,7 @@ contains
     hertz = hertz_impact(18.11e6_dp, 0.219_dp, radius, density*4.0_dp/3.0_dp*pi*radius**3, 0.9982_dp)
     call check('Table 1: the Hertz contact duration of the warnings is eqs. [43]-[44] (mesh mass, within 2.5 %)', &
                abs(scales%contact_duration/hertz%duration - 1.0_dp) < 0.025_dp, &
-               'warnings '//rtoa_(scales%contact_duration)//' s, exact sphere '//rtoa_(hertz%duration)//' s')
+               'warnings '//rtoa(scales%contact_duration)//' s, exact sphere '//rtoa(hertz%duration)//' s')
     call run_deck(folder//'/paper_dt.inp', out_root, record, error)
     call check('Table 1 at DT = 0.01 ms runs', .not. allocated(error))
     if (allocated(error)) deallocate(error)
@@ -209,12 +210,4 @@ contains
     call check('a plate never touched: warnings = 2 (never touched, criterion not reached)', &
                summary_value(record, 'warnings') == '2', 'warnings = '//summary_value(record, 'warnings'))
   end subroutine time_step_warnings_counted
-
-  function rtoa_(value) result(text)
-    real(dp), intent(in) :: value
-    character(:), allocatable :: text
-    character(len=24) :: buffer
-    write(buffer, '(es12.5)') value
-    text = trim(adjustl(buffer))
-  end function rtoa_
 end program test_solver_guards

@@ -66,7 +66,8 @@ program test_stability
   use visco2d_driver, only: run_deck
   use visco2d_system, only: directory_exists
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
-                             history_column, history_last, history_index
+                             history_column, history_last, history_index, exact_text
+  use visco2d_strings, only: itoa
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_stability'
@@ -448,8 +449,10 @@ contains
     min_dissipated = huge(1.0_dp)
     do k = 1, nx
       call run_dynamic('case3_x'//itoa(k), column_deck('DYNAMIC', [character(len=100) :: &
-        card('MATERIAL m VISCOELASTIC K='//num(bulk)//' RHO='//num(density1)), card('PRONY G='//num(g_inf)//' BETA=0'), &
-        card('PRONY G='//num(g1)//' BETA='//num(x(k)/dt))], 40, pressure, 1.4_dp, dt, nsteps*dt, 1), deck, record, ok)
+        card('MATERIAL m VISCOELASTIC K='//exact_text(bulk)//' RHO='//exact_text(density1)), &
+        card('PRONY G='//exact_text(g_inf)//' BETA=0'), &
+        card('PRONY G='//exact_text(g1)//' BETA='//exact_text(x(k)/dt))], &
+        40, pressure, 1.4_dp, dt, nsteps*dt, 1), deck, record, ok)
       if (.not. ok) return
       call check_bounded('case 3 (beta DT = '//num3(x(k))//')', record, 1.0e-3_dp, ratio)
       worst_ratio = max(worst_ratio, ratio)
@@ -799,14 +802,6 @@ contains
     tag = trim(merge('nu4999', 'nu3   ', nu > 0.4_dp))
   end function nu_tag
 
-  !> A real number as deck text with 16 significant digits.
-  function num(x) result(text)
-    real(dp), intent(in) :: x
-    character(:), allocatable :: text
-    character(len=32) :: buffer
-    write(buffer, '(es23.16)') x
-    text = trim(adjustl(buffer))
-  end function num
 
   !> Three significant digits, for names and the table.
   function num3(x) result(text)
@@ -817,13 +812,6 @@ contains
     text = trim(adjustl(buffer))
   end function num3
 
-  function itoa(i) result(text)
-    integer, intent(in) :: i
-    character(:), allocatable :: text
-    character(len=16) :: buffer
-    write(buffer, '(i0)') i
-    text = trim(buffer)
-  end function itoa
 
   !> A deck line of fixed length 100 (array constructors of
   !> character(len=100) get elements of one length: gfortran 12 overruns the
@@ -837,13 +825,13 @@ contains
   function elastic_line(young, poisson, density) result(line)
     real(dp), intent(in) :: young, poisson, density
     character(len=100) :: line
-    line = 'MATERIAL m ELASTIC E='//num(young)//' NU='//num(poisson)//' RHO='//num(density)
+    line = 'MATERIAL m ELASTIC E='//exact_text(young)//' NU='//exact_text(poisson)//' RHO='//exact_text(density)
   end function elastic_line
 
   function shear_line(shear, bulk) result(line)
     real(dp), intent(in) :: shear, bulk
     character(len=100) :: line
-    line = 'MATERIAL m ELASTIC G='//num(shear)//' K='//num(bulk)//' RHO='//num(density1)
+    line = 'MATERIAL m ELASTIC G='//exact_text(shear)//' K='//exact_text(bulk)//' RHO='//exact_text(density1)
   end function shear_line
 
   !> The column deck: plane strain, MESH RECT 0.0025 x 0.2 m with NZ elements,
@@ -861,11 +849,11 @@ contains
     character(len=100), allocatable :: lines(:)
     lines = [character(len=100) :: 'TITLE column under a suddenly applied pressure', card('ANALYSIS '//analysis), &
              'GEOMETRY PLANESTRAIN', material, card('MESH RECT R0=0.01 R1=0.0125 Z0=0 Z1=0.2 NR=1 NZ='//itoa(nz)), &
-             'FIX INNER R', 'FIX OUTER R', 'FIX BOTTOM Z', card('PRESSURE TOP P='//num(pressure)), &
+             'FIX INNER R', 'FIX OUTER R', 'FIX BOTTOM Z', card('PRESSURE TOP P='//exact_text(pressure)), &
              'PROBE top R=0.01 Z=0.2']
     if (analysis == 'DYNAMIC') then
-      lines = [character(len=100) :: lines, card('WILSON THETA='//num(theta)), &
-               card('TIME DT='//num(dt)//' TEND='//num(tend)), card('OUTPUT EVERY='//itoa(every))]
+      lines = [character(len=100) :: lines, card('WILSON THETA='//exact_text(theta)), &
+               card('TIME DT='//exact_text(dt)//' TEND='//exact_text(tend)), card('OUTPUT EVERY='//itoa(every))]
     end if
     if (analysis == 'DYNAMIC') then
       if (.not. present(from_rest)) then

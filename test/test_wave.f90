@@ -20,7 +20,7 @@ program test_wave
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t
-  use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column, history_last
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column, history_last, read_lines
   implicit none
 
   character(*), parameter :: deck_file = 'inputs/halfspace_wave.inp'
@@ -61,10 +61,12 @@ program test_wave
   end type run_t
 
   type(front_t) :: reference(3)
-  character(len=200), allocatable :: lines(:)
+  character(:), allocatable :: lines(:)   ! the archived deck
+  logical :: found
 
   call execute_command_line('mkdir -p '//folder)
-  lines = read_lines(deck_file)
+  call read_lines(deck_file, lines, found)
+  if (.not. found) call check('read_'//deck_file, .false., 'cannot open the file')
   call semi_discrete_reference(reference)
   call test_deck()
   call test_time_steps()
@@ -554,24 +556,4 @@ contains
     a(1) = a(1) + p0
     a = a/mass
   end function acceleration
-
-  !> The lines of a text file.
-  function read_lines(path) result(text)
-    character(*), intent(in) :: path
-    character(len=200), allocatable :: text(:)
-    character(len=200) :: line
-    integer :: unit, status
-    allocate(text(0))
-    open(newunit=unit, file=path, status='old', action='read', iostat=status)
-    if (status /= 0) then
-      call check('read_'//path, .false., 'cannot open the file'); return
-    end if
-    do
-      read(unit, '(a)', iostat=status) line
-      if (status /= 0) exit
-      text = [character(len=200) :: text, line]
-    end do
-    close(unit)
-  end function read_lines
-
 end program test_wave
