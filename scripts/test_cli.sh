@@ -593,8 +593,10 @@ cd "$work" || exit 0
 # units) where the text is a number, the text otherwise; snapshots carry both
 # time bases (deck time, time from first contact); results.xmf (XDMF 3) read
 # back with meshio gives the mesh, every snapshot, its time and its fields as
-# results.h5 read with h5py. A drop with a 0.5 mm gap (first contact at
-# t > 0) and the static sphere (no contact, no time from contact).
+# results.h5 read with h5py; pressure.csv (p(r) at the largest force and
+# approach) agrees with the history and with /pressure. A drop with a 0.5 mm
+# gap (first contact at t > 0) and the static sphere (no contact, no time
+# from contact, no pressure.csv).
 mkdir xdmf && cd xdmf || exit 0
 sed -e 's/^PLATE Z=0$/PLATE Z=-0.0005/' -e 's/^TIME .*/OUTPUT EVERY=1 FIELDS=2e-4\nTIME DT=1e-5 TEND=4e-3/' \
   ../contact/drop.inp > gap.inp
@@ -681,6 +683,46 @@ def check_xdmf(case, folder, f):
     return names
 
 
+def read_csv(path):
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        rows = [[float(v) for v in line.split(",")] for line in f if line.strip()]
+    return header, np.array(rows)
+
+
+def check_pressure(folder, f, text):
+    # p(r) at the largest force and the largest sampled approach: the pole's
+    # row is the history's q_MPa at t_force_max_ms and at t_alpha_max_step_ms
+    # (the same doubles, both printed with 10 digits: equal as numbers).
+    header, rows = read_csv(os.path.join(folder, "pressure.csv"))
+    expected = ["node", "r_mm", "r_force_max_mm", "p_force_max_MPa", "r_alpha_max_mm", "p_alpha_max_MPa"]
+    report("pressure_csv_header", header == expected, f"{header}")
+    if header != expected or rows.ndim != 2:
+        return
+    column = {name: rows[:, k] for k, name in enumerate(header)}
+    report("pressure_rows_every_contact_node", len(rows) >= int(text["contact_nodes_max"]) > 0,
+           f"{len(rows)} rows, contact_nodes_max = {text['contact_nodes_max']}")
+    report("pressure_rows_by_radius", column["r_mm"][0] == 0 and np.all(np.diff(column["r_mm"]) > 0),
+           f"r_mm = {column['r_mm']}")
+    names, history = read_csv(os.path.join(folder, "history.csv"))
+    t_ms, q_MPa, force = (history[:, names.index(n)] for n in ("t_ms", "q_MPa", "force_N"))
+    for instant, key in (("force_max", "t_force_max_ms"), ("alpha_max", "t_alpha_max_step_ms")):
+        rows_at = np.flatnonzero(t_ms == float(text[key]))
+        ok = len(rows_at) == 1 and q_MPa[rows_at[0]] == column[f"p_{instant}_MPa"][0]
+        report(f"pressure_{instant}_pole_is_history_q", ok,
+               f"{key} = {text[key]}: history rows {rows_at}, q_MPa {q_MPa[rows_at]}, "
+               f"pole p {column[f'p_{instant}_MPa'][0]}")
+        if instant == "force_max" and len(rows_at) == 1:
+            report("pressure_force_max_at_largest_force", force[rows_at[0]] == float(text["force_max_N"]),
+                   f"force_N {force[rows_at[0]]}, force_max_N {text['force_max_N']}")
+    stored = {name: f["/pressure"][name][()] for name in f["/pressure"]} if "pressure" in f else {}
+    bad = [name for name in expected if name not in stored
+           or not np.allclose(stored[name], column[name], rtol=1e-9, atol=0)]
+    report("pressure_h5_is_csv", not bad, f"columns differing or missing in /pressure: {bad}")
+    report("pressure_h5_units", stored and f["/pressure/p_force_max_MPa"].attrs["units"] == b"MPa"
+           and f["/pressure/r_mm"].attrs["units"] == b"mm", "units of /pressure datasets")
+
+
 out = sys.argv[1]
 for case in ("gap", "sphere"):
     folder = os.path.join(out, case)
@@ -703,9 +745,12 @@ for case in ("gap", "sphere"):
             before = [g.attrs["time_from_contact"] for g in groups if g.attrs["time"] < contact]
             report("h5_time_from_contact_negative_before", len(before) >= 2 and max(before) < 0,
                    f"before contact: {before}")
+            check_pressure(folder, f, text)
         else:
             report("h5_no_time_from_contact_without_contact",
                    all("time_from_contact" not in g.attrs for g in groups), "a snapshot has time_from_contact")
+            report("pressure_none_without_plate", "pressure" not in f
+                   and not os.path.exists(os.path.join(folder, "pressure.csv")), "pressure.csv or /pressure written")
 EOF
   status=$?
   cat xdmf_py.out

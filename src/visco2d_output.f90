@@ -23,6 +23,7 @@ module visco2d_output
   private
 
   public :: write_summary, write_history, write_listing, write_results_h5, unit_of, summary_unit
+  public :: write_pressure
   public :: text_file_t, text_open, text_put, text_close, time_first_contact
   public :: listing_row_limit
 
@@ -189,6 +190,39 @@ contains
     call text_close(out)
     message = out%message
   end subroutine write_history
+
+  !> pressure.csv: the contact pressure over radius (record%pressure, visco2d_impact's
+  !> pressure_table), a header row of column names (units in the names), one row per node.
+  subroutine write_pressure(path, record, message)
+    character(*), intent(in) :: path
+    type(record_t), intent(in) :: record
+    character(:), allocatable, intent(out) :: message
+    type(text_file_t) :: out
+    integer :: i, j
+    character(:), allocatable :: line
+    call text_open(out, path)
+    associate (table => record%pressure)
+    line = trim(table%columns(1))
+    do j = 2, size(table%columns)
+      line = line//','//trim(table%columns(j))
+    end do
+    call put(out, line)
+    do i = 1, size(table%values, 2)
+      line = ''
+      do j = 1, size(table%columns)
+        if (j > 1) line = line//','
+        if (trim(table%columns(j)) == 'node') then          ! the deck's node number
+          line = line//itoa(nint(table%values(j, i)))
+        else
+          line = line//gtoa(table%values(j, i))
+        end if
+      end do
+      call put(out, line)
+    end do
+    end associate
+    call text_close(out)
+    message = out%message
+  end subroutine write_pressure
 
   !> The legacy-style printed listing.
   subroutine write_listing(path, case_name, deck, effects, record, message)
@@ -603,6 +637,20 @@ contains
       call h5_write(writer, group, trim(record%columns(k)), column, units=unit_of(record%columns(k)))
     end do
     call h5_close_group(writer, group)
+
+    if (allocated(record%pressure%columns)) then
+      group = h5_group(writer, writer%file, 'pressure')
+      do k = 1, size(record%pressure%columns)
+        column = record%pressure%values(k, :)
+        if (trim(record%pressure%columns(k)) == 'node') then     ! the deck's node numbers
+          call h5_write(writer, group, 'node', nint(column))
+        else
+          call h5_write(writer, group, trim(record%pressure%columns(k)), column, &
+                        units=unit_of(record%pressure%columns(k)))
+        end if
+      end do
+      call h5_close_group(writer, group)
+    end if
 
     fields = h5_group(writer, writer%file, 'fields')
     if (allocated(record%snapshots)) then
