@@ -683,6 +683,32 @@ def check_xdmf(case, folder, f):
     return names
 
 
+def check_vtk(case, folder, f, names):
+    # ParaView's reader family, when VTK is installed (optional: not in setup.sh).
+    try:
+        import vtk
+        from vtk.util.numpy_support import vtk_to_numpy
+    except ImportError:
+        print(f"# vtk not available: the vtkXdmfReader check of {case} skipped")
+        return
+    reader = vtk.vtkXdmfReader()
+    reader.SetFileName(os.path.join(folder, "results.xmf"))
+    reader.UpdateInformation()
+    steps = reader.GetOutputInformation(0).Get(vtk.vtkStreamingDemandDrivenPipeline.TIME_STEPS()) or ()
+    reader.Update()
+    grid = reader.GetOutputDataObject(0)
+    first = f["/fields"][names[0]]
+    stress = grid.GetPointData().GetArray("stress")
+    ok = (len(steps) == len(names) or (len(names) == 1 and len(steps) == 0)) \
+        and grid.GetNumberOfPoints() == len(f["/mesh/nodes"]) and grid.GetNumberOfCells() == len(f["/mesh/elements"]) \
+        and stress is not None and stress.GetNumberOfComponents() == 4 \
+        and np.array_equal(vtk_to_numpy(stress), first["stress"][()]) \
+        and np.array_equal(vtk_to_numpy(grid.GetPointData().GetArray("displacement"))[:, :2], first["displacement"][()])
+    report(f"xdmf_vtk_reads_{case}", ok, f"{len(steps)} time steps for {len(names)} snapshots, "
+           f"{grid.GetNumberOfPoints()} points, {grid.GetNumberOfCells()} cells, stress "
+           f"{stress.GetNumberOfComponents() if stress else None} components")
+
+
 def read_csv(path):
     with open(path) as f:
         header = f.readline().strip().split(",")
@@ -729,6 +755,7 @@ for case in ("gap", "sphere"):
     with h5py.File(os.path.join(folder, "results.h5"), "r") as f:
         text = check_summary(case, folder, f)
         names = check_xdmf(case, folder, f)
+        check_vtk(case, folder, f, names)
         groups = [f["/fields"][name] for name in names]
         if case == "gap":
             expected = {"alpha_max_mm": "mm", "body_mass_kg": "kg", "t_alpha_max_ms": "ms", "nodes": "1",

@@ -72,7 +72,9 @@ contains
       call put_attribute(out, 'velocity', 'Vector', 'Node', nodes//' 2', 'Float', '8', group//'/velocity')
     if (allocated(snapshot%acceleration)) &
       call put_attribute(out, 'acceleration', 'Vector', 'Node', nodes//' 2', 'Float', '8', group//'/acceleration')
-    call put_attribute(out, 'stress', 'Matrix', 'Node', nodes//' 4', 'Float', '8', group//'/stress')
+    ! A 4-component "Vector": VTK's XDMF reader (ParaView) then reads one 4-component tuple per
+    ! node; as "Matrix" it read the whole array as a single tuple.
+    call put_attribute(out, 'stress', 'Vector', 'Node', nodes//' 4', 'Float', '8', group//'/stress')
     call put_attribute(out, 'max_shear', 'Scalar', 'Node', nodes, 'Float', '8', group//'/max_shear')
     call put_attribute(out, 'von_mises', 'Scalar', 'Node', nodes, 'Float', '8', group//'/von_mises')
     call text_put(out, '      </Grid>')
