@@ -138,6 +138,13 @@ def text_of(value):
     return str(value)
 
 
+def summary_value(value):
+    """A /summary dataset's value: a str for text, else the number."""
+    if isinstance(value, (bytes, np.bytes_, str)):
+        return text_of(value)
+    return value.item()
+
+
 def load_run(path):
     """Read one results.h5 into a dict: case, title, nodes, elements (0-based), summary, history, fields."""
     if not os.path.isfile(path):
@@ -152,7 +159,7 @@ def load_run(path):
             "title": text_of(f.attrs["title"]),
             "nodes": f["/mesh/nodes"][...],
             "elements": f["/mesh/elements"][...] - 1,
-            "summary": {key: text_of(value) for key, value in f["/summary"].attrs.items()},
+            "summary": {key: summary_value(item[()]) for key, item in f["/summary"].items()},
             "history": {key: f["/history"][key][...] for key in f["/history"]},
             "fields": [],
         }

@@ -2,7 +2,7 @@
 # Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS
 # (reference and OpenBLAS serial),
 # HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm,
-# h5py and matplotlib (PyPI). Safe to run again; quiet when everything is present.
+# h5py, matplotlib and meshio (PyPI). Safe to run again; quiet when everything is present.
 set -euo pipefail
 
 packages=()
@@ -34,6 +34,7 @@ pip_missing=()
 command -v fpm >/dev/null 2>&1 || pip_missing+=(fpm)
 "$python" -c "import h5py" 2>/dev/null || pip_missing+=(h5py)
 "$python" -c "import matplotlib" 2>/dev/null || pip_missing+=(matplotlib)   # make study, make figures
+"$python" -c "import meshio" 2>/dev/null || pip_missing+=(meshio)           # the results.xmf test (make test)
 if [ ${#pip_missing[@]} -gt 0 ]; then
   echo "setup: pip installing ${pip_missing[*]}"
   if ! "$python" -m pip --version >/dev/null 2>&1; then

@@ -245,7 +245,7 @@ check_rc rerun_exit_0 0 $?
 check rerun_replaces_folder "out/first/stale_marker.txt survived the rerun (or out/first is missing)" \
   test -d out/first -a ! -e out/first/stale_marker.txt
 check rerun_writes_all_files "out/first holds: $(ls -A out/first 2>/dev/null | tr '\n' ' ')" \
-  test "$(ls out/first 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+  test "$(ls out/first 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 results.xmf summary.txt "
 check rerun_no_hidden_folders "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
   test "$(ls -A out 2>/dev/null)" = first
 cd "$work" || exit 0
@@ -588,6 +588,206 @@ check contact_separation_energy_definition \
       'BEGIN { x = 0.5 * m * (w * w - v * v); if (q == "" || x == 0) exit 1; d = (q - x) / x; if (d < 0) d = -d; exit !(d <= 1e-6) }'
 cd "$work" || exit 0
 
+# ------------------------------------------------------------- results.h5 and results.xmf
+# /summary holds one scalar dataset per summary.txt key: a number (with its
+# units) where the text is a number, the text otherwise; snapshots carry both
+# time bases (deck time, time from first contact); results.xmf (XDMF 3) read
+# back with meshio gives the mesh, every snapshot, its time and its fields as
+# results.h5 read with h5py; pressure.csv (p(r) at the largest force and
+# approach) agrees with the history and with /pressure. A drop with a 0.5 mm
+# gap (first contact at t > 0) and the static sphere (no contact, no time
+# from contact, no pressure.csv).
+mkdir xdmf && cd xdmf || exit 0
+sed -e 's/^PLATE Z=0$/PLATE Z=-0.0005/' -e 's/^TIME .*/OUTPUT EVERY=1 FIELDS=2e-4\nTIME DT=1e-5 TEND=4e-3/' \
+  ../contact/drop.inp > gap.inp
+cp "$good_source" sphere.inp
+"$exe" -q -o out gap.inp sphere.inp > gap.out 2> gap.err
+check_rc xdmf_runs_exit_0 0 $?
+for case in gap sphere; do
+  check "xdmf_${case}_written" "out/$case/results.xmf missing or empty" test -s "out/$case/results.xmf"
+done
+if command -v python3 > /dev/null && python3 -c 'import h5py, meshio' > /dev/null 2>&1; then
+  python3 - out > xdmf_py.out 2> xdmf_py.err <<'EOF'
+import os, re, sys
+import h5py, meshio, numpy as np
+
+NUMBER = re.compile(r'^[+-]?(\d+\.?\d*|\.\d+)([eEdD][+-]?\d+)?$')
+
+
+def report(name, ok, detail=""):
+    print(f"PASS {name}" if ok else f"FAIL {name}: {detail}")
+
+
+def summary_text(path):
+    items = {}
+    with open(path) as f:
+        for line in f:
+            key, _, value = line.rstrip("\n").partition(" = ")
+            items[key] = value
+    return items
+
+
+def check_summary(case, folder, f):
+    text = summary_text(os.path.join(folder, "summary.txt"))
+    group = f["/summary"]
+    report(f"h5_summary_keys_{case}", set(group) == set(text),
+           f"only in h5: {sorted(set(group) - set(text))[:5]}, only in txt: {sorted(set(text) - set(group))[:5]}")
+    bad = []
+    for key, value in text.items():
+        if key not in group:
+            continue
+        item = group[key]
+        stored = item[()]
+        if NUMBER.match(value):
+            number = float(value.replace("d", "e").replace("D", "e"))
+            if item.dtype.kind not in "iuf" or float(stored) != number or "units" not in item.attrs:
+                bad.append(f"{key}: {stored!r} ({item.dtype}) for '{value}'")
+        elif item.dtype.kind != "S" or stored.decode() != value:
+            bad.append(f"{key}: {stored!r} for '{value}'")
+    report(f"h5_summary_values_{case}", not bad, "; ".join(bad[:3]))
+    return text
+
+
+def units(f, key):
+    value = f["/summary"][key].attrs.get("units", b"")
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def check_xdmf(case, folder, f):
+    names = sorted(f["/fields"])
+    times = [float(f["/fields"][name].attrs["time"]) for name in names]
+    with meshio.xdmf.TimeSeriesReader(os.path.join(folder, "results.xmf")) as reader:
+        points, cells = reader.read_points_cells()
+        report(f"xdmf_nodes_{case}", np.array_equal(points, f["/mesh/nodes"][()]),
+               f"points {points.shape} vs /mesh/nodes {f['/mesh/nodes'].shape}")
+        elements = f["/mesh/elements"][()] - 1
+        report(f"xdmf_quads_{case}", len(cells) == 1 and cells[0].type == "quad"
+               and np.array_equal(cells[0].data, elements), f"{[(c.type, c.data.shape) for c in cells]}")
+        report(f"xdmf_snapshot_count_{case}", reader.num_steps == len(names),
+               f"{reader.num_steps} grids, {len(names)} /fields groups")
+        got_times, field_bad = [], []
+        for k in range(min(reader.num_steps, len(names))):
+            t, point_data, cell_data = reader.read_data(k)
+            got_times.append(t)
+            group = f["/fields"][names[k]]
+            for field in ("displacement", "velocity", "acceleration", "stress", "max_shear", "von_mises"):
+                if (field in group) != (field in point_data):
+                    field_bad.append(f"{names[k]}/{field}: in h5 {field in group}, in xdmf {field in point_data}")
+                elif field in group and not np.array_equal(point_data[field], group[field][()]):
+                    field_bad.append(f"{names[k]}/{field} differs")
+            material = cell_data.get("material", [None])[0]
+            if material is None or not np.array_equal(material, f["/mesh/element_material"][()]):
+                field_bad.append(f"{names[k]}: cell data 'material' missing or different")
+        report(f"xdmf_times_{case}", got_times == times, f"xdmf {got_times[:4]}, h5 {times[:4]}")
+        report(f"xdmf_fields_{case}", not field_bad, "; ".join(field_bad[:3]))
+    return names
+
+
+def check_vtk(case, folder, f, names):
+    # ParaView's reader family, when VTK is installed (optional: not in setup.sh).
+    try:
+        import vtk
+        from vtk.util.numpy_support import vtk_to_numpy
+    except ImportError:
+        print(f"# vtk not available: the vtkXdmfReader check of {case} skipped")
+        return
+    reader = vtk.vtkXdmfReader()
+    reader.SetFileName(os.path.join(folder, "results.xmf"))
+    reader.UpdateInformation()
+    steps = reader.GetOutputInformation(0).Get(vtk.vtkStreamingDemandDrivenPipeline.TIME_STEPS()) or ()
+    reader.Update()
+    grid = reader.GetOutputDataObject(0)
+    first = f["/fields"][names[0]]
+    stress = grid.GetPointData().GetArray("stress")
+    ok = (len(steps) == len(names) or (len(names) == 1 and len(steps) == 0)) \
+        and grid.GetNumberOfPoints() == len(f["/mesh/nodes"]) and grid.GetNumberOfCells() == len(f["/mesh/elements"]) \
+        and stress is not None and stress.GetNumberOfComponents() == 4 \
+        and np.array_equal(vtk_to_numpy(stress), first["stress"][()]) \
+        and np.array_equal(vtk_to_numpy(grid.GetPointData().GetArray("displacement"))[:, :2], first["displacement"][()])
+    report(f"xdmf_vtk_reads_{case}", ok, f"{len(steps)} time steps for {len(names)} snapshots, "
+           f"{grid.GetNumberOfPoints()} points, {grid.GetNumberOfCells()} cells, stress "
+           f"{stress.GetNumberOfComponents() if stress else None} components")
+
+
+def read_csv(path):
+    with open(path) as f:
+        header = f.readline().strip().split(",")
+        rows = [[float(v) for v in line.split(",")] for line in f if line.strip()]
+    return header, np.array(rows)
+
+
+def check_pressure(folder, f, text):
+    # p(r) at the largest force and the largest sampled approach: the pole's
+    # row is the history's q_MPa at t_force_max_ms and at t_alpha_max_step_ms
+    # (the same doubles, both printed with 10 digits: equal as numbers).
+    header, rows = read_csv(os.path.join(folder, "pressure.csv"))
+    expected = ["node", "r_mm", "r_force_max_mm", "p_force_max_MPa", "r_alpha_max_mm", "p_alpha_max_MPa"]
+    report("pressure_csv_header", header == expected, f"{header}")
+    if header != expected or rows.ndim != 2:
+        return
+    column = {name: rows[:, k] for k, name in enumerate(header)}
+    report("pressure_rows_every_contact_node", len(rows) >= int(text["contact_nodes_max"]) > 0,
+           f"{len(rows)} rows, contact_nodes_max = {text['contact_nodes_max']}")
+    report("pressure_rows_by_radius", column["r_mm"][0] == 0 and np.all(np.diff(column["r_mm"]) > 0),
+           f"r_mm = {column['r_mm']}")
+    names, history = read_csv(os.path.join(folder, "history.csv"))
+    t_ms, q_MPa, force = (history[:, names.index(n)] for n in ("t_ms", "q_MPa", "force_N"))
+    for instant, key in (("force_max", "t_force_max_ms"), ("alpha_max", "t_alpha_max_step_ms")):
+        rows_at = np.flatnonzero(t_ms == float(text[key]))
+        ok = len(rows_at) == 1 and q_MPa[rows_at[0]] == column[f"p_{instant}_MPa"][0]
+        report(f"pressure_{instant}_pole_is_history_q", ok,
+               f"{key} = {text[key]}: history rows {rows_at}, q_MPa {q_MPa[rows_at]}, "
+               f"pole p {column[f'p_{instant}_MPa'][0]}")
+        if instant == "force_max" and len(rows_at) == 1:
+            report("pressure_force_max_at_largest_force", force[rows_at[0]] == float(text["force_max_N"]),
+                   f"force_N {force[rows_at[0]]}, force_max_N {text['force_max_N']}")
+    stored = {name: f["/pressure"][name][()] for name in f["/pressure"]} if "pressure" in f else {}
+    bad = [name for name in expected if name not in stored
+           or not np.allclose(stored[name], column[name], rtol=1e-9, atol=0)]
+    report("pressure_h5_is_csv", not bad, f"columns differing or missing in /pressure: {bad}")
+    report("pressure_h5_units", stored and f["/pressure/p_force_max_MPa"].attrs["units"] == b"MPa"
+           and f["/pressure/r_mm"].attrs["units"] == b"mm", "units of /pressure datasets")
+
+
+out = sys.argv[1]
+for case in ("gap", "sphere"):
+    folder = os.path.join(out, case)
+    with h5py.File(os.path.join(folder, "results.h5"), "r") as f:
+        text = check_summary(case, folder, f)
+        names = check_xdmf(case, folder, f)
+        check_vtk(case, folder, f, names)
+        groups = [f["/fields"][name] for name in names]
+        if case == "gap":
+            expected = {"alpha_max_mm": "mm", "body_mass_kg": "kg", "t_alpha_max_ms": "ms", "nodes": "1",
+                        "impact_velocity_m_s": "m/s", "force_max_N": "N"}
+            got = {key: units(f, key) for key in expected}
+            report("h5_summary_units", got == expected, f"{got}")
+            report("h5_summary_integer", f["/summary/nodes"].dtype.kind == "i", f"nodes: {f['/summary/nodes'].dtype}")
+            report("h5_summary_text_stays_text", f["/summary/stop_reason"][()] == b"maximum deformation",
+                   f"stop_reason: {f['/summary/stop_reason'][()]!r}")
+            contact = float(text["time_first_contact_s"])
+            report("h5_first_contact_after_start", 4e-4 < contact < 6e-4, f"time_first_contact_s = {contact}")
+            worst = max(abs(g.attrs["time_from_contact"] - (g.attrs["time"] - contact)) for g in groups)
+            report("h5_time_from_contact", worst <= 1e-15, f"largest |difference| {worst} s")
+            before = [g.attrs["time_from_contact"] for g in groups if g.attrs["time"] < contact]
+            report("h5_time_from_contact_negative_before", len(before) >= 2 and max(before) < 0,
+                   f"before contact: {before}")
+            check_pressure(folder, f, text)
+        else:
+            report("h5_no_time_from_contact_without_contact",
+                   all("time_from_contact" not in g.attrs for g in groups), "a snapshot has time_from_contact")
+            report("pressure_none_without_plate", "pressure" not in f
+                   and not os.path.exists(os.path.join(folder, "pressure.csv")), "pressure.csv or /pressure written")
+EOF
+  status=$?
+  cat xdmf_py.out
+  check_rc xdmf_python_check_ran "0" "$status"
+  [ "$status" = 0 ] || echo "# $(first_lines xdmf_py.err)"
+else
+  echo "# h5py or meshio not available: results.h5 /summary and XDMF checks skipped"
+fi
+cd "$work" || exit 0
+
 # ------------------------------------------------------------- progress
 # Progress of long runs on stderr: `visco2d: <case>: step N, t = X ms[, alpha = Y mm], ~Z s left`,
 # a last `..., done in W s` line. VISCO2D_PROGRESS_DELAY=0 shows it from the
@@ -697,7 +897,8 @@ cd "$work" || exit 0
 # kB) makes writes past it fail (visco2d ignores SIGXFSZ; `trap '' XFSZ` too).
 # Each file in turn: a located error naming the file, exit 1 (never a crash),
 # no case folder and no partial folder. free_flight writes summary.txt 2.6 kB,
-# history.csv 11 kB, listing.txt 28 kB, results.h5 111 kB.
+# history.csv 11 kB, listing.txt 28 kB, results.h5 136 kB (results.xmf, 6.5 kB, is
+# smaller than results.h5 and written after it: a per-file limit cannot reach it alone).
 mkdir faults && cd faults || exit 0
 cp "$root/inputs/free_flight.inp" free_flight.inp
 for pair in 2:summary.txt 16:listing.txt 64:results.h5; do
@@ -713,11 +914,11 @@ for pair in 2:summary.txt 16:listing.txt 64:results.h5; do
   check "disk_full_${file}_no_folder" "full$limit holds: $(ls -A "full$limit" 2>/dev/null | tr '\n' ' ')" \
     test -z "$(ls -A "full$limit" 2>/dev/null)"
 done
-# Unlimited, the same run writes all four files (the limits above were the cause).
+# Unlimited, the same run writes all five files (the limits above were the cause).
 "$exe" -q -o fine free_flight.inp > fine.out 2> fine.err
 check_rc disk_unlimited_exit_0 0 $?
 check disk_unlimited_results "fine/free_flight holds: $(ls fine/free_flight 2>/dev/null | tr '\n' ' ')" \
-  test "$(ls fine/free_flight 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+  test "$(ls fine/free_flight 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 results.xmf summary.txt "
 # A failed rewrite keeps the previous case folder as it was.
 cp fine/free_flight/summary.txt previous_summary.txt
 (ulimit -f 64; exec "$exe" -q -o fine free_flight.inp) > refull.out 2> refull.err
@@ -924,7 +1125,7 @@ check interrupt_rerun_status "exit status $status, expected 143 (or 0 if the sig
   test "$status" = 143 -o "$status" = 0
 check interrupt_rerun_no_partial "out holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test "$(ls -A out)" = tall
 check interrupt_rerun_keeps_folder "out/tall holds: $(ls out/tall 2>/dev/null | tr '\n' ' ')" \
-  test "$(ls out/tall 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 summary.txt "
+  test "$(ls out/tall 2>/dev/null | sort | tr '\n' ' ')" = "history.csv listing.txt results.h5 results.xmf summary.txt "
 check interrupt_rerun_same_summary "out/tall/summary.txt differs from the whole run's (beyond cpu_s)" \
   test "$(grep -v '^cpu_s' out/tall/summary.txt)" = "$(grep -v '^cpu_s' whole_summary.txt)"
 echo "# interrupt: the SIGTERMs ended the runs with status $status (143: during writing)"

@@ -15,7 +15,8 @@ module visco2d_driver
   use visco2d_contact, only: solve_static_contact
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn
   use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
-  use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
+  use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5, write_pressure
+  use visco2d_xdmf, only: write_results_xdmf
   use visco2d_output_check, only: check_finite_outputs, finite_text
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
@@ -31,8 +32,8 @@ module visco2d_driver
   public :: expect_tally_t
 
   !> The files of a case folder.
-  character(len=*), parameter :: case_files(4) = [character(len=11) :: 'summary.txt', 'history.csv', &
-                                                  'listing.txt', 'results.h5']
+  character(len=*), parameter :: case_files(6) = [character(len=12) :: 'summary.txt', 'history.csv', &
+                                                  'listing.txt', 'results.h5', 'results.xmf', 'pressure.csv']
 
   !> The EXPECT checks of a run: one per EXPECT card (the summary holds their
   !> expect_<key>_value, _rel_error and _within_rtol keys).
@@ -235,7 +236,7 @@ contains
     end subroutine solve
   end subroutine run_deck_steps
 
-  !> Write the four files of a case into a temporary folder in out_root, then
+  !> Write the files of a case (case_files) into a temporary folder in out_root, then
   !> move it into place (the previous case folder is replaced only then). On
   !> any failure the temporary folder is removed and an existing case folder is
   !> left as it was.
@@ -276,6 +277,14 @@ contains
       if (len(message) == 0) then
         file = 'results.h5'
         call write_results_h5(temporary_dir//'/'//file, case_name, deck, record, message)
+      end if
+      if (len(message) == 0 .and. allocated(record%pressure%columns)) then
+        file = 'pressure.csv'
+        call write_pressure(temporary_dir//'/'//file, record, message)
+      end if
+      if (len(message) == 0) then
+        file = 'results.xmf'
+        call write_results_xdmf(temporary_dir//'/'//file, deck, record, message)
       end if
       if (len(message) > 0) then
         call discard(temporary_dir)

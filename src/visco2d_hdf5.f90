@@ -35,7 +35,8 @@ module visco2d_hdf5
   integer(size_t), parameter :: minimum_increment = 1048576_size_t
 
   interface h5_write
-    module procedure write_real1, write_real2, write_real3, write_integer1, write_integer2
+    module procedure write_real0, write_real1, write_real2, write_real3, write_integer0, write_integer1, &
+                     write_integer2, write_text0
   end interface h5_write
 
   interface h5_attribute
@@ -183,6 +184,85 @@ contains
     call h5sclose_f(space, status); call check(writer, status, what)
     if (present(units)) call attribute_text(writer, dataset, 'units', units)
   end function new_dataset
+
+  !> A scalar double dataset (h5py reads it as a float with `[()]`).
+  subroutine write_real0(writer, parent, name, value, units)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: parent
+    character(*), intent(in) :: name
+    real(dp), intent(in) :: value
+    character(*), intent(in), optional :: units
+    integer(hid_t) :: dataset
+    integer(hsize_t) :: dims(1) = [1]
+    integer :: status
+    character(:), allocatable :: what
+    if (writer%status /= 0) return
+    what = 'dataset '//name
+    dataset = new_scalar_dataset(writer, parent, name, H5T_NATIVE_DOUBLE, units)
+    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, value, dims, status); call check(writer, status, what)
+    call h5dclose_f(dataset, status); call check(writer, status, what)
+  end subroutine write_real0
+
+  !> A scalar integer dataset.
+  subroutine write_integer0(writer, parent, name, value, units)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: parent
+    character(*), intent(in) :: name
+    integer, intent(in) :: value
+    character(*), intent(in), optional :: units
+    integer(hid_t) :: dataset
+    integer(hsize_t) :: dims(1) = [1]
+    integer :: status
+    character(:), allocatable :: what
+    if (writer%status /= 0) return
+    what = 'dataset '//name
+    dataset = new_scalar_dataset(writer, parent, name, H5T_NATIVE_INTEGER, units)
+    call h5dwrite_f(dataset, H5T_NATIVE_INTEGER, value, dims, status); call check(writer, status, what)
+    call h5dclose_f(dataset, status); call check(writer, status, what)
+  end subroutine write_integer0
+
+  !> A scalar fixed-length, null-padded string dataset (h5py reads it as bytes with `[()]`).
+  subroutine write_text0(writer, parent, name, text)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: parent
+    character(*), intent(in) :: name, text
+    integer(hid_t) :: string_type, dataset
+    integer(hsize_t) :: dims(1) = [1]
+    integer :: status
+    character(:), allocatable :: what
+    if (writer%status /= 0) return
+    what = 'dataset '//name
+    call h5tcopy_f(H5T_C_S1, string_type, status); call check(writer, status, what)
+    call h5tset_size_f(string_type, int(max(len(text), 1), size_t), status); call check(writer, status, what)
+    call h5tset_strpad_f(string_type, H5T_STR_NULLPAD_F, status); call check(writer, status, what)
+    dataset = new_scalar_dataset(writer, parent, name, string_type)
+    if (len(text) > 0) then
+      call h5dwrite_f(dataset, string_type, text, dims, status)
+    else
+      call h5dwrite_f(dataset, string_type, ' ', dims, status)
+    end if
+    call check(writer, status, what)
+    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call h5tclose_f(string_type, status); call check(writer, status, what)
+  end subroutine write_text0
+
+  !> Create a scalar dataset of the given type; returns its id (-1 after a failure).
+  function new_scalar_dataset(writer, parent, name, type_id, units) result(dataset)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: parent, type_id
+    character(*), intent(in) :: name
+    character(*), intent(in), optional :: units
+    integer(hid_t) :: dataset, space
+    integer :: status
+    character(:), allocatable :: what
+    dataset = -1
+    if (writer%status /= 0) return
+    what = 'dataset '//name
+    call h5screate_f(H5S_SCALAR_F, space, status); call check(writer, status, what)
+    call h5dcreate_f(parent, name, type_id, space, dataset, status); call check(writer, status, what)
+    call h5sclose_f(space, status); call check(writer, status, what)
+    if (present(units)) call attribute_text(writer, dataset, 'units', units)
+  end function new_scalar_dataset
 
   subroutine write_real1(writer, parent, name, values, units)
     type(h5_writer_t), intent(inout) :: writer

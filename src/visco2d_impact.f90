@@ -51,6 +51,9 @@ module visco2d_impact
     real(dp) :: accel_centre = 0.0_dp, accel_max = -huge(1.0_dp), t_accel_max = 0.0_dp
     real(dp) :: accel_cm_max = -huge(1.0_dp)
     real(dp), allocatable :: pressure(:)      !< (nnode) recovered contact pressure, Pa
+    logical, allocatable :: ever_active(:)    !< (nnode) on the plate at some step
+    !> (nnode) contact pressure (Pa) and deformed r (m) at the largest plate force and at the largest sampled alpha
+    real(dp), allocatable :: pressure_at_force_max(:), r_at_force_max(:), pressure_at_alpha_max(:), r_at_alpha_max(:)
     integer, allocatable :: pole_corners(:, :) !< (corner, element) pairs at the pole (node_corners)
   end type impact_t
 
@@ -76,6 +79,11 @@ contains
     end do
     allocate(impact%pressure(deck%mesh%nnode))
     impact%pressure = 0.0_dp
+    impact%ever_active = spread(.false., 1, deck%mesh%nnode)
+    impact%pressure_at_force_max = impact%pressure
+    impact%pressure_at_alpha_max = impact%pressure
+    impact%r_at_force_max = deck%mesh%xy(1, :)
+    impact%r_at_alpha_max = deck%mesh%xy(1, :)
     impact%stop_reason = 'end of time'
     impact%accel_centre = a(node_dof(deck%mesh, impact%centre_node, 2))
   end subroutine impact_start
@@ -141,6 +149,9 @@ contains
     end if
     m%alpha_previous = m%alpha
     m%t_previous = since
+    m%ever_active = m%ever_active .or. contact%active
+    if (new_alpha_max) call keep_profile(m%pressure_at_alpha_max, m%r_at_alpha_max)
+    if (m%force > m%force_max) call keep_profile(m%pressure_at_force_max, m%r_at_force_max)
     if (m%q > m%q_max) then
       m%q_max = m%q
       m%t_q_max = since
@@ -176,6 +187,15 @@ contains
     end associate
 
   contains
+
+    !> The contact pressure now and the deformed r of every node.
+    subroutine keep_profile(pressure, r)
+      real(dp), intent(inout) :: pressure(:), r(:)
+      real(dp), allocatable :: displacement(:, :)
+      displacement = nodal_field(deck%mesh, u)
+      pressure = impact%pressure
+      r = deck%mesh%xy(1, :) + displacement(1, :)
+    end subroutine keep_profile
 
     pure subroutine keep_max(value, maximum, at)
       real(dp), intent(in) :: value
@@ -239,6 +259,39 @@ contains
     impact%q_surface_tau = -s(2)
     impact%have_surface_tau = .true.
   end subroutine impact_surface_stress
+
+  !> The contact pressure over radius, p(r), at the largest plate force
+  !> (t_force_max_ms) and at the largest sampled approach (t_alpha_max_step_ms):
+  !> one row per surface node that was on the plate at some step, in order of
+  !> its undeformed r; its deck number, undeformed r, and deformed r and
+  !> pressure (the recovered nodal pressure, contact_pressure) at each instant.
+  subroutine pressure_table(impact, deck, record)
+    type(impact_t), intent(in) :: impact
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    integer, allocatable :: nodes(:)
+    integer :: i, j, node
+    nodes = pack([(i, i = 1, deck%mesh%nnode)], impact%ever_active)
+    do i = 2, size(nodes)                          ! insertion sort by undeformed r (a few nodes)
+      node = nodes(i)
+      j = i - 1
+      do while (j >= 1)
+        if (deck%mesh%xy(1, nodes(j)) <= deck%mesh%xy(1, node)) exit
+        nodes(j + 1) = nodes(j)
+        j = j - 1
+      end do
+      nodes(j + 1) = node
+    end do
+    record%pressure%columns = [character(len=18) :: 'node', 'r_mm', 'r_force_max_mm', 'p_force_max_MPa', &
+                               'r_alpha_max_mm', 'p_alpha_max_MPa']
+    allocate(record%pressure%values(size(record%pressure%columns), size(nodes)))
+    do i = 1, size(nodes)
+      node = nodes(i)
+      record%pressure%values(:, i) = [real(deck%mesh%node_id(node), dp), 1.0e3_dp*deck%mesh%xy(1, node), &
+        1.0e3_dp*impact%r_at_force_max(node), 1.0e-6_dp*impact%pressure_at_force_max(node), &
+        1.0e3_dp*impact%r_at_alpha_max(node), 1.0e-6_dp*impact%pressure_at_alpha_max(node)]
+    end do
+  end subroutine pressure_table
 
   !> History columns of an impact (t_ms and alpha_mm are filled by impact_summary).
   pure function impact_columns() result(columns)
@@ -305,6 +358,7 @@ contains
         call record_put_real(record, 'energy_absorbed_J', 0.5_dp*mass*(m%v_cm_contact**2 - m%v_separation**2))
       end if
       call put_hertz_summary(deck, record, mass, m%v_cm_contact)
+      call pressure_table(m, deck, record)
     end if
     if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) call record_warn(record, &
       'the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)//': alpha_max_mm and '// &

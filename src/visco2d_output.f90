@@ -15,15 +15,20 @@ module visco2d_output
                           initial_velocity, stop_name
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
   use visco2d_mesh, only: edge_set_name
-  use visco2d_record, only: record_t
+  use visco2d_record, only: record_t, summary_item_t
   use visco2d_system, only: file_open_write, file_write, file_close
   use visco2d_hdf5, only: h5_writer_t, h5_open_file, h5_close_file, h5_group, h5_close_group, &
                           h5_write, h5_attribute
   implicit none
   private
 
-  public :: write_summary, write_history, write_listing, write_results_h5, unit_of
+  public :: write_summary, write_history, write_listing, write_results_h5, unit_of, summary_unit
+  public :: write_pressure
+  public :: text_file_t, text_open, text_put, text_close, time_first_contact
   public :: listing_row_limit
+
+  !> What number_kind finds in a summary value.
+  integer, parameter :: number_none = 0, number_integer = 1, number_real = 2
 
   !> Node and element tables in the listing stop after this many rows.
   integer, parameter :: listing_row_limit = 2000
@@ -58,12 +63,29 @@ contains
       end if
     end if
     select case (trim(name(last + 1:)))
-    case ('s', 'ms', 'm', 'mm', 'Pa', 'MPa', 'N', 'J', 'g')
+    case ('s', 'ms', 'm', 'mm', 'Pa', 'MPa', 'N', 'J', 'g', 'kg')
       unit = trim(name(last + 1:))
     case ('m/s')
       unit = 'm/s'
     end select
   end function unit_of
+
+  !> Unit of a summary key: unit_of the key, and for an EXPECT key
+  !> (`expect_<key>_value`) the unit of <key>; a relative error is '1'.
+  pure function summary_unit(key) result(unit)
+    character(*), intent(in) :: key
+    character(:), allocatable :: unit
+    character(len=*), parameter :: prefix = 'expect_', suffix = '_value'
+    integer :: n
+    n = len_trim(key)
+    if (n > len(prefix) + len(suffix)) then
+      if (key(1:len(prefix)) == prefix .and. key(n - len(suffix) + 1:n) == suffix) then
+        unit = unit_of(key(len(prefix) + 1:n - len(suffix)))
+        return
+      end if
+    end if
+    unit = unit_of(key)
+  end function summary_unit
 
   !> Create (replace) a text file.
   subroutine text_open(file, path)
@@ -89,6 +111,13 @@ contains
       close(unit, status='delete', iostat=status)
     end if
   end function open_reason
+
+  !> Write one line (nothing after a failure); for other modules' text files.
+  subroutine text_put(file, line)
+    type(text_file_t), intent(inout) :: file
+    character(*), intent(in) :: line
+    call put(file, line)
+  end subroutine text_put
 
   !> Write one line (nothing after a failure).
   subroutine put(file, line)
@@ -161,6 +190,39 @@ contains
     call text_close(out)
     message = out%message
   end subroutine write_history
+
+  !> pressure.csv: the contact pressure over radius (record%pressure, visco2d_impact's
+  !> pressure_table), a header row of column names (units in the names), one row per node.
+  subroutine write_pressure(path, record, message)
+    character(*), intent(in) :: path
+    type(record_t), intent(in) :: record
+    character(:), allocatable, intent(out) :: message
+    type(text_file_t) :: out
+    integer :: i, j
+    character(:), allocatable :: line
+    call text_open(out, path)
+    associate (table => record%pressure)
+    line = trim(table%columns(1))
+    do j = 2, size(table%columns)
+      line = line//','//trim(table%columns(j))
+    end do
+    call put(out, line)
+    do i = 1, size(table%values, 2)
+      line = ''
+      do j = 1, size(table%columns)
+        if (j > 1) line = line//','
+        if (trim(table%columns(j)) == 'node') then          ! the deck's node number
+          line = line//itoa(nint(table%values(j, i)))
+        else
+          line = line//gtoa(table%values(j, i))
+        end if
+      end do
+      call put(out, line)
+    end do
+    end associate
+    call text_close(out)
+    message = out%message
+  end subroutine write_pressure
 
   !> The legacy-style printed listing.
   subroutine write_listing(path, case_name, deck, effects, record, message)
@@ -407,8 +469,8 @@ contains
     type(record_t), intent(in) :: record
     integer(int64) :: bytes
     integer :: i
-    bytes = 65536_int64 + 8_int64*size(deck%mesh%xy, kind=int64) + 4_int64*size(deck%mesh%connectivity, kind=int64) &
-            + 12_int64*deck%mesh%nelem + 4_int64*deck%mesh%nnode + 64_int64*record%nsummary
+    bytes = 65536_int64 + 8_int64*size(deck%mesh%xy, kind=int64) + 8_int64*size(deck%mesh%connectivity, kind=int64) &
+            + 12_int64*deck%mesh%nelem + 4_int64*deck%mesh%nnode + 512_int64*record%nsummary
     if (allocated(record%history)) bytes = bytes + 8_int64*size(record%history, 1, kind=int64)*record%nrow
     if (.not. allocated(record%snapshots)) return
     do i = 1, size(record%snapshots)
@@ -448,7 +510,91 @@ contains
     end associate
   end function prescribed_text
 
-  !> results.h5: /mesh, /history/<column>, /fields/<snapshot>/..., summary as root attributes.
+  !> One summary item as a scalar dataset of /summary: an integer or a real
+  !> (with a `units` attribute) when the whole value is a number, else text.
+  subroutine write_summary_item(writer, group, item)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: group
+    type(summary_item_t), intent(in) :: item
+    integer :: integer_value, status
+    real(dp) :: real_value
+    status = 1
+    select case (number_kind(item%value))
+    case (number_integer)
+      read(item%value, *, iostat=status) integer_value
+      if (status == 0) call h5_write(writer, group, trim(item%key), integer_value, units=summary_unit(item%key))
+    case (number_real)
+      read(item%value, *, iostat=status) real_value
+      if (status == 0) call h5_write(writer, group, trim(item%key), real_value, units=summary_unit(item%key))
+    end select
+    if (status /= 0) call h5_write(writer, group, trim(item%key), item%value)
+  end subroutine write_summary_item
+
+  !> What a summary value is: number_integer (digits with an optional sign,
+  !> at most 9 digits), number_real (a Fortran real literal: sign, digits
+  !> with at most one point, an optional exponent e/E/d/D with digits) or
+  !> number_none (anything else, blanks inside included).
+  pure integer function number_kind(text) result(kind)
+    character(*), intent(in) :: text
+    integer :: i, n, digits, exponent_digits
+    logical :: point, exponent
+    kind = number_none
+    n = len_trim(text)
+    i = 1
+    if (n == 0) return
+    if (scan(text(1:1), '+-') == 1) i = 2
+    digits = 0; exponent_digits = 0
+    point = .false.; exponent = .false.
+    do while (i <= n)
+      select case (text(i:i))
+      case ('0':'9')
+        if (exponent) then
+          exponent_digits = exponent_digits + 1
+        else
+          digits = digits + 1
+        end if
+      case ('.')
+        if (point .or. exponent) return
+        point = .true.
+      case ('e', 'E', 'd', 'D')
+        if (exponent .or. digits == 0) return
+        exponent = .true.
+        if (i < n) then
+          if (scan(text(i + 1:i + 1), '+-') == 1) i = i + 1
+        end if
+      case default
+        return
+      end select
+      i = i + 1
+    end do
+    if (digits == 0 .or. (exponent .and. exponent_digits == 0)) return
+    if (point .or. exponent .or. digits > 9) then
+      kind = number_real
+    else
+      kind = number_integer
+    end if
+  end function number_kind
+
+  !> The time of first contact (s, deck time) from the summary's
+  !> `time_first_contact_s`; `found` is false in a run without contact.
+  function time_first_contact(record, found) result(time)
+    type(record_t), intent(in) :: record
+    logical, intent(out) :: found
+    real(dp) :: time
+    integer :: i, status
+    time = 0.0_dp
+    found = .false.
+    do i = 1, record%nsummary
+      if (record%summary(i)%key /= 'time_first_contact_s') cycle
+      if (number_kind(record%summary(i)%value) == number_none) return
+      read(record%summary(i)%value, *, iostat=status) time
+      found = status == 0
+      if (.not. found) time = 0.0_dp
+      return
+    end do
+  end function time_first_contact
+
+  !> results.h5: /mesh, /summary/<key>, /history/<column>, /fields/<snapshot>/...
   !> HDF5 is closed (h5fclose, h5close) also after a failure; `message` says
   !> what failed first ('' if all went well).
   subroutine write_results_h5(path, case_name, deck, record, message)
@@ -460,6 +606,8 @@ contains
     integer(hid_t) :: group, fields, snapshot
     integer :: i, k
     real(dp), allocatable :: column(:)
+    real(dp) :: contact_time
+    logical :: contact
 
     call h5_open_file(writer, path, h5_bytes(deck, record))
     call h5_attribute(writer, writer%file, 'case', case_name)
@@ -470,6 +618,7 @@ contains
     group = h5_group(writer, writer%file, 'mesh')
     call h5_write(writer, group, 'nodes', deck%mesh%xy, units='m')
     call h5_write(writer, group, 'elements', deck%mesh%connectivity)
+    call h5_write(writer, group, 'elements_0based', deck%mesh%connectivity - 1)
     call h5_write(writer, group, 'node_ids', deck%mesh%node_id)
     call h5_write(writer, group, 'element_ids', deck%mesh%element_id)
     call h5_write(writer, group, 'element_material', deck%mesh%element_material)
@@ -477,9 +626,10 @@ contains
 
     group = h5_group(writer, writer%file, 'summary')
     do i = 1, record%nsummary
-      call h5_attribute(writer, group, trim(record%summary(i)%key), record%summary(i)%value)
+      call write_summary_item(writer, group, record%summary(i))
     end do
     call h5_close_group(writer, group)
+    contact_time = time_first_contact(record, contact)
 
     group = h5_group(writer, writer%file, 'history')
     do k = 1, size(record%columns)
@@ -488,6 +638,20 @@ contains
     end do
     call h5_close_group(writer, group)
 
+    if (allocated(record%pressure%columns)) then
+      group = h5_group(writer, writer%file, 'pressure')
+      do k = 1, size(record%pressure%columns)
+        column = record%pressure%values(k, :)
+        if (trim(record%pressure%columns(k)) == 'node') then     ! the deck's node numbers
+          call h5_write(writer, group, 'node', nint(column))
+        else
+          call h5_write(writer, group, trim(record%pressure%columns(k)), column, &
+                        units=unit_of(record%pressure%columns(k)))
+        end if
+      end do
+      call h5_close_group(writer, group)
+    end if
+
     fields = h5_group(writer, writer%file, 'fields')
     if (allocated(record%snapshots)) then
       do i = 1, size(record%snapshots)
@@ -495,6 +659,7 @@ contains
         snapshot = h5_group(writer, fields, s%name)
         call h5_attribute(writer, snapshot, 'time', s%time)
         call h5_attribute(writer, snapshot, 'time_units', 's')
+        if (contact) call h5_attribute(writer, snapshot, 'time_from_contact', s%time - contact_time)
         call h5_attribute(writer, snapshot, 'label', s%label)
         call h5_write(writer, snapshot, 'displacement', s%displacement, units='m')
         if (allocated(s%velocity)) call h5_write(writer, snapshot, 'velocity', s%velocity, units='m/s')

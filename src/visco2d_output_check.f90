@@ -69,6 +69,10 @@ contains
         if (len(where) > 0) exit
       end do
     end if
+    if (len(where) == 0 .and. allocated(record%pressure%values)) then
+      if (.not. all(ieee_is_finite(record%pressure%values))) where = 'the contact pressure over radius '// &
+        '(pressure.csv) holds '//itoa(count(.not. ieee_is_finite(record%pressure%values)))//' non-finite value(s)'
+    end if
     if (len(where) == 0) return
     call set_error(error, producer//' produced a non-finite result: '//where// &
                    '; no output is written (a NaN or an Infinity is never a result)', &

@@ -7,7 +7,7 @@ module visco2d_record
   implicit none
   private
 
-  public :: record_t, snapshot_t, summary_item_t
+  public :: record_t, snapshot_t, summary_item_t, table_t
   public :: record_put, record_put_real, record_put_integer
   public :: history_define, history_append, record_add_snapshot, record_insert_snapshot, record_column
   public :: run_warning_t, record_warn
@@ -33,6 +33,13 @@ module visco2d_record
     real(dp), allocatable :: von_mises(:)       !< (nnode) Pa
   end type snapshot_t
 
+  !> A table of numbers with named columns (units in the names, as history
+  !> columns), e.g. the contact pressure over radius (pressure.csv).
+  type :: table_t
+    character(:), allocatable :: columns(:)    !< column names; unallocated: no table
+    real(dp), allocatable :: values(:, :)      !< (ncolumn, nrow)
+  end type table_t
+
   !> A warning found while solving (`file:line: CARD: text`, like a deck's warning).
   type :: run_warning_t
     character(:), allocatable :: text
@@ -46,6 +53,8 @@ module visco2d_record
     real(dp), allocatable :: history(:, :)                 !< (ncolumn, capacity)
     integer :: nrow = 0
     type(snapshot_t), allocatable :: snapshots(:)
+    type(table_t) :: pressure                              !< contact pressure over radius at the impact's
+                                                           !< maxima (visco2d_impact); no columns otherwise
     type(run_warning_t), allocatable :: warnings(:)        !< run-time warnings (record_warn); the driver prints
                                                            !< them and counts them in the summary's `warnings`
   end type record_t
