@@ -280,6 +280,7 @@ contains
   end function field
 
   subroutine bad_cards()
+    character(len=deck_line_length), allocatable :: deck_lines(:)
     call refused('missing_threshold', 'BRUISE CRITERION=MAXSHEAR', 1, 'missing field STRESS=')
     call refused('energy_with_stress', 'BRUISE CRITERION=ENERGY STRESS=1e5', 25, 'not STRESS=')
     call refused('stress_with_energy', 'BRUISE CRITERION=MISES ENERGY=1e5', 24, 'not ENERGY=')
@@ -289,7 +290,26 @@ contains
     call refused('decreasing_thresholds', 'BRUISE CRITERION=MAXSHEAR STRESS=3e5 THRESHOLDS=4e5,2e5', 38, &
                  'THRESHOLDS values must increase')
     call refused('no_criterion', 'BRUISE STRESS=3e5', 1, 'missing field CRITERION=')
+    deck_lines = block_lines('BRUISE CRITERION=MISES STRESS=3e5')
+    call refused_lines('second_card', [character(len=deck_line_length) :: deck_lines(1:8), &
+      'BRUISE CRITERION=ENERGY ENERGY=5e4', 'END'], 9, 1, 'a second BRUISE card without MAT= (the first is on line 8)')
+    call refused_lines('quasistatic', [character(len=deck_line_length) :: 'TITLE creep', 'ANALYSIS QUASISTATIC', &
+      'MATERIAL flesh VISCOELASTIC K=2e6', 'PRONY G=1e6 BETA=10', 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', &
+      'FIX BOTTOM Z', 'PRESSURE TOP P=1e4', 'TIME DT=0.1 TEND=1', 'BRUISE CRITERION=MISES STRESS=3e5', 'END'], 9, 1, &
+      'BRUISE needs ANALYSIS STATIC or DYNAMIC')
   end subroutine bad_cards
+
+  !> The deck `deck_lines` is refused at line:column, card BRUISE.
+  subroutine refused_lines(name, deck_lines, line, column, fragment)
+    character(*), intent(in) :: name, deck_lines(:), fragment
+    integer, intent(in) :: line, column
+    logical :: was_refused
+    character(:), allocatable :: text, path
+    path = folder//'/bad_'//name//'.inp'
+    call try_read_deck(path, was_refused, text, deck_lines)
+    call check('bad_'//name//'_refused', was_refused, 'accepted')
+    call check_error_location('bad_'//name, text, path, line, column, 'BRUISE', fragment)
+  end subroutine refused_lines
 
   !> The block deck with `card` on line 8 is refused at 8:column, card BRUISE.
   subroutine refused(name, card, column, fragment)
