@@ -37,17 +37,35 @@ module visco2d_advice
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, warning_t, analysis_dynamic, initial_velocity
+  use visco2d_record, only: record_t, record_warn
   use visco2d_contact, only: hertz_impact, hertz_t
   implicit none
   private
 
   public :: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
-  public :: contact_steps_minimum, balance_warning_level
+  public :: deformation_warnings, largest_strain
+  public :: contact_steps_minimum, balance_warning_level, strain_warning_level, approach_warning_level, &
+            speed_warning_level
 
   !> Fewer steps than this in the Hertz contact duration warn.
   integer, parameter :: contact_steps_minimum = 20
   !> An energy-balance error above this fraction of the energy put in warns.
   real(dp), parameter :: balance_warning_level = 0.05_dp
+  !> A principal strain above this magnitude is beyond the small-strain model:
+  !> the quadratic term of the Green-Lagrange strain, e^2/2, is then 10 % of
+  !> the strain. Hertz contact strains are of the order of a/R, so the paper's
+  !> impacts already reach 8 to 16 % at the pole element (Table 1, Table 2,
+  !> the apples at level 1: measured); the warning is for what lies well
+  !> beyond them (a drop of several metres, a soft fruit hit hard).
+  real(dp), parameter :: strain_warning_level = 0.20_dp
+  !> An approach alpha_max above this fraction of the sphere's radius is
+  !> beyond the small-displacement contact model (the contact radius
+  !> sqrt(R alpha) is then over 0.32 R; the paper's apple at 1.2 m/s reaches
+  !> 6.2 %).
+  real(dp), parameter :: approach_warning_level = 0.10_dp
+  !> An impact speed above this (m/s; a drop of 3 m) is far above fruit
+  !> handling and is warned about as a possible unit slip (cm read as m).
+  real(dp), parameter :: speed_warning_level = 7.7_dp
 
   !> The physical times of a scene, s (0 when the scene does not have one).
   type :: time_scales_t
@@ -112,7 +130,30 @@ contains
         '(Wilson-theta damps them), so stresses and accelerations in time are filtered')
       end associate
     end do
+    call speed_warning()
   contains
+    !> A drop or initial speed far above fruit handling: a unit slip?
+    subroutine speed_warning()
+      real(dp) :: speed
+      integer :: line
+      character(:), allocatable :: card
+      type(warning_t) :: warning
+      if (deck%analysis /= analysis_dynamic) return
+      speed = norm2(initial_velocity(deck))
+      if (.not. (speed > speed_warning_level)) return
+      if (deck%dynamics%drop_line > 0) then
+        line = deck%dynamics%drop_line
+        card = 'DROP'
+      else
+        line = deck%dynamics%initial_line
+        card = 'INITIAL'
+      end if
+      warning%text = deck%cards%file//':'//itoa(line)//': '//card//': the impact speed '//rtoa(speed)// &
+        ' m/s (a drop of '//rtoa(speed**2/(2.0_dp*9.80665_dp))//' m) is far above fruit handling (drops below '// &
+        'about 1 m, 4.4 m/s); a height or speed in the wrong unit (cm for m)?'
+      deck%warnings = [deck%warnings, warning]
+    end subroutine speed_warning
+
     subroutine add(line, message)
       integer, intent(in) :: line
       character(*), intent(in) :: message
@@ -207,4 +248,56 @@ contains
       end associate
     end do
   end function body_mass
+  !> After a dynamic run: warnings (into the record, counted) when the
+  !> deformation is beyond the small-strain, small-displacement model: a
+  !> principal strain above strain_warning_level, or for a generated sphere
+  !> on the plate an approach alpha_max above approach_warning_level of R.
+  subroutine deformation_warnings(deck, record, strain)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: strain
+    real(dp) :: alpha, radius
+    integer :: ios, k, line
+    if (strain > strain_warning_level) then
+      line = 0
+      if (allocated(deck%materials)) then
+        if (size(deck%materials) > 0) line = deck%materials(1)%line
+      end if
+      call record_warn(record, 'the largest principal strain reached '//rtoa(100.0_dp*strain)//' % (above '// &
+        rtoa(100.0_dp*strain_warning_level)//' %): beyond the small-strain model, stresses and displacements '// &
+        'are only indicative', file=deck%cards%file, line=line, card='MATERIAL')
+    end if
+    if (deck%plate%line == 0 .or. .not. allocated(deck%mesh%source)) return
+    if (deck%mesh%source /= 'SPHERE') return
+    radius = 0.5_dp*(maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :)))
+    do k = 1, record%nsummary
+      if (trim(record%summary(k)%key) /= 'alpha_max_mm') cycle
+      read(record%summary(k)%value, *, iostat=ios) alpha
+      if (ios /= 0) return
+      alpha = 1.0e-3_dp*alpha
+      if (alpha > approach_warning_level*radius) call record_warn(record, 'the approach alpha_max = '// &
+        rtoa(1.0e3_dp*alpha)//' mm is '//rtoa(100.0_dp*alpha/radius)//' % of the radius (above '// &
+        rtoa(100.0_dp*approach_warning_level)//' %): beyond the small-displacement contact model', &
+        file=deck%cards%file, line=deck%plate%line, card='PLATE')
+      return
+    end do
+  end subroutine deformation_warnings
+
+  !> The largest magnitude of a principal strain over the Gauss points of a
+  !> strain field (4, gauss, elements: e_r, e_z, e_theta, gamma_rz).
+  pure real(dp) function largest_strain(strain) result(largest)
+    real(dp), intent(in) :: strain(:, :, :)
+    real(dp) :: centre, radius
+    integer :: g, e
+    largest = 0.0_dp
+    do e = 1, size(strain, 3)
+      do g = 1, size(strain, 2)
+        associate (er => strain(1, g, e), ez => strain(2, g, e), et => strain(3, g, e), gamma => strain(4, g, e))
+        centre = 0.5_dp*(er + ez)
+        radius = hypot(0.5_dp*(er - ez), 0.5_dp*gamma)
+        largest = max(largest, abs(centre) + radius, abs(et))
+        end associate
+      end do
+    end do
+  end function largest_strain
 end module visco2d_advice

@@ -71,6 +71,7 @@ module visco2d_wilson
                             phase_output, phase_step_loop
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
+  use visco2d_advice, only: deformation_warnings, largest_strain
   use visco2d_bruise, only: bruise_t, bruise_update, bruise_report
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row, &
                             impact_surface_stress
@@ -90,7 +91,7 @@ module visco2d_wilson
     logical :: kept = .false.
     integer :: step = 0
     real(dp) :: time = 0.0_dp
-    real(dp), allocatable :: u(:), v(:), a(:), stress(:, :, :)
+    real(dp), allocatable :: u(:), v(:), a(:), stress(:, :, :), strain(:, :, :)
   end type kept_state_t
 
   !> The run stops as unstable when kinetic + internal energy exceeds this
@@ -300,6 +301,13 @@ contains
       end if
     end if
     call bruise_report(bruise, deck, record)
+    ! Beyond the small-strain model: the largest principal strain at the end
+    ! and at maximum deformation, and the approach against the radius.
+    if (at_alpha_max%kept) then
+      call deformation_warnings(deck, record, max(largest_strain(strain), largest_strain(at_alpha_max%strain)))
+    else
+      call deformation_warnings(deck, record, largest_strain(strain))
+    end if
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
     call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     do k = 1, size(deck%probes)
@@ -688,6 +696,7 @@ contains
       kept%v = v
       kept%a = a
       kept%stress = stress
+      kept%strain = strain
     end subroutine keep_state
 
     !> A kept state as a snapshot (nodal fields and stresses), inserted in time order.

@@ -209,5 +209,21 @@ contains
     if (allocated(error)) return
     call check('a plate never touched: warnings = 2 (never touched, criterion not reached)', &
                summary_value(record, 'warnings') == '2', 'warnings = '//summary_value(record, 'warnings'))
+    ! A 10 m drop of the Table 1 sphere (a unit slip for 10 cm?): the impact
+    ! speed (14 m/s), the strain (33 %, above 20 %) and the approach (20 % of
+    ! R, above 10 %) warn; a 0.4 m drop does not (strain 17 %, alpha/R 5 %).
+    coarse = paper
+    coarse(5) = 'DROP HEIGHT=10'
+    call write_deck(folder//'/drop10.inp', coarse)
+    call run_deck(folder//'/drop10.inp', out_root, record, error)
+    call check('Table 1 sphere dropped 10 m runs', .not. allocated(error))
+    if (allocated(error)) return
+    call check('Table 1 sphere dropped 10 m: warnings = 3 (speed, strain, approach)', &
+               summary_value(record, 'warnings') == '3', 'warnings = '//summary_value(record, 'warnings'))
+    coarse(5) = 'DROP HEIGHT=0.4'
+    call write_deck(folder//'/drop04.inp', coarse)
+    call run_deck(folder//'/drop04.inp', out_root, record, error)
+    call check('Table 1 sphere dropped 0.4 m: no warning', summary_value(record, 'warnings') == '0', &
+               'warnings = '//summary_value(record, 'warnings'))
   end subroutine time_step_warnings_counted
 end program test_solver_guards
