@@ -61,6 +61,7 @@ contains
     type(viscoelastic_state_t), intent(in), optional :: state
     real(dp) :: values(measure_count)
     integer :: e, g, m
+    if (.not. allocated(deck%bruises)) return        ! a deck built without read_deck
     if (size(deck%bruises) == 0) return
     if (.not. bruise%active) call bruise_start(bruise, deck)
     do e = 1, deck%mesh%nelem
@@ -91,6 +92,7 @@ contains
     real(dp), intent(in) :: stress(:, :, :), strain(:, :, :)
     type(record_t), intent(inout) :: record
     type(bruise_t) :: bruise
+    if (.not. allocated(deck%bruises)) return
     if (size(deck%bruises) == 0) return
     call bruise_update(bruise, deck, 0.0_dp, stress, strain)
     call bruise_report(bruise, deck, record)
