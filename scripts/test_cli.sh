@@ -1155,4 +1155,76 @@ check size_help_option "--help does not mention --max-memory" grep -q -- '--max-
 check size_help_variable "--help does not mention VISCO2D_MAX_MEMORY" grep -q VISCO2D_MAX_MEMORY ../usage/help.out
 cd "$work" || exit 0
 
+# ---- bruise: the summary's bruise volume against the /bruise fields of results.h5,
+# recomputed independently (numpy: the 2 x 2 Gauss rule on the mesh's
+# quadrilaterals, 2 pi |J| r, envelope >= threshold); no /bruise group and no
+# bruise keys without a BRUISE card.
+mkdir -p "$work/bruise" && cd "$work/bruise" || exit 0
+cat > bruise.inp <<'DECK'
+TITLE dropped sphere with a bruise criterion
+ANALYSIS DYNAMIC
+GEOMETRY AXISYMMETRIC
+MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=800
+MESH SPHERE R=0.0381 LEVEL=2
+INITIAL VZ=-2
+PLATE Z=0 SLIP RELEASE=YES
+STOP AT=SEPARATION
+TIME DT=1e-5 TEND=10e-3
+BRUISE CRITERION=MAXSHEAR STRESS=0.2e6 THRESHOLDS=0.3e6
+END
+DECK
+"$exe" -q -o out bruise.inp > bruise.out 2> bruise.err
+check_rc bruise_run_exit_0 0 $?
+bruise_value() { sed -n "s/^$1 = //p" out/bruise/summary.txt 2>/dev/null | head -1; }
+check bruise_susceptibility_key "summary: no bruise_susceptibility_cm3_per_J" \
+  test -n "$(bruise_value bruise_susceptibility_cm3_per_J)"
+if command -v python3 > /dev/null && python3 -c 'import h5py, numpy' > /dev/null 2>&1; then
+  python3 - out/bruise/results.h5 > bruise_h5py.out 2> bruise_h5py.err <<'PYTHON'
+import sys, h5py, numpy as np
+with h5py.File(sys.argv[1], "r") as f:
+    xy = f["/mesh/nodes"][:]                 # (nnode, 2)
+    elements = f["/mesh/elements"][:] - 1    # (nelem, 4), 1-based in the file
+    envelope = f["/bruise/max_shear_envelope"][:]    # (nelem, 4 Gauss points)
+    threshold = f["/bruise/threshold"][:]
+    units = f["/bruise/max_shear_envelope"].attrs["units"]
+    print("units", units.decode() if isinstance(units, bytes) else units)
+g = 1.0 / np.sqrt(3.0)
+volume = np.zeros_like(envelope)
+x = xy[elements, 0]
+y = xy[elements, 1]
+for k, (xi, eta) in enumerate([(-g, -g), (g, -g), (g, g), (-g, g)]):
+    n = 0.25 * np.array([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta)])
+    dxi = 0.25 * np.array([-(1 - eta), (1 - eta), (1 + eta), -(1 + eta)])
+    deta = 0.25 * np.array([-(1 - xi), -(1 + xi), (1 + xi), (1 - xi)])
+    jacobian = (x @ dxi) * (y @ deta) - (x @ deta) * (y @ dxi)
+    volume[:, k] = 2 * np.pi * jacobian * (x @ n)
+print("volume_cm3 %.12e" % (1e6 * volume[envelope >= threshold].sum()))
+print("extra_cm3 %.12e" % (1e6 * volume[envelope >= 0.3e6].sum()))
+PYTHON
+  check_rc bruise_h5py_reads 0 $?
+  close_to() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; s = (b < 0 ? -b : b); exit !(a != "" && b != "" && d <= 1e-9 * s + 1e-12) }'; }
+  got=$(sed -n 's/^volume_cm3 //p' bruise_h5py.out)
+  key=$(bruise_value bruise_volume_cm3)
+  check bruise_h5_volume_equals_summary "results.h5 gives '$got' cm^3, summary '$key'" close_to "$got" "$key"
+  check bruise_h5_volume_nonzero "summary bruise_volume_cm3 = '$key'" awk -v a="$key" 'BEGIN { exit !(a > 0) }'
+  got=$(sed -n 's/^extra_cm3 //p' bruise_h5py.out)
+  key=$(bruise_value bruise_volume_threshold_1_cm3)
+  check bruise_h5_extra_volume_equals_summary "results.h5 gives '$got' cm^3, summary '$key'" close_to "$got" "$key"
+  check bruise_h5_envelope_units "h5py: $(first_lines bruise_h5py.out) $(first_lines bruise_h5py.err)" \
+    grep -q '^units Pa$' bruise_h5py.out
+else
+  echo "# h5py or numpy not available: bruise h5py checks skipped"
+fi
+cp "$good_source" plain.inp
+"$exe" -q -o out plain.inp > plain.out 2> plain.err
+check_rc bruise_plain_run_exit_0 0 $?
+if command -v h5dump > /dev/null; then
+  h5dump -n out/plain/results.h5 > plain_h5.txt 2>&1
+  check bruise_no_group_without_card "results.h5 of a deck without BRUISE has /bruise" \
+    sh -c '! grep -q " /bruise" plain_h5.txt'
+fi
+check bruise_no_keys_without_card "summary of a deck without BRUISE has bruise keys" \
+  sh -c '! grep -q "^bruise_\|^envelope_" out/plain/summary.txt'
+cd "$work" || exit 0
+
 exit 0

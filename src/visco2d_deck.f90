@@ -20,6 +20,7 @@ module visco2d_deck
                                    read_gravity, read_output, read_formulation, standard_gravity, theta_unconditional
   use visco2d_contact_cards, only: plate_t, read_plate, read_stop, stop_name, stop_at_tend, &
                                    stop_at_max_deformation, stop_at_separation
+  use visco2d_bruise_cards, only: bruise_card_t, read_bruise, check_bruise_cards
   use visco2d_mesh, only: mesh_t, mesh_input_t, read_node_card, read_element_card, read_mesh_card, &
                           build_mesh, node_set, node_index, edge_set_code, edge_set_name, &
                           edge_set_none, edge_set_axis
@@ -37,9 +38,9 @@ module visco2d_deck
   integer, parameter :: analysis_dynamic = 3      !< incremental in time with inertia (Wilson-theta, the extension)
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(24) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+  character(len=11), parameter :: card_keywords(25) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
     'FORMULATION', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
-    'CURVE', 'TIME', 'WILSON', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'END']
+    'CURVE', 'TIME', 'WILSON', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'BRUISE', 'END']
 
   !> A warning about a deck that still runs (file:line: CARD: text).
   type :: warning_t
@@ -110,6 +111,7 @@ module visco2d_deck
     type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
     integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)
     integer :: stop_line = 0
+    type(bruise_card_t), allocatable :: bruises(:) !< BRUISE cards (visco2d_bruise); none: no envelopes kept
     type(warning_t), allocatable :: warnings(:)
   end type deck_t
 
@@ -196,7 +198,7 @@ contains
     deck%title = ''
     allocate(deck%materials(0), deck%pressures(0), deck%expects(0), fixes(0), forces(0), probes(0))
     allocate(deck%curves(0), deck%stages(0), pressure_curves(0), pressure_cards(0), deck%warnings(0))
-    allocate(deck%output%field_times(0))
+    allocate(deck%output%field_times(0), deck%bruises(0))
     formulation_line = 0
     title_line = 0
     analysis_line = 0
@@ -331,13 +333,15 @@ contains
         call read_probe(cards, card, i, probes, error); if (allocated(error)) return
       case ('EXPECT')
         call read_expect(cards, card, deck%expects, error); if (allocated(error)) return
+      case ('BRUISE')
+        call read_bruise(cards, card, deck%bruises, error); if (allocated(error)) return
       case ('END')
         call check_fields_used(cards, card, error, 'END'); if (allocated(error)) return
       case default
         call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
           suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
           'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
-          'WILSON INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT END)')
+          'WILSON INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT BRUISE END)')
         return
       end select
       end associate
@@ -380,6 +384,8 @@ contains
     call check_time_stages(deck, analysis_line, error); if (allocated(error)) return
     call check_dynamic_cards(deck, error); if (allocated(error)) return
     call check_contact_cards(deck, error); if (allocated(error)) return
+    call check_bruise_cards(cards, deck%bruises, deck%materials, deck%analysis == analysis_quasistatic, error)
+    if (allocated(error)) return
 
     call build_mesh(mesh_input, cards, deck%geometry, deck%mesh, error); if (allocated(error)) return
     call resolve_materials(deck, error); if (allocated(error)) return

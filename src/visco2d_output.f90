@@ -472,6 +472,8 @@ contains
     bytes = 65536_int64 + 8_int64*size(deck%mesh%xy, kind=int64) + 8_int64*size(deck%mesh%connectivity, kind=int64) &
             + 12_int64*deck%mesh%nelem + 4_int64*deck%mesh%nnode + 512_int64*record%nsummary
     if (allocated(record%history)) bytes = bytes + 8_int64*size(record%history, 1, kind=int64)*record%nrow
+    if (allocated(record%bruise_fields)) bytes = bytes + 8_int64*size(record%bruise_fields, kind=int64)* &
+                                                 (4_int64*deck%mesh%nelem + deck%mesh%nnode)
     if (.not. allocated(record%snapshots)) return
     do i = 1, size(record%snapshots)
       associate (s => record%snapshots(i))
@@ -673,6 +675,16 @@ contains
       end do
     end if
     call h5_close_group(writer, fields)
+    if (allocated(record%bruise_fields)) then                ! BRUISE envelopes (visco2d_bruise)
+      group = h5_group(writer, writer%file, 'bruise')
+      do i = 1, size(record%bruise_fields)
+        associate (f => record%bruise_fields(i))
+        call h5_write(writer, group, f%name, f%gauss, units=f%units)
+        if (allocated(f%nodal)) call h5_write(writer, group, f%name//'_nodal', f%nodal, units=f%units)
+        end associate
+      end do
+      call h5_close_group(writer, group)
+    end if
     call h5_close_file(writer)
     message = writer%failed
   end subroutine write_results_h5

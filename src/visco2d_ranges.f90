@@ -22,6 +22,7 @@ module visco2d_ranges
   public :: modulus_range, density_range, rate_range, speed_range, acceleration_range, gravity_range
   public :: length_range, drop_height_range, pressure_range, force_range, time_range, time_step_range
   public :: curve_factor_range, expected_value_range, tolerance_range, bulk_shear_ratio_limit
+  public :: failure_stress_range, failure_energy_range
 
   !> Accepted values: lower <= value <= upper and, if floor > 0, |value| >= floor
   !> or (if zero) value = 0.
@@ -66,6 +67,10 @@ module visco2d_ranges
   type(range_t), parameter :: expected_value_range = range_t(-1.0e200_dp, 1.0e200_dp, 1.0e-200_dp, '', .false.)
   !> RTOL of EXPECT: from round-off to a factor 1000.
   type(range_t), parameter :: tolerance_range = range_t(1.0e-15_dp, 1.0e3_dp, 0.0_dp, '')
+  !> STRESS and THRESHOLDS of BRUISE (a failure stress): positive, from a gel to steel x 100.
+  type(range_t), parameter :: failure_stress_range = range_t(1.0e-3_dp, 1.0e12_dp, 0.0_dp, 'Pa')
+  !> ENERGY and THRESHOLDS of BRUISE CRITERION=ENERGY (a failure energy density), positive.
+  type(range_t), parameter :: failure_energy_range = range_t(1.0e-3_dp, 1.0e12_dp, 0.0_dp, 'J/m^3')
 
 contains
 

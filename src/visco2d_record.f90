@@ -10,7 +10,7 @@ module visco2d_record
   public :: record_t, snapshot_t, summary_item_t, table_t
   public :: record_put, record_put_real, record_put_integer
   public :: history_define, history_append, record_add_snapshot, record_insert_snapshot, record_column
-  public :: run_warning_t, record_warn
+  public :: run_warning_t, record_warn, gauss_field_t
 
   !> One `key = value` line of summary.txt. The key is kept whole, however
   !> long (expect_probe_<name>_..._within_rtol keys are long).
@@ -40,6 +40,14 @@ module visco2d_record
     real(dp), allocatable :: values(:, :)      !< (ncolumn, nrow)
   end type table_t
 
+  !> A field at the Gauss points and its nodal average (the BRUISE envelopes, /bruise in results.h5).
+  type :: gauss_field_t
+    character(:), allocatable :: name
+    character(:), allocatable :: units
+    real(dp), allocatable :: gauss(:, :)  !< (4, nelem): Gauss points ordered like the element's corners
+    real(dp), allocatable :: nodal(:)     !< (nnode): mean over the node's elements of their nearest Gauss point
+  end type gauss_field_t
+
   !> A warning found while solving (`file:line: CARD: text`, like a deck's warning).
   type :: run_warning_t
     character(:), allocatable :: text
@@ -57,6 +65,7 @@ module visco2d_record
                                                            !< maxima (visco2d_impact); no columns otherwise
     type(run_warning_t), allocatable :: warnings(:)        !< run-time warnings (record_warn); the driver prints
                                                            !< them and counts them in the summary's `warnings`
+    type(gauss_field_t), allocatable :: bruise_fields(:)   !< envelopes of a deck with BRUISE cards (else unallocated)
   end type record_t
 
 contains

@@ -30,6 +30,7 @@ module visco2d_static
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
+  use visco2d_bruise, only: bruise_static
   use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
@@ -227,6 +228,7 @@ contains
 
     associate (mesh => deck%mesh)
     call put_field_summary(solution%displacement, solution%stress, record)
+    call bruise_static(deck, solution%stress, solution%strain, record)
     call record_put_real(record, 'strain_energy_J', solution%strain_energy)
     call record_put_real(record, 'external_work_J', solution%external_work)
     call record_put_real(record, 'reaction_r_N', sum(solution%reaction(1, :)))

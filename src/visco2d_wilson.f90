@@ -72,6 +72,7 @@ module visco2d_wilson
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_advice, only: deformation_warnings, largest_strain
+  use visco2d_bruise, only: bruise_t, bruise_update, bruise_report
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row, &
                             impact_surface_stress
   implicit none
@@ -132,6 +133,7 @@ contains
     type(contact_t) :: contact
     type(impact_t) :: impact
     type(kept_state_t) :: at_alpha_max, at_q_max
+    type(bruise_t) :: bruise                 !< envelopes (BRUISE cards only)
     type(corners_t), allocatable :: probe_corners(:)
     real(dp), allocatable :: row(:)
     real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:), free(:)
@@ -298,6 +300,7 @@ contains
         call insert_maximum_snapshot(at_q_max, 'maximum pressure')
       end if
     end if
+    call bruise_report(bruise, deck, record)
     ! Beyond the small-strain model: the largest principal strain at the end
     ! and at maximum deformation, and the approach against the radius.
     if (at_alpha_max%kept) then
@@ -546,6 +549,7 @@ contains
         end do
       end do
       stress = trial
+      call bruise_update(bruise, deck, t_next, stress, strain, state)
       call timer_stop(phase_constitutive)
       if (contact_on) then                       ! the kinetic energy of the components stopped by the plate
         do i = 1, size(contact%candidates)

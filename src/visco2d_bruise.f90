@@ -1,0 +1,349 @@
+!> Bruise prediction: time envelopes of failure measures at every Gauss point
+!> and the region where the criterion of a BRUISE card reaches its threshold.
+!>
+!> For each Gauss point the module keeps the largest value over the run, and
+!> the time it was reached, of
+!>   1. the maximum shear stress (Tresca) (sigma_1 - sigma_3)/2, the hoop
+!>      stress sigma_theta being a principal stress in axisymmetry, Pa;
+!>   2. the von Mises stress, Pa;
+!>   3. the octahedral shear stress sqrt(2)/3 sigma_Mises, Pa;
+!>   4. the strain-energy density stored in the springs, J/m^3: K theta^2/2 +
+!>      G_inf e:e + sum_m G_m C_m:C_m (eq. [12]'s terms; 1/2 sigma:epsilon for
+!>      an elastic material), the density of the solver's strain_energy_J.
+!> A point is bruised when the envelope of its card's criterion reaches the
+!> threshold. Volumes are 2 pi sum |J| r over the bruised Gauss points (the
+!> element's own 2 x 2 rule, weights 1): whole body in axisymmetry, per metre
+!> of thickness in plane strain.
+!>
+!> Nothing is allocated or computed for a deck without a BRUISE card.
+module visco2d_bruise
+  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_deck, only: deck_t, stop_at_separation
+  use visco2d_record, only: record_t, gauss_field_t, record_put, record_put_real, record_put_integer
+  use visco2d_element, only: gauss_count, element_b_matrices, element_gauss_points
+  use visco2d_material, only: von_mises, max_shear
+  use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, deviatoric_part
+  use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
+  use visco2d_strings, only: itoa
+  implicit none
+  private
+
+  public :: bruise_t, bruise_update, bruise_report, bruise_static, measure_count, measure_names
+
+  integer, parameter :: measure_count = 4   !< max shear, von Mises, octahedral, energy density
+  !> Names of the measures as fields and keys (in the order of the criterion codes).
+  character(len=15), parameter :: measure_names(measure_count) = [character(len=15) :: 'max_shear', &
+    'von_mises', 'octahedral', 'energy_density']
+  real(dp), parameter :: pi = 3.14159265358979323846264338327950288_dp
+  real(dp), parameter :: never = -1.0_dp    !< time of a maximum or a failure that did not happen
+
+  !> The envelopes of one run (allocated at the first bruise_update of a deck with BRUISE cards).
+  type :: bruise_t
+    logical :: active = .false.
+    real(dp), allocatable :: envelope(:, :, :)   !< (measure_count, gauss_count, nelem), Pa or J/m^3
+    real(dp), allocatable :: time_of_max(:, :, :)!< (measure_count, gauss_count, nelem), s (deck time)
+    real(dp), allocatable :: failure_time(:, :)  !< (gauss_count, nelem) first time at the threshold, s; -1: never
+    integer, allocatable :: rule(:)              !< (nelem) the deck's BRUISE card for the element; 0: none
+    real(dp), allocatable :: volume(:, :)        !< (gauss_count, nelem) m^3 (per metre in plane strain)
+    real(dp), allocatable :: point(:, :, :)      !< (2, gauss_count, nelem) undeformed r, z of the Gauss points, m
+    real(dp) :: pole_z = 0.0_dp                  !< z of the lowest node (the undeformed contact pole), m
+  end type bruise_t
+
+contains
+
+  !> Update the envelopes with the stresses and strains standing at `time`
+  !> (a no-op without BRUISE cards). `state`: the viscoelastic history, if any.
+  subroutine bruise_update(bruise, deck, time, stress, strain, state)
+    type(bruise_t), intent(inout) :: bruise
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: time
+    real(dp), intent(in) :: stress(:, :, :), strain(:, :, :)   !< (4, gauss_count, nelem)
+    type(viscoelastic_state_t), intent(in), optional :: state
+    real(dp) :: values(measure_count)
+    integer :: e, g, m
+    if (.not. allocated(deck%bruises)) return        ! a deck built without read_deck
+    if (size(deck%bruises) == 0) return
+    if (.not. bruise%active) call bruise_start(bruise, deck)
+    do e = 1, deck%mesh%nelem
+      do g = 1, gauss_count
+        associate (s => stress(:, g, e))
+        values(1) = max_shear(s(1), s(2), s(3), s(4))
+        values(2) = von_mises(s(1), s(2), s(3), s(4))
+        values(3) = sqrt(2.0_dp)/3.0_dp*values(2)
+        end associate
+        values(4) = energy_density(deck, e, g, stress(:, g, e), strain(:, g, e), state)
+        do m = 1, measure_count
+          if (values(m) > bruise%envelope(m, g, e)) then
+            bruise%envelope(m, g, e) = values(m)
+            bruise%time_of_max(m, g, e) = time
+          end if
+        end do
+        if (bruise%rule(e) == 0 .or. bruise%failure_time(g, e) >= 0.0_dp) cycle
+        associate (card => deck%bruises(bruise%rule(e)))
+        if (values(card%criterion) >= card%threshold) bruise%failure_time(g, e) = time
+        end associate
+      end do
+    end do
+  end subroutine bruise_update
+
+  !> A static run: its one state at t = 0, then the report.
+  subroutine bruise_static(deck, stress, strain, record)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: stress(:, :, :), strain(:, :, :)
+    type(record_t), intent(inout) :: record
+    type(bruise_t) :: bruise
+    if (.not. allocated(deck%bruises)) return
+    if (size(deck%bruises) == 0) return
+    call bruise_update(bruise, deck, 0.0_dp, stress, strain)
+    call bruise_report(bruise, deck, record)
+  end subroutine bruise_static
+
+  !> Allocate the envelopes (zero), the rule of every element, the volume
+  !> weights and the Gauss-point positions.
+  subroutine bruise_start(bruise, deck)
+    type(bruise_t), intent(inout) :: bruise
+    type(deck_t), intent(in) :: deck
+    real(dp) :: b(4, 8, gauss_count), factor(gauss_count)
+    integer :: e, k
+    associate (mesh => deck%mesh)
+    allocate(bruise%envelope(measure_count, gauss_count, mesh%nelem), &
+             bruise%time_of_max(measure_count, gauss_count, mesh%nelem), &
+             bruise%failure_time(gauss_count, mesh%nelem), bruise%rule(mesh%nelem), &
+             bruise%volume(gauss_count, mesh%nelem), bruise%point(2, gauss_count, mesh%nelem))
+    bruise%envelope = 0.0_dp
+    bruise%time_of_max = never
+    bruise%failure_time = never
+    bruise%rule = 0
+    do e = 1, mesh%nelem
+      ! The card naming the element's material, else the card without MAT=.
+      do k = 1, size(deck%bruises)
+        if (deck%bruises(k)%material == deck%materials(mesh%element_material(e))%id) then
+          bruise%rule(e) = k
+        else if (len(deck%bruises(k)%material) == 0 .and. bruise%rule(e) == 0) then
+          bruise%rule(e) = k
+        end if
+      end do
+      associate (xy => mesh%xy(:, mesh%connectivity(:, e)))
+      call element_b_matrices(deck%geometry, xy, b, factor)
+      bruise%point(:, :, e) = element_gauss_points(xy)
+      end associate
+      bruise%volume(:, e) = factor                      ! |J| r (|J| in plane strain), Gauss weights 1
+      if (deck%geometry == geometry_axisymmetric) bruise%volume(:, e) = 2.0_dp*pi*factor
+    end do
+    bruise%pole_z = minval(mesh%xy(2, :))
+    end associate
+    bruise%active = .true.
+  end subroutine bruise_start
+
+  !> Stored strain-energy density at one Gauss point, J/m^3 (as strain_energy_J's integrand).
+  real(dp) function energy_density(deck, e, g, stress, strain, state) result(density)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: e, g
+    real(dp), intent(in) :: stress(4), strain(4)
+    type(viscoelastic_state_t), intent(in), optional :: state
+    real(dp) :: deviatoric(4), volumetric
+    integer :: m, nterm, slot
+    nterm = 0
+    if (present(state)) then
+      if (allocated(state%first)) nterm = element_terms(state, e)
+    end if
+    if (nterm == 0) then                               ! elastic: 1/2 sigma : epsilon (gamma_rz engineering)
+      density = 0.5_dp*dot_product(stress, strain)
+      return
+    end if
+    associate (material => deck%materials(deck%mesh%element_material(e)))
+    call deviatoric_part(strain, deviatoric, volumetric)
+    density = 0.5_dp*material%bulk*volumetric**2 + material%long_term_shear*contracted(deviatoric)
+    do m = 1, nterm
+      slot = state%first(e) + (g - 1)*nterm + m - 1
+      density = density + material%prony_shear(m)*contracted(state%history(:, slot))
+    end do
+    end associate
+  end function energy_density
+
+  !> e:e of a deviatoric strain in engineering form (gamma_rz = 2 e_rz).
+  pure real(dp) function contracted(e)
+    real(dp), intent(in) :: e(4)
+    contracted = e(1)**2 + e(2)**2 + e(3)**2 + 0.5_dp*e(4)**2
+  end function contracted
+
+  !> The bruise measures into the summary and the envelope fields into the record.
+  subroutine bruise_report(bruise, deck, record)
+    type(bruise_t), intent(in) :: bruise
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    logical, allocatable :: bruised(:, :), assessed(:, :)
+    character(:), allocatable :: basis, names
+    real(dp) :: volume, absorbed
+    integer :: k, i, count_extra
+    if (.not. bruise%active) return
+    basis = 'cm3'
+    if (deck%geometry /= geometry_axisymmetric) basis = 'cm3_per_m'
+    assessed = spread(bruise%rule > 0, 1, gauss_count)
+    bruised = assessed .and. bruise%failure_time >= 0.0_dp
+    names = criterion_name(deck%bruises(1)%criterion)
+    do k = 2, size(deck%bruises)
+      names = names//','//criterion_name(deck%bruises(k)%criterion)
+    end do
+    call record_put(record, 'bruise_criterion', names)
+    if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'// &
+      unit_key(deck%bruises(1)%criterion), deck%bruises(1)%threshold)
+    call record_put_real(record, 'bruise_assessed_volume_'//basis, 1.0e6_dp*sum(bruise%volume, mask=assessed))
+    volume = 1.0e6_dp*sum(bruise%volume, mask=bruised)
+    call record_put_real(record, 'bruise_volume_'//basis, volume)
+    call record_put_integer(record, 'bruise_gauss_points', count(bruised))
+    if (any(bruised)) then
+      call record_put_real(record, 'bruise_depth_top_mm', 1.0e3_dp*(minval(bruise%point(2, :, :), bruised) - &
+                                                                   bruise%pole_z))
+      call record_put_real(record, 'bruise_depth_bottom_mm', 1.0e3_dp*(maxval(bruise%point(2, :, :), bruised) - &
+                                                                      bruise%pole_z))
+      call record_put_real(record, 'bruise_radius_max_mm', 1.0e3_dp*maxval(bruise%point(1, :, :), bruised))
+      call record_put_real(record, 'bruise_time_first_s', minval(bruise%failure_time, bruised))
+    end if
+    count_extra = 0
+    do k = 1, size(deck%bruises)
+      count_extra = max(count_extra, size(deck%bruises(k)%extra))
+    end do
+    do i = 1, count_extra
+      if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//itoa(i)//'_'// &
+        unit_key(deck%bruises(1)%criterion), deck%bruises(1)%extra(i))
+      call record_put_real(record, 'bruise_volume_threshold_'//itoa(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
+    end do
+    if (deck%geometry == geometry_axisymmetric .and. deck%stop_at == stop_at_separation .and. &
+        summary_value(record, 'energy_absorbed_J', absorbed)) then
+      if (absorbed > 0.0_dp) call record_put_real(record, 'bruise_susceptibility_cm3_per_J', volume/absorbed)
+    end if
+    do k = 1, measure_count
+      call put_envelope_maximum(k)
+    end do
+    call put_fields(bruise, deck, bruised, assessed, record)
+
+  contains
+
+    !> Volume where the envelope reaches the card's i-th extra threshold, m^3.
+    real(dp) function extra_volume(i) result(total)
+      integer, intent(in) :: i
+      integer :: e, g
+      total = 0.0_dp
+      do e = 1, deck%mesh%nelem
+        if (bruise%rule(e) == 0) cycle
+        associate (card => deck%bruises(bruise%rule(e)))
+        if (size(card%extra) < i) cycle
+        do g = 1, gauss_count
+          if (bruise%envelope(card%criterion, g, e) >= card%extra(i)) total = total + bruise%volume(g, e)
+        end do
+        end associate
+      end do
+    end function extra_volume
+
+    !> envelope_<measure>_max_<unit>, its r, z, depth below the pole and time.
+    subroutine put_envelope_maximum(m)
+      integer, intent(in) :: m
+      integer :: at(2)
+      character(:), allocatable :: prefix
+      at = maxloc(bruise%envelope(m, :, :))
+      prefix = 'envelope_'//trim(measure_names(m))
+      call record_put_real(record, prefix//'_max_'//unit_key(m), bruise%envelope(m, at(1), at(2)))
+      call record_put_real(record, prefix//'_r_mm', 1.0e3_dp*bruise%point(1, at(1), at(2)))
+      call record_put_real(record, prefix//'_z_mm', 1.0e3_dp*bruise%point(2, at(1), at(2)))
+      call record_put_real(record, prefix//'_depth_mm', 1.0e3_dp*(bruise%point(2, at(1), at(2)) - bruise%pole_z))
+      call record_put_real(record, prefix//'_time_s', bruise%time_of_max(m, at(1), at(2)))
+    end subroutine put_envelope_maximum
+  end subroutine bruise_report
+
+  !> 'Pa' or 'J_m3' (a key's unit suffix) of a measure or criterion code.
+  pure function unit_key(code) result(text)
+    integer, intent(in) :: code
+    character(:), allocatable :: text
+    text = 'Pa'
+    if (code == criterion_energy) text = 'J_m3'
+  end function unit_key
+
+  !> A real summary value by key (false if absent or not a number).
+  logical function summary_value(record, key, value) result(found)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    real(dp), intent(out) :: value
+    integer :: i, status
+    found = .false.
+    value = 0.0_dp
+    do i = 1, record%nsummary
+      if (record%summary(i)%key /= key) cycle
+      read(record%summary(i)%value, *, iostat=status) value
+      found = status == 0
+      return
+    end do
+  end function summary_value
+
+  !> The envelopes, their times, the bruised mask, the thresholds and the
+  !> quadrature (volume weights, Gauss-point positions) as record fields.
+  subroutine put_fields(bruise, deck, bruised, assessed, record)
+    type(bruise_t), intent(in) :: bruise
+    type(deck_t), intent(in) :: deck
+    logical, intent(in) :: bruised(:, :), assessed(:, :)
+    type(record_t), intent(inout) :: record
+    real(dp), allocatable :: threshold(:, :)
+    integer :: m, e
+    allocate(record%bruise_fields(0))
+    do m = 1, measure_count
+      call add(trim(measure_names(m))//'_envelope', criterion_unit(m), bruise%envelope(m, :, :))
+      call add(trim(measure_names(m))//'_time', 's', bruise%time_of_max(m, :, :))
+    end do
+    allocate(threshold(gauss_count, deck%mesh%nelem))
+    threshold = 0.0_dp
+    do e = 1, deck%mesh%nelem
+      if (bruise%rule(e) > 0) threshold(:, e) = deck%bruises(bruise%rule(e))%threshold
+    end do
+    call add('threshold', 'Pa or J/m^3 (the criterion of the element''s BRUISE card); 0: not assessed', threshold)
+    call add('assessed', '1', merge(1.0_dp, 0.0_dp, assessed))
+    call add('bruised', '1', merge(1.0_dp, 0.0_dp, bruised))
+    call add('failure_time', 's (-1: never)', bruise%failure_time)
+    call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%geometry == geometry_axisymmetric), bruise%volume, &
+             .false.)
+    call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
+    call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
+
+  contains
+
+    !> A field; with its nodal average unless `nodal` is false (the quadrature).
+    subroutine add(name, units, values, nodal)
+      character(*), intent(in) :: name, units
+      real(dp), intent(in) :: values(:, :)
+      logical, intent(in), optional :: nodal
+      type(gauss_field_t) :: field
+      field%name = name
+      field%units = trim(units)
+      field%gauss = values
+      if (present(nodal)) then
+        if (.not. nodal) then
+          record%bruise_fields = [record%bruise_fields, field]
+          return
+        end if
+      end if
+      field%nodal = nodal_average(deck, values)
+      record%bruise_fields = [record%bruise_fields, field]
+    end subroutine add
+  end subroutine put_fields
+
+  !> Nodal value: the mean over the node's elements of the Gauss point nearest
+  !> the node (Gauss point c sits next to corner c): no extrapolation, so an
+  !> envelope or a mask keeps its range.
+  function nodal_average(deck, values) result(nodal)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: values(:, :)
+    real(dp), allocatable :: nodal(:)
+    integer, allocatable :: count(:)
+    integer :: e, c, node
+    allocate(nodal(deck%mesh%nnode), count(deck%mesh%nnode))
+    nodal = 0.0_dp
+    count = 0
+    do e = 1, deck%mesh%nelem
+      do c = 1, 4
+        node = deck%mesh%connectivity(c, e)
+        nodal(node) = nodal(node) + values(c, e)
+        count(node) = count(node) + 1
+      end do
+    end do
+    nodal = nodal/max(count, 1)
+  end function nodal_average
+end module visco2d_bruise
