@@ -590,8 +590,17 @@ contains
     character(len=16) :: buffer
     line = summary_value(record, 'case')//': '//summary_value(record, 'nodes')//' nodes, '// &
       summary_value(record, 'elements')//' elements, half-bandwidth '//summary_value(record, 'half_bandwidth')
-    if (len(summary_value(record, 'max_displacement_m')) > 0) &
+    if (len(summary_value(record, 'alpha_max_mm')) > 0) then          ! an impact: what a batch user looks for
+      line = line//'; alpha_m = '//four_digits(summary_value(record, 'alpha_max_mm'))//' mm at '// &
+        four_digits(summary_value(record, 't_alpha_max_ms'))//' ms, q_m = '// &
+        four_digits(summary_value(record, 'q_max_MPa'))//' MPa'
+      if (len(summary_value(record, 'bruise_volume_cm3')) > 0) &
+        line = line//', bruise '//four_digits(summary_value(record, 'bruise_volume_cm3'))//' cm3'
+    else if (len(summary_value(record, 'max_displacement_m')) > 0) then
       line = line//'; max |u| = '//summary_value(record, 'max_displacement_m')//' m'
+    end if
+    if (summary_value(record, 'warnings') /= '0' .and. len(summary_value(record, 'warnings')) > 0) &
+      line = line//'; '//summary_value(record, 'warnings')//' warning(s)'
     if (tally%count > 0) then
       write(buffer, '(es10.2e3)') tally%worst
       line = line//'; EXPECT '//itoa(tally%within)//'/'//itoa(tally%count)//' within RTOL (worst rel. error '// &
@@ -599,6 +608,24 @@ contains
     end if
     line = line//'; cpu '//summary_value(record, 'cpu_s')//' s'
   end function run_line
+
+  !> A summary number with four significant digits (the text as it is if it is not a number).
+  function four_digits(text) result(short)
+    character(*), intent(in) :: text
+    character(:), allocatable :: short
+    real(dp) :: value
+    integer :: ios
+    character(len=32) :: buffer
+    short = text
+    read(text, *, iostat=ios) value
+    if (ios /= 0) return
+    if (abs(value) >= 1.0e-3_dp .and. abs(value) < 1.0e5_dp .or. value == 0.0_dp) then
+      write(buffer, '(g0.4)') value
+    else
+      write(buffer, '(es10.3e3)') value
+    end if
+    short = trim(adjustl(buffer))
+  end function four_digits
 
   !> The text of a summary key ('' if absent).
   function summary_value(record, key) result(value)
