@@ -502,21 +502,28 @@ contains
                                    snapshot%stress(4, :))
   end subroutine set_snapshot_stress
 
-  !> Summary of a state: largest displacement, extreme stresses over the Gauss points.
-  subroutine put_field_summary(displacement, stress, record)
+  !> Summary of a state: largest displacement, extreme stresses over the Gauss
+  !> points. `prefix` (default none) names the state, e.g. 'end_'.
+  subroutine put_field_summary(displacement, stress, record, prefix)
     real(dp), intent(in) :: displacement(:, :), stress(:, :, :)
     type(record_t), intent(inout) :: record
+    character(*), intent(in), optional :: prefix
+    character(:), allocatable :: p
+    p = ''
+    if (present(prefix)) p = prefix
     associate (s => stress)
-    call record_put_real(record, 'max_displacement_m', maxval(norm2(displacement, dim=1)))
-    call record_put_real(record, 'sigma_r_min_Pa', minval(s(1, :, :)))
-    call record_put_real(record, 'sigma_r_max_Pa', maxval(s(1, :, :)))
-    call record_put_real(record, 'sigma_z_min_Pa', minval(s(2, :, :)))
-    call record_put_real(record, 'sigma_z_max_Pa', maxval(s(2, :, :)))
-    call record_put_real(record, 'sigma_theta_min_Pa', minval(s(3, :, :)))
-    call record_put_real(record, 'sigma_theta_max_Pa', maxval(s(3, :, :)))
-    call record_put_real(record, 'tau_rz_max_abs_Pa', maxval(abs(s(4, :, :))))
-    call record_put_real(record, 'von_mises_max_Pa', maxval(von_mises(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
-    call record_put_real(record, 'max_shear_max_Pa', maxval(max_shear(s(1, :, :), s(2, :, :), s(3, :, :), s(4, :, :))))
+    call record_put_real(record, p//'max_displacement_m', maxval(norm2(displacement, dim=1)))
+    call record_put_real(record, p//'sigma_r_min_Pa', minval(s(1, :, :)))
+    call record_put_real(record, p//'sigma_r_max_Pa', maxval(s(1, :, :)))
+    call record_put_real(record, p//'sigma_z_min_Pa', minval(s(2, :, :)))
+    call record_put_real(record, p//'sigma_z_max_Pa', maxval(s(2, :, :)))
+    call record_put_real(record, p//'sigma_theta_min_Pa', minval(s(3, :, :)))
+    call record_put_real(record, p//'sigma_theta_max_Pa', maxval(s(3, :, :)))
+    call record_put_real(record, p//'tau_rz_max_abs_Pa', maxval(abs(s(4, :, :))))
+    call record_put_real(record, p//'von_mises_max_Pa', maxval(von_mises(s(1, :, :), s(2, :, :), s(3, :, :), &
+                                                                           s(4, :, :))))
+    call record_put_real(record, p//'max_shear_max_Pa', maxval(max_shear(s(1, :, :), s(2, :, :), s(3, :, :), &
+                                                                           s(4, :, :))))
     end associate
   end subroutine put_field_summary
 

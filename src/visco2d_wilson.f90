@@ -62,7 +62,7 @@ module visco2d_wilson
                                   update_history
   use visco2d_static, only: singular_error, node_text, node_corners, corner_stress, put_field_summary, &
                             put_probe_summary, set_snapshot_stress
-  use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, &
+  use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, &
                             history_define, history_append, record_add_snapshot, record_insert_snapshot
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, &
                              contact_search, contact_gap
@@ -308,7 +308,16 @@ contains
     else
       call deformation_warnings(deck, record, largest_strain(strain))
     end if
-    call put_field_summary(nodal_field(deck%mesh, u), stress, record)
+    ! The field keys of an impact describe the impact: the state at maximum
+    ! deformation; the end state (after the rebound, or at TEND) has its own
+    ! end_ keys. Without an impact they describe the end state.
+    if (at_alpha_max%kept) then
+      call record_put(record, 'field_keys_at', 'maximum deformation')
+      call put_field_summary(nodal_field(deck%mesh, at_alpha_max%u), at_alpha_max%stress, record)
+      call put_field_summary(nodal_field(deck%mesh, u), stress, record, prefix='end_')
+    else
+      call put_field_summary(nodal_field(deck%mesh, u), stress, record)
+    end if
     call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     do k = 1, size(deck%probes)
       associate (r => node_dof(mesh, deck%probes(k)%node, 1), z => node_dof(mesh, deck%probes(k)%node, 2))
