@@ -271,7 +271,7 @@ contains
     if (deck%mesh%source /= 'SPHERE') return
     radius = 0.5_dp*(maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :)))
     do k = 1, record%nsummary
-      if (trim(record%summary(k)%key) /= 'alpha_max_mm') cycle
+      if (trim(record%summary(k)%key) /= 'alpha_max_mm' .and. trim(record%summary(k)%key) /= 'alpha_largest_mm') cycle
       read(record%summary(k)%value, *, iostat=ios) alpha
       if (ios /= 0) return
       alpha = 1.0e-3_dp*alpha

@@ -336,11 +336,18 @@ contains
       call record_put_real(record, 'impact_velocity_m_s', -m%v_cm_contact)
       call record_put_real(record, 't_stop_ms', 1.0e3_dp*(t_end - m%t_contact))
       if (m%paper_fired) call record_put_real(record, 't_paper_criterion_ms', 1.0e3_dp*m%t_paper)
-      call peak_of_parabola(m, alpha_peak, t_peak)
-      call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*alpha_peak)
-      call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*t_peak)
-      call record_put_real(record, 'alpha_max_step_mm', 1.0e3_dp*m%alpha_max)
-      call record_put_real(record, 't_alpha_max_step_ms', 1.0e3_dp*m%t_alpha_max)
+      if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) then
+        ! The criterion was not reached: the largest approach so far is not the
+        ! impact's maximum, and is not named as one.
+        call record_put_real(record, 'alpha_largest_mm', 1.0e3_dp*m%alpha_max)
+        call record_put_real(record, 't_alpha_largest_ms', 1.0e3_dp*m%t_alpha_max)
+      else
+        call peak_of_parabola(m, alpha_peak, t_peak)
+        call record_put_real(record, 'alpha_max_mm', 1.0e3_dp*alpha_peak)
+        call record_put_real(record, 't_alpha_max_ms', 1.0e3_dp*t_peak)
+        call record_put_real(record, 'alpha_max_step_mm', 1.0e3_dp*m%alpha_max)
+        call record_put_real(record, 't_alpha_max_step_ms', 1.0e3_dp*m%t_alpha_max)
+      end if
       call record_put_real(record, 'q_max_MPa', 1.0e-6_dp*m%q_max)
       call record_put_real(record, 't_q_max_ms', 1.0e3_dp*m%t_q_max)
       call record_put_real(record, 'q_surface_max_MPa', 1.0e-6_dp*m%q_surface_max)
@@ -361,8 +368,9 @@ contains
       call pressure_table(m, deck, record)
     end if
     if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) call record_warn(record, &
-      'the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)//': alpha_max_mm and '// &
-      'the other maxima are those of the time simulated, not of the whole impact; a later TEND reaches them', &
+      'the run reached the end of its TIME cards before STOP AT='//stop_name(deck%stop_at)//': the approach is '// &
+      'reported as alpha_largest_mm, not as a maximum, and the other maxima are those of the time simulated, '// &
+      'not of the whole impact; a later TEND reaches them', &
       file=deck%cards%file, line=stop_line(deck), card='STOP')
     t_column = record_column(record, 't_s')
     uz_column = record_column(record, 'uz_cm_m')

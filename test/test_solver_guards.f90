@@ -198,6 +198,8 @@ contains
                summary_value(record, 'stop_reason') == 'end of time', summary_value(record, 'stop_reason'))
     call check('Table 1 to TEND = 1 ms: the criterion not reached is a counted warning (warnings = 1)', &
                summary_value(record, 'warnings') == '1', 'warnings = '//summary_value(record, 'warnings'))
+    call check('Table 1 to TEND = 1 ms: no alpha_max_mm, the approach as alpha_largest_mm', &
+               len(summary_value(record, 'alpha_max_mm')) == 0 .and. len(summary_value(record, 'alpha_largest_mm')) > 0)
     ! A plate the body never reaches in 1 ms: two counted warnings (never
     ! touched; the default STOP AT=MAXDEFORMATION not reached).
     coarse = paper
