@@ -17,8 +17,8 @@
 !> The warnings and their levels, measured on the Table 1 impact (level 1):
 !> - fewer than `contact_steps_minimum` = 20 steps in the Hertz contact: at 16
 !>   steps (DT = 0.2 ms) alpha_m is 0.3 %, t_m 0.8 %, q_m 5 % off the
-!>   DT = 0.01 ms values and the energy balance is off by 2.8 % of the input;
-!>   at 3 steps (DT = 1 ms) alpha_m is +29 %, t_m +31 %, balance 116 %.
+!>   DT = 0.01 ms values and the energy balance is off by 1.0 % of the input;
+!>   at 3 steps (DT = 1 ms) alpha_m is +29 %, t_m +31 %, q_m +37 %, balance 125 %.
 !>   The study of accuracy against cost finds alpha, t and q within 1 % at
 !>   80 steps (DT = 0.04 ms), the cheapest accurate choice.
 !> - DT above the wave transit of the body: the body's own lowest modes are
@@ -26,8 +26,8 @@
 !>   accelerations in time are filtered, whatever the mesh.
 !> - the energy-balance error above `balance_warning_level` = 5 % of the
 !>   energy put in (stable runs at a resolved DT: 1e-14 to 8e-4; DT = 0.4 ms:
-!>   11 %; DT = 1 ms: 116 %).
-!> The pole element's transit is reported (`visco2d check`, the listing) but
+!>   2.3 %; DT = 1 ms: 125 %).
+!> The pole element's transit is reported (by `visco2d check`) but
 !> does not warn: Wilson-theta is unconditionally stable for theta >= 1.37,
 !> and a DT of many pole transits is the accurate and cheap choice of an
 !> impact on a fine mesh (level 5 at DT = 0.04 ms: about 40 transits, alpha,

@@ -173,6 +173,7 @@ contains
     call check_expectations(deck, record, tally, error)
     if (allocated(error)) return
     call record_put_integer(record, 'warnings', size(deck%warnings) + run_warning_count(record))
+    call put_warning_keys(deck, record)
     call cpu_time(cpu_end)
     call record_put(record, 'cpu_s', rtoa(real(cpu_end - cpu_start, dp)))
     ! The last line of defence: nothing non-finite reaches listing.txt, summary.txt, history.csv, results.h5.
@@ -349,6 +350,23 @@ contains
       write(0, '(a)') 'visco2d: warning: '//record%warnings(k)%text
     end do
   end subroutine print_run_warnings
+
+  !> Each warning as a summary key, warning_1, warning_2, ... (the deck's,
+  !> then the run's): a batch user reads them in summary.txt, not only on stderr.
+  subroutine put_warning_keys(deck, record)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    integer :: k, n
+    n = 0
+    do k = 1, size(deck%warnings)
+      n = n + 1
+      call record_put(record, 'warning_'//itoa(n), deck%warnings(k)%text)
+    end do
+    do k = 1, run_warning_count(record)
+      n = n + 1
+      call record_put(record, 'warning_'//itoa(n), record%warnings(k)%text)
+    end do
+  end subroutine put_warning_keys
 
   !> Number of run-time warnings in a record (record_warn).
   pure integer function run_warning_count(record) result(count)
