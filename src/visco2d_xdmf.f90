@@ -39,7 +39,7 @@ contains
     call text_put(out, '    <Grid Name="snapshots" GridType="Collection" CollectionType="Temporal">')
     if (allocated(record%snapshots)) then
       do i = 1, size(record%snapshots)
-        call put_snapshot(out, deck, record%snapshots(i))
+        call put_snapshot(out, deck, record, record%snapshots(i))
       end do
     end if
     call text_put(out, '    </Grid>')
@@ -50,11 +50,13 @@ contains
   end subroutine write_results_xdmf
 
   !> One snapshot: a Uniform grid with its time, the mesh and its fields.
-  subroutine put_snapshot(out, deck, snapshot)
+  subroutine put_snapshot(out, deck, record, snapshot)
     type(text_file_t), intent(inout) :: out
     type(deck_t), intent(in) :: deck
+    type(record_t), intent(in) :: record
     type(snapshot_t), intent(in) :: snapshot
     character(:), allocatable :: group, nodes, elements
+    integer :: k
     nodes = itoa(deck%mesh%nnode)
     elements = itoa(deck%mesh%nelem)
     group = '/fields/'//snapshot%name
@@ -77,6 +79,16 @@ contains
     call put_attribute(out, 'stress', 'Vector', 'Node', nodes//' 4', 'Float', '8', group//'/stress')
     call put_attribute(out, 'max_shear', 'Scalar', 'Node', nodes, 'Float', '8', group//'/max_shear')
     call put_attribute(out, 'von_mises', 'Scalar', 'Node', nodes, 'Float', '8', group//'/von_mises')
+    ! The BRUISE envelopes (maxima over the whole run, so the same in every
+    ! grid): their nodal versions, /bruise/<name>_nodal.
+    if (allocated(record%bruise_fields)) then
+      do k = 1, size(record%bruise_fields)
+        associate (field => record%bruise_fields(k))
+        if (allocated(field%nodal)) call put_attribute(out, field%name, 'Scalar', 'Node', nodes, 'Float', '8', &
+                                                       '/bruise/'//field%name//'_nodal')
+        end associate
+      end do
+    end if
     call text_put(out, '      </Grid>')
   end subroutine put_snapshot
 
