@@ -296,8 +296,7 @@ def envelope_panels(case, data, fig, whole_spec, zoom_spec, bar_spec):
         nodes = case["nodes"] * 1e3
         whole.add_patch(plt.Rectangle((nodes[:, 0].min(), nodes[:, 1].min()), box[0], box[1],
                                       fill=False, ec="w", lw=1.2, ls="--"))
-        zoom.set_title(f"time envelope of the {data['label']}: zoom on the contact region "
-                       f"(dashed box)", fontsize=10)
+        zoom.set_title(f"envelope of the {data['label']}, contact region (dashed box)", fontsize=10)
         axes.append(zoom)
     bar = fig.colorbar(filled, cax=fig.add_subplot(bar_spec))
     bar.set_label(f"largest {data['label']} over the run ({data['unit']}, nodal)")
@@ -383,6 +382,8 @@ def numbers_text(case, data):
         depth = z_peak - case["nodes"][:, 1].min() * 1e3
         lines.append(f"envelope max {value:.3g} {data['unit']}")
         lines.append(f"  at r = {r_peak:.3g} mm, depth {depth:.3g} mm")
+    elif lines:
+        lines += ["", "no BRUISE card in the deck: no envelope"]
     warnings = s("warnings")
     if warnings:
         lines.append("")
@@ -400,7 +401,7 @@ def report(case, path):
     if not contact and data is None and number(case, "force_N") is None:
         return False
     pressure = contact and case["pressure"] is not None and len(case["pressure"].get("r_mm", [])) > 0
-    plate = number(case, "plate_z_m") is not None
+    plate = number(case, "plate_z_m") is not None or number(case, "force_N") is not None   # dynamic, static
     if contact:
         fig = plt.figure(figsize=(17, 10.5 if data is not None else 9.5))
         if data is not None:
@@ -419,10 +420,10 @@ def report(case, path):
         if pressure_ax is not None:
             pressure_panel(case, pressure_ax)
     else:
-        fig = plt.figure(figsize=(15, 7.5))
+        fig = plt.figure(figsize=(17, 7.5))
         if data is not None:
-            spec = fig.add_gridspec(1, 4, width_ratios=[0.9, 1.6, 0.9, 0.04], left=0.05, right=0.94,
-                                    bottom=0.09, top=0.86, wspace=0.3)
+            spec = fig.add_gridspec(1, 4, width_ratios=[1.0, 1.5, 0.9, 0.04], left=0.02, right=0.94,
+                                    bottom=0.09, top=0.86, wspace=0.25)
             envelope_panels(case, data, fig, spec[0, 2], spec[0, 1] if plate else None, spec[0, 3])
             text_ax = fig.add_subplot(spec[0, 0])
         else:
@@ -434,7 +435,7 @@ def report(case, path):
     stop = case["summary"].get("stop_reason")
     fig.suptitle(f"{case['case']}: {case['title']}\n{case['summary'].get('analysis', '')} "
                  f"{case['geometry'].lower()}, {figures.mesh_label(case)}"
-                 + (f", plate {case['summary'].get('plate', '')}" if plate else "")
+                 + (f", plate {case['summary'].get('plate', '')}" if "plate" in case["summary"] else "")
                  + (f", stopped at {stop}" if stop else "") + f"  ({case['path']})", fontsize=11.5)
     temporary = path + ".part.png"
     try:
