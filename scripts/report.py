@@ -193,11 +193,11 @@ def pressure_panel(case, ax):
         ax.plot(r, p0 * np.sqrt(1.0 - (r / a) ** 2), "--", color="0.45", lw=1.2,
                 label=f"Hertz at its maximum: p₀ = {p0:.3g} MPa, a = {a:.3g} mm")
     ax.set_xlim(left=0.0)
-    ax.set_ylim(0.0, ax.get_ylim()[1] * 1.2)
+    ax.set_ylim(0.0, ax.get_ylim()[1] * 1.35)                  # room for the legend above the curves
     ax.set_xlabel("radius r (mm, deformed)")
     ax.set_ylabel("contact pressure p (MPa)")
     ax.set_title("contact pressure p(r)")
-    ax.legend(loc="upper right", fontsize=8)
+    ax.legend(loc="upper right", fontsize=7.5)
 
 
 def envelope_data(case):
@@ -323,8 +323,8 @@ def numbers_text(case, data):
         alpha, t_alpha = s("alpha_max_mm"), s("t_alpha_max_ms")
         if alpha is not None:
             stopped = str(case["summary"].get("stop_reason", ""))
-            what = "α at the last sample" if stopped == "end of time" else "α_m"
-            lines.append(f"{what} = {alpha:.4g} mm at t_m = {t_alpha:.3g} ms")
+            what, when = ("α at the last sample", "t") if stopped == "end of time" else ("α_m", "t_m")
+            lines.append(f"{what} = {alpha:.4g} mm at {when} = {t_alpha:.3g} ms")
             if stopped == "end of time":
                 lines.append("  (TEND reached before the stop criterion)")
         for key, tkey, name, unit in (("q_max_MPa", "t_q_max_ms", "q_m", "MPa"),
