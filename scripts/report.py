@@ -287,7 +287,8 @@ def envelope_panels(case, data, fig, whole_spec, zoom_spec, bar_spec):
     """Whole section (small) and zoom, one colour bar, a legend of the marks."""
     whole = fig.add_subplot(whole_spec)
     filled, _ = envelope_panel(case, data, whole)
-    whole.set_title("envelope, whole section", fontsize=10)
+    whole.set_title("envelope, whole section" if zoom_spec is not None
+                    else f"envelope of the {data['label']}, whole section", fontsize=10)
     axes = [whole]
     if zoom_spec is not None:
         zoom = fig.add_subplot(zoom_spec)
@@ -302,9 +303,13 @@ def envelope_panels(case, data, fig, whole_spec, zoom_spec, bar_spec):
     bar.set_label(f"largest {data['label']} over the run ({data['unit']}, nodal)")
     if data["threshold"] is not None:
         bar.ax.axhline(data["threshold"], color="r", lw=2.2)
-    handles = [plt.Line2D([], [], color="r", lw=2.2,
-                          label=("bruised region: envelope = threshold" if not data["mixed"]
-                                 else "bruised region (bruised Gauss points, nodal mean 0.5)")),
+    outline = ("bruised region: envelope = threshold" if not data["mixed"]
+               else "bruised region (bruised Gauss points, nodal mean 0.5)")
+    if data["bruised_points"] is not None and data["bruised_points"][0].size == 0:
+        outline = "nothing bruised (no outline)"
+    elif data["ratio"].min() >= 1.0:
+        outline = "all the section bruised (no outline)"
+    handles = [plt.Line2D([], [], color="r", lw=2.2, label=outline),
                plt.Line2D([], [], ls="none", marker="*", color="w", mec="k", ms=12,
                           label=f"envelope maximum {data['peak'][2]:.3g} {data['unit']}")]
     if len(axes) > 1 and data["bruised_points"] is not None:
@@ -357,11 +362,13 @@ def numbers_text(case, data):
         volume = s(f"bruise_volume_{key_suffix}")
         if volume is not None:
             assessed = s(f"bruise_assessed_volume_{key_suffix}")
-            share = f" ({100 * volume / assessed:.2g} % of the flesh)" if assessed else ""
+            share = f" ({100 * volume / assessed:.3g} % of the flesh)" if assessed else ""
             lines.append(f"bruise volume {volume:.4g} {suffix}{share}")
         top, bottom = s("bruise_depth_top_mm"), s("bruise_depth_bottom_mm")
         if top is not None and bottom is not None:
-            lines.append(f"depth {top:.3g} to {bottom:.3g} mm below the pole")
+            below = "the pole" if number(case, "plate_z_m") is not None or s("force_N") is not None \
+                else "the lowest point"
+            lines.append(f"depth {top:.3g} to {bottom:.3g} mm below {below}")
         if s("bruise_radius_max_mm") is not None:
             lines.append(f"largest radius {s('bruise_radius_max_mm'):.3g} mm "
                          f"(diameter {2 * s('bruise_radius_max_mm'):.3g} mm)")
@@ -381,7 +388,8 @@ def numbers_text(case, data):
         r_peak, z_peak, value = data["peak"]
         depth = z_peak - case["nodes"][:, 1].min() * 1e3
         lines.append(f"envelope max {value:.3g} {data['unit']}")
-        lines.append(f"  at r = {r_peak:.3g} mm, depth {depth:.3g} mm")
+        radial = "r" if case["geometry"].upper().startswith("AXI") else "x"
+        lines.append(f"  at {radial} = {r_peak:.3g} mm, depth {depth:.3g} mm")
     elif lines:
         lines += ["", "no BRUISE card in the deck: no envelope"]
     warnings = s("warnings")
@@ -422,9 +430,14 @@ def report(case, path):
     else:
         fig = plt.figure(figsize=(17, 7.5))
         if data is not None:
-            spec = fig.add_gridspec(1, 4, width_ratios=[1.0, 1.5, 0.9, 0.04], left=0.02, right=0.94,
-                                    bottom=0.09, top=0.86, wspace=0.25)
-            envelope_panels(case, data, fig, spec[0, 2], spec[0, 1] if plate else None, spec[0, 3])
+            if plate:
+                spec = fig.add_gridspec(1, 4, width_ratios=[1.0, 1.5, 0.9, 0.04], left=0.02, right=0.94,
+                                        bottom=0.09, top=0.86, wspace=0.25)
+                envelope_panels(case, data, fig, spec[0, 2], spec[0, 1], spec[0, 3])
+            else:                                   # no contact region to zoom on: the whole section, larger
+                spec = fig.add_gridspec(1, 3, width_ratios=[1.0, 1.5, 0.04], left=0.02, right=0.94,
+                                        bottom=0.09, top=0.86, wspace=0.25)
+                envelope_panels(case, data, fig, spec[0, 1], None, spec[0, 2])
             text_ax = fig.add_subplot(spec[0, 0])
         else:
             text_ax = fig.add_subplot(1, 1, 1)
