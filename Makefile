@@ -3,6 +3,7 @@
 #               then print the impact results beside the paper's (scripts/paper_table.py)
 #   make test   install what is missing, run the tests and the reference-output diffs
 #   make figures  pictures of the paper's figures into out/figures/ (scripts/figures.py)
+#   make report   one picture per case of out/: out/<case>/report.png (scripts/report.py)
 #   make fuzz     N mutated decks through the release build (scripts/fuzz.py; N=10000: ~4 min)
 #   make checked  every deck under -fcheck=all and the address/undefined-behaviour sanitizers
 # and, on purpose only:
@@ -36,6 +37,15 @@ run: build
 .PHONY: figures
 figures: build
 	@python3 scripts/figures.py --out out --exe $(EXE)
+
+# make report      one picture per case, <case folder>/report.png, of every case in out/ (from make run or
+#                  visco2d -o out): alpha(t), F(t), q(t), p(r), and with a BRUISE card the criterion's envelope
+#                  over the r-z section with the bruised region outlined, the key numbers beside;
+#                  OUT=dir for another output root, REPORT_ARGS="case1 case2" for some cases only.
+.PHONY: report
+OUT ?= out
+report: setup
+	@python3 scripts/report.py --out $(OUT) $(REPORT_ARGS)
 
 check: build
 	@$(EXE) check $(DECKS)

@@ -46,6 +46,11 @@ bash scripts/test_figures.sh "$exe" > "$log/figures.log" 2>&1
 count "$log/figures.log"
 echo "   $(grep -c '^PASS ' "$log/figures.log") checks passed"
 
+echo "== report (make report smoke check)"
+bash scripts/test_report.sh "$exe" > "$log/report.log" 2>&1
+count "$log/report.log"
+echo "   $(grep -c '^PASS ' "$log/report.log") checks passed"
+
 echo "== reference outputs (rtol 1e-6)"
 rm -rf build/reference-check && mkdir -p build/reference-check
 for deck in inputs/*.inp; do
