@@ -12,6 +12,7 @@ module visco2d_bruise_cards
   use visco2d_material, only: material_t
   use visco2d_strings, only: short_real, itoa
   use visco2d_ranges, only: range_t, in_range, range_text, failure_stress_range, failure_energy_range
+  use visco2d_card_lists, only: read_increasing_list
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, has_field, &
                            check_fields_used, field_column, parse_real
   implicit none
@@ -121,34 +122,8 @@ contains
     !> THRESHOLDS=v1,v2,...: increasing values in the criterion's range.
     subroutine read_thresholds(list)
       character(*), intent(in) :: list
-      real(dp) :: value
-      logical :: ok
-      integer :: start, comma
-      allocate(bruise%extra(0))
-      start = 1
-      do while (start <= len(list))
-        comma = index(list(start:), ',')
-        if (comma == 0) comma = len(list) - start + 2
-        call parse_real(list(start:start + comma - 2), value, ok)
-        if (.not. ok) then
-          call card_error(error, cards, card, 'THRESHOLDS must be a comma-separated list of numbers in '// &
-                          criterion_unit(bruise%criterion)//', got "'//list(start:start + comma - 2)//'"', &
-                          field_column(card, 'THRESHOLDS')); return
-        end if
-        if (.not. in_range(value, range)) then
-          call card_error(error, cards, card, 'THRESHOLDS values must be '//range_text(range)//', got "'// &
-                          list(start:start + comma - 2)//'"', field_column(card, 'THRESHOLDS')); return
-        end if
-        if (size(bruise%extra) > 0) then
-          if (value <= bruise%extra(size(bruise%extra))) then
-            call card_error(error, cards, card, 'THRESHOLDS values must increase, got '//short_real(value)// &
-                            ' after '//short_real(bruise%extra(size(bruise%extra))), &
-                            field_column(card, 'THRESHOLDS')); return
-          end if
-        end if
-        bruise%extra = [bruise%extra, value]
-        start = start + comma
-      end do
+      call read_increasing_list(cards, card, 'THRESHOLDS', list, 'numbers in '//criterion_unit(bruise%criterion), &
+                                'values', range, bruise%extra, error)
     end subroutine read_thresholds
   end subroutine read_bruise
 

@@ -7,6 +7,7 @@ module visco2d_dynamic_cards
   use visco2d_strings, only: short_real, itoa
   use visco2d_ranges, only: speed_range, acceleration_range, drop_height_range, gravity_range, time_range, &
                             in_range, range_text
+  use visco2d_card_lists, only: read_increasing_list
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
                            positional_word, check_fields_used, has_field, field_column, parse_real
   implicit none
@@ -117,9 +118,6 @@ contains
     type(output_request_t), intent(inout) :: output
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable :: list
-    real(dp) :: value
-    logical :: ok
-    integer :: start, comma
     call named_integer(cards, card, 'EVERY', output%every, error, default=1); if (allocated(error)) return
     call named_word(cards, card, 'FIELDS', list, error, default=''); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'OUTPUT EVERY=k [FIELDS=t1,t2,...]'); if (allocated(error)) return
@@ -127,32 +125,9 @@ contains
       call card_error(error, cards, card, 'EVERY must be >= 1, got '//itoa(output%every), field_column(card, 'EVERY')); return
     end if
     if (allocated(output%field_times)) deallocate(output%field_times)
-    allocate(output%field_times(0))
-    start = 1
-    do while (start <= len(list))
-      comma = index(list(start:), ',')
-      if (comma == 0) comma = len(list) - start + 2
-      call parse_real(list(start:start + comma - 2), value, ok)
-      if (.not. ok) then
-        call card_error(error, cards, card, 'FIELDS must be a comma-separated list of times >= 0 s, got "'// &
-                        list(start:start + comma - 2)//'"', field_column(card, 'FIELDS'))
-        return
-      end if
-      if (.not. in_range(value, time_range)) then
-        call card_error(error, cards, card, 'FIELDS times must be '//range_text(time_range)//', got "'// &
-                        list(start:start + comma - 2)//'"', field_column(card, 'FIELDS'))
-        return
-      end if
-      if (size(output%field_times) > 0) then
-        if (value <= output%field_times(size(output%field_times))) then
-          call card_error(error, cards, card, 'FIELDS times must increase, got '//short_real(value)// &
-                          ' after '//short_real(output%field_times(size(output%field_times))), &
-                          field_column(card, 'FIELDS')); return
-        end if
-      end if
-      output%field_times = [output%field_times, value]
-      start = start + comma
-    end do
+    call read_increasing_list(cards, card, 'FIELDS', list, 'times >= 0 s', 'times', time_range, output%field_times, &
+                              error)
+    if (allocated(error)) return
     output%line = card%line
   end subroutine read_output
 
