@@ -721,7 +721,8 @@ def check_pressure(folder, f, text):
     # row is the history's q_MPa at t_force_max_ms and at t_alpha_max_step_ms
     # (the same doubles, both printed with 10 digits: equal as numbers).
     header, rows = read_csv(os.path.join(folder, "pressure.csv"))
-    expected = ["node", "r_mm", "r_force_max_mm", "p_force_max_MPa", "r_alpha_max_mm", "p_alpha_max_MPa"]
+    expected = ["node", "r_mm", "r_force_max_mm", "p_force_max_MPa", "r_alpha_max_mm", "p_alpha_max_MPa",
+                "reaction_z_force_max_ring_N", "reaction_z_alpha_max_ring_N"]
     report("pressure_csv_header", header == expected, f"{header}")
     if header != expected or rows.ndim != 2:
         return
@@ -741,6 +742,16 @@ def check_pressure(folder, f, text):
         if instant == "force_max" and len(rows_at) == 1:
             report("pressure_force_max_at_largest_force", force[rows_at[0]] == float(text["force_max_N"]),
                    f"force_N {force[rows_at[0]]}, force_max_N {text['force_max_N']}")
+        # The nodal plate reactions (whole ring) sum to the plate force at that
+        # instant (force_max_N; force_N of the history row at alpha max): the
+        # same sum as the code's, each term printed to 10 significant digits
+        # (es17.9, relative rounding <= 5e-10), so 1e-9 of the sum of |terms|.
+        reaction = column[f"reaction_z_{instant}_ring_N"]
+        if len(rows_at) == 1:
+            reference = float(text["force_max_N"]) if instant == "force_max" else force[rows_at[0]]
+            report(f"pressure_reactions_sum_to_force_{instant}",
+                   reference > 0 and abs(reaction.sum() - reference) <= 1e-9 * np.abs(reaction).sum(),
+                   f"sum of reaction_z_{instant}_ring_N = {reaction.sum()!r}, plate force {reference!r}")
     stored = {name: f["/pressure"][name][()] for name in f["/pressure"]} if "pressure" in f else {}
     bad = [name for name in expected if name not in stored
            or not np.allclose(stored[name], column[name], rtol=1e-9, atol=0)]

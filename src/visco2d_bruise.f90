@@ -15,7 +15,10 @@
 !> element's own 2 x 2 rule, weights 1): whole body in axisymmetry, per metre
 !> of thickness in plane strain.
 !>
-!> Nothing is allocated or computed for a deck without a BRUISE card.
+!> The envelopes are also kept for a deck with OUTPUT ENVELOPES=YES and no
+!> BRUISE card: then the envelope maxima and fields are reported, and no
+!> bruise (threshold) measures. Nothing is allocated or computed for a deck
+!> with neither.
 module visco2d_bruise
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_deck, only: deck_t, stop_at_separation
@@ -52,7 +55,7 @@ module visco2d_bruise
 contains
 
   !> Update the envelopes with the stresses and strains standing at `time`
-  !> (a no-op without BRUISE cards). `state`: the viscoelastic history, if any.
+  !> (a no-op unless envelopes_wanted). `state`: the viscoelastic history, if any.
   subroutine bruise_update(bruise, deck, time, stress, strain, state)
     type(bruise_t), intent(inout) :: bruise
     type(deck_t), intent(in) :: deck
@@ -61,8 +64,7 @@ contains
     type(viscoelastic_state_t), intent(in), optional :: state
     real(dp) :: values(measure_count)
     integer :: e, g, m
-    if (.not. allocated(deck%bruises)) return        ! a deck built without read_deck
-    if (size(deck%bruises) == 0) return
+    if (.not. envelopes_wanted(deck)) return
     if (.not. bruise%active) call bruise_start(bruise, deck)
     do e = 1, deck%mesh%nelem
       do g = 1, gauss_count
@@ -92,11 +94,17 @@ contains
     real(dp), intent(in) :: stress(:, :, :), strain(:, :, :)
     type(record_t), intent(inout) :: record
     type(bruise_t) :: bruise
-    if (.not. allocated(deck%bruises)) return
-    if (size(deck%bruises) == 0) return
+    if (.not. envelopes_wanted(deck)) return
     call bruise_update(bruise, deck, 0.0_dp, stress, strain)
     call bruise_report(bruise, deck, record)
   end subroutine bruise_static
+
+  !> True for a deck with a BRUISE card or OUTPUT ENVELOPES=YES.
+  logical function envelopes_wanted(deck) result(wanted)
+    type(deck_t), intent(in) :: deck
+    wanted = deck%output%envelopes
+    if (allocated(deck%bruises)) wanted = wanted .or. size(deck%bruises) > 0   ! unallocated: a deck built in code
+  end function envelopes_wanted
 
   !> Allocate the envelopes (zero), the rule of every element, the volume
   !> weights and the Gauss-point positions.
@@ -167,58 +175,65 @@ contains
     contracted = e(1)**2 + e(2)**2 + e(3)**2 + 0.5_dp*e(4)**2
   end function contracted
 
-  !> The bruise measures into the summary and the envelope fields into the record.
+  !> The bruise measures (with BRUISE cards) into the summary, and the
+  !> envelope maxima and fields into the record.
   subroutine bruise_report(bruise, deck, record)
     type(bruise_t), intent(in) :: bruise
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     logical, allocatable :: bruised(:, :), assessed(:, :)
-    character(:), allocatable :: basis, names
-    real(dp) :: volume, absorbed
-    integer :: k, i, count_extra
+    integer :: k
     if (.not. bruise%active) return
-    basis = 'cm3'
-    if (deck%geometry /= geometry_axisymmetric) basis = 'cm3_per_m'
     assessed = spread(bruise%rule > 0, 1, gauss_count)
     bruised = assessed .and. bruise%failure_time >= 0.0_dp
-    names = criterion_name(deck%bruises(1)%criterion)
-    do k = 2, size(deck%bruises)
-      names = names//','//criterion_name(deck%bruises(k)%criterion)
-    end do
-    call record_put(record, 'bruise_criterion', names)
-    if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'// &
-      unit_key(deck%bruises(1)%criterion), deck%bruises(1)%threshold)
-    call record_put_real(record, 'bruise_assessed_volume_'//basis, 1.0e6_dp*sum(bruise%volume, mask=assessed))
-    volume = 1.0e6_dp*sum(bruise%volume, mask=bruised)
-    call record_put_real(record, 'bruise_volume_'//basis, volume)
-    call record_put_integer(record, 'bruise_gauss_points', count(bruised))
-    if (any(bruised)) then
-      call record_put_real(record, 'bruise_depth_top_mm', 1.0e3_dp*(minval(bruise%point(2, :, :), bruised) - &
-                                                                   bruise%pole_z))
-      call record_put_real(record, 'bruise_depth_bottom_mm', 1.0e3_dp*(maxval(bruise%point(2, :, :), bruised) - &
-                                                                      bruise%pole_z))
-      call record_put_real(record, 'bruise_radius_max_mm', 1.0e3_dp*maxval(bruise%point(1, :, :), bruised))
-      call record_put_real(record, 'bruise_time_first_s', minval(bruise%failure_time, bruised))
-    end if
-    count_extra = 0
-    do k = 1, size(deck%bruises)
-      count_extra = max(count_extra, size(deck%bruises(k)%extra))
-    end do
-    do i = 1, count_extra
-      if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//itoa(i)//'_'// &
-        unit_key(deck%bruises(1)%criterion), deck%bruises(1)%extra(i))
-      call record_put_real(record, 'bruise_volume_threshold_'//itoa(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
-    end do
-    if (deck%geometry == geometry_axisymmetric .and. deck%stop_at == stop_at_separation .and. &
-        summary_value(record, 'energy_absorbed_J', absorbed)) then
-      if (absorbed > 0.0_dp) call record_put_real(record, 'bruise_susceptibility_cm3_per_J', volume/absorbed)
-    end if
+    if (size(deck%bruises) > 0) call put_bruise_measures()
     do k = 1, measure_count
       call put_envelope_maximum(k)
     end do
     call put_fields(bruise, deck, bruised, assessed, record)
 
   contains
+
+    !> The BRUISE cards' criteria, thresholds and the bruised region's measures.
+    subroutine put_bruise_measures()
+      character(:), allocatable :: basis, names
+      real(dp) :: volume, absorbed
+      integer :: k, i, count_extra
+      basis = 'cm3'
+      if (deck%geometry /= geometry_axisymmetric) basis = 'cm3_per_m'
+      names = criterion_name(deck%bruises(1)%criterion)
+      do k = 2, size(deck%bruises)
+        names = names//','//criterion_name(deck%bruises(k)%criterion)
+      end do
+      call record_put(record, 'bruise_criterion', names)
+      if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'// &
+        unit_key(deck%bruises(1)%criterion), deck%bruises(1)%threshold)
+      call record_put_real(record, 'bruise_assessed_volume_'//basis, 1.0e6_dp*sum(bruise%volume, mask=assessed))
+      volume = 1.0e6_dp*sum(bruise%volume, mask=bruised)
+      call record_put_real(record, 'bruise_volume_'//basis, volume)
+      call record_put_integer(record, 'bruise_gauss_points', count(bruised))
+      if (any(bruised)) then
+        call record_put_real(record, 'bruise_depth_top_mm', 1.0e3_dp*(minval(bruise%point(2, :, :), bruised) - &
+                                                                     bruise%pole_z))
+        call record_put_real(record, 'bruise_depth_bottom_mm', 1.0e3_dp*(maxval(bruise%point(2, :, :), bruised) - &
+                                                                        bruise%pole_z))
+        call record_put_real(record, 'bruise_radius_max_mm', 1.0e3_dp*maxval(bruise%point(1, :, :), bruised))
+        call record_put_real(record, 'bruise_time_first_s', minval(bruise%failure_time, bruised))
+      end if
+      count_extra = 0
+      do k = 1, size(deck%bruises)
+        count_extra = max(count_extra, size(deck%bruises(k)%extra))
+      end do
+      do i = 1, count_extra
+        if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//itoa(i)//'_'// &
+          unit_key(deck%bruises(1)%criterion), deck%bruises(1)%extra(i))
+        call record_put_real(record, 'bruise_volume_threshold_'//itoa(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
+      end do
+      if (deck%geometry == geometry_axisymmetric .and. deck%stop_at == stop_at_separation .and. &
+          summary_value(record, 'energy_absorbed_J', absorbed)) then
+        if (absorbed > 0.0_dp) call record_put_real(record, 'bruise_susceptibility_cm3_per_J', volume/absorbed)
+      end if
+    end subroutine put_bruise_measures
 
     !> Volume where the envelope reaches the card's i-th extra threshold, m^3.
     real(dp) function extra_volume(i) result(total)
@@ -289,6 +304,11 @@ contains
       call add(trim(measure_names(m))//'_envelope', criterion_unit(m), bruise%envelope(m, :, :))
       call add(trim(measure_names(m))//'_time', 's', bruise%time_of_max(m, :, :))
     end do
+    call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%geometry == geometry_axisymmetric), bruise%volume, &
+             .false.)
+    call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
+    call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
+    if (size(deck%bruises) == 0) return                 ! OUTPUT ENVELOPES=YES alone: no threshold, no region
     allocate(threshold(gauss_count, deck%mesh%nelem))
     threshold = 0.0_dp
     do e = 1, deck%mesh%nelem
@@ -298,10 +318,6 @@ contains
     call add('assessed', '1', merge(1.0_dp, 0.0_dp, assessed))
     call add('bruised', '1', merge(1.0_dp, 0.0_dp, bruised))
     call add('failure_time', 's (-1: never)', bruise%failure_time)
-    call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%geometry == geometry_axisymmetric), bruise%volume, &
-             .false.)
-    call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
-    call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
 
   contains
 

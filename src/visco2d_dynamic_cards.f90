@@ -33,9 +33,10 @@ module visco2d_dynamic_cards
     integer :: drop_line = 0
   end type dynamics_t
 
-  !> OUTPUT EVERY=k FIELDS=t1,t2,...
+  !> OUTPUT EVERY=k FIELDS=t1,t2,... ENVELOPES=YES|NO
   type :: output_request_t
     integer :: every = 1                   !< a history row every k steps (and the last step)
+    logical :: envelopes = .false.         !< keep the time envelopes (visco2d_bruise) without a BRUISE card
     real(dp), allocatable :: field_times(:)  !< s, increasing: field snapshots at the first step at or after each
     integer :: line = 0
   end type output_request_t
@@ -111,16 +112,27 @@ contains
     call check_fields_used(cards, card, error, 'GRAVITY [G=9.8]'); if (allocated(error)) return
   end subroutine read_gravity
 
-  !> OUTPUT EVERY=k [FIELDS=t1,t2,...]: history every k steps, fields at those times (s).
+  !> OUTPUT EVERY=k [FIELDS=t1,t2,...] [ENVELOPES=YES|NO]: history every k
+  !> steps, fields at those times (s), and the time envelopes of the failure
+  !> measures (visco2d_bruise) kept even without a BRUISE card.
   subroutine read_output(cards, card, output, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
     type(output_request_t), intent(inout) :: output
     type(error_t), allocatable, intent(inout) :: error
-    character(:), allocatable :: list
+    character(:), allocatable :: list, envelopes
+    character(len=*), parameter :: form = 'OUTPUT EVERY=k [FIELDS=t1,t2,...] [ENVELOPES=YES|NO]'
     call named_integer(cards, card, 'EVERY', output%every, error, default=1); if (allocated(error)) return
     call named_word(cards, card, 'FIELDS', list, error, default=''); if (allocated(error)) return
-    call check_fields_used(cards, card, error, 'OUTPUT EVERY=k [FIELDS=t1,t2,...]'); if (allocated(error)) return
+    call named_word(cards, card, 'ENVELOPES', envelopes, error, default='NO'); if (allocated(error)) return
+    call check_fields_used(cards, card, error, form); if (allocated(error)) return
+    select case (envelopes)
+    case ('YES'); output%envelopes = .true.
+    case ('NO'); output%envelopes = .false.
+    case default
+      call card_error(error, cards, card, 'ENVELOPES must be YES or NO, got "'//envelopes//'"', &
+                      field_column(card, 'ENVELOPES')); return
+    end select
     if (output%every < 1) then
       call card_error(error, cards, card, 'EVERY must be >= 1, got '//itoa(output%every), field_column(card, 'EVERY')); return
     end if

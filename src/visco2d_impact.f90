@@ -4,7 +4,7 @@
 !> force and the pressure at the pole, the contact radius, the centre's
 !> acceleration, their maxima, and the stop criteria of the STOP card.
 module visco2d_impact
-  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_strings, only: short_real
   use visco2d_deck, only: deck_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
   use visco2d_assembly, only: node_dof, nodal_field
@@ -54,6 +54,10 @@ module visco2d_impact
     logical, allocatable :: ever_active(:)    !< (nnode) on the plate at some step
     !> (nnode) contact pressure (Pa) and deformed r (m) at the largest plate force and at the largest sampled alpha
     real(dp), allocatable :: pressure_at_force_max(:), r_at_force_max(:), pressure_at_alpha_max(:), r_at_alpha_max(:)
+    !> (nnode) plate reaction in z on each contact node (0 off the plate), N, at the same two instants:
+    !> whole ring (2 pi times the per-radian nodal reaction) in axisymmetry, per metre in plane strain,
+    !> the basis of force_N, so that they sum to the plate force
+    real(dp), allocatable :: reaction_at_force_max(:), reaction_at_alpha_max(:)
     integer, allocatable :: pole_corners(:, :) !< (corner, element) pairs at the pole (node_corners)
   end type impact_t
 
@@ -82,6 +86,8 @@ contains
     impact%ever_active = spread(.false., 1, deck%mesh%nnode)
     impact%pressure_at_force_max = impact%pressure
     impact%pressure_at_alpha_max = impact%pressure
+    impact%reaction_at_force_max = impact%pressure
+    impact%reaction_at_alpha_max = impact%pressure
     impact%r_at_force_max = deck%mesh%xy(1, :)
     impact%r_at_alpha_max = deck%mesh%xy(1, :)
     impact%stop_reason = 'end of time'
@@ -150,8 +156,8 @@ contains
     m%alpha_previous = m%alpha
     m%t_previous = since
     m%ever_active = m%ever_active .or. contact%active
-    if (new_alpha_max) call keep_profile(m%pressure_at_alpha_max, m%r_at_alpha_max)
-    if (m%force > m%force_max) call keep_profile(m%pressure_at_force_max, m%r_at_force_max)
+    if (new_alpha_max) call keep_profile(m%pressure_at_alpha_max, m%r_at_alpha_max, m%reaction_at_alpha_max)
+    if (m%force > m%force_max) call keep_profile(m%pressure_at_force_max, m%r_at_force_max, m%reaction_at_force_max)
     if (m%q > m%q_max) then
       m%q_max = m%q
       m%t_q_max = since
@@ -188,13 +194,20 @@ contains
 
   contains
 
-    !> The contact pressure now and the deformed r of every node.
-    subroutine keep_profile(pressure, r)
-      real(dp), intent(inout) :: pressure(:), r(:)
+    !> The contact pressure now, the deformed r of every node and the plate
+    !> reaction in z of each contact node (as contact_force sums it).
+    subroutine keep_profile(pressure, r, nodal_reaction)
+      real(dp), intent(inout) :: pressure(:), r(:), nodal_reaction(:)
       real(dp), allocatable :: displacement(:, :)
+      integer :: node
       displacement = nodal_field(deck%mesh, u)
       pressure = impact%pressure
       r = deck%mesh%xy(1, :) + displacement(1, :)
+      nodal_reaction = 0.0_dp
+      do node = 1, deck%mesh%nnode
+        if (contact%active(node)) nodal_reaction(node) = reaction(node_dof(deck%mesh, node, 2))
+      end do
+      if (deck%geometry == geometry_axisymmetric) nodal_reaction = 2.0_dp*pi*nodal_reaction
     end subroutine keep_profile
 
     pure subroutine keep_max(value, maximum, at)
@@ -264,7 +277,10 @@ contains
   !> (t_force_max_ms) and at the largest sampled approach (t_alpha_max_step_ms):
   !> one row per surface node that was on the plate at some step, in order of
   !> its undeformed r; its deck number, undeformed r, and deformed r and
-  !> pressure (the recovered nodal pressure, contact_pressure) at each instant.
+  !> pressure (the recovered nodal pressure, contact_pressure) at each instant,
+  !> and its plate reaction in z at each instant, N (reaction_z_*_ring_N: whole
+  !> ring, 2 pi times the per-radian nodal reaction, in axisymmetry; per metre
+  !> in plane strain): each column sums to the plate force force_N then.
   subroutine pressure_table(impact, deck, record)
     type(impact_t), intent(in) :: impact
     type(deck_t), intent(in) :: deck
@@ -282,14 +298,16 @@ contains
       end do
       nodes(j + 1) = node
     end do
-    record%pressure%columns = [character(len=18) :: 'node', 'r_mm', 'r_force_max_mm', 'p_force_max_MPa', &
-                               'r_alpha_max_mm', 'p_alpha_max_MPa']
+    record%pressure%columns = [character(len=27) :: 'node', 'r_mm', 'r_force_max_mm', 'p_force_max_MPa', &
+                               'r_alpha_max_mm', 'p_alpha_max_MPa', 'reaction_z_force_max_ring_N', &
+                               'reaction_z_alpha_max_ring_N']
     allocate(record%pressure%values(size(record%pressure%columns), size(nodes)))
     do i = 1, size(nodes)
       node = nodes(i)
       record%pressure%values(:, i) = [real(deck%mesh%node_id(node), dp), 1.0e3_dp*deck%mesh%xy(1, node), &
         1.0e3_dp*impact%r_at_force_max(node), 1.0e-6_dp*impact%pressure_at_force_max(node), &
-        1.0e3_dp*impact%r_at_alpha_max(node), 1.0e-6_dp*impact%pressure_at_alpha_max(node)]
+        1.0e3_dp*impact%r_at_alpha_max(node), 1.0e-6_dp*impact%pressure_at_alpha_max(node), &
+        impact%reaction_at_force_max(node), impact%reaction_at_alpha_max(node)]
     end do
   end subroutine pressure_table
 

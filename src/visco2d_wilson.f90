@@ -133,7 +133,7 @@ contains
     type(contact_t) :: contact
     type(impact_t) :: impact
     type(kept_state_t) :: at_alpha_max, at_q_max
-    type(bruise_t) :: bruise                 !< envelopes (BRUISE cards only)
+    type(bruise_t) :: bruise                 !< envelopes (BRUISE cards or OUTPUT ENVELOPES=YES only)
     type(corners_t), allocatable :: probe_corners(:)
     real(dp), allocatable :: row(:)
     real(dp), allocatable :: u(:), v(:), a(:), du(:), dv(:), da(:), rhs(:), base(:), prescribed(:), free(:)

@@ -34,12 +34,19 @@
 !>    volume recomputed from the record's fields (envelope >= threshold, times
 !>    the volume weights) to the summary's 10 printed digits.
 !> 4. Bad BRUISE cards are refused with file:line:column: BRUISE: message.
+!> 5. OUTPUT ENVELOPES=YES keeps the envelopes without a BRUISE card: on the
+!>    impact deck (V = 1 m/s) its four envelope fields, their times and the
+!>    envelope_* summary keys equal those of the same deck with a BRUISE card
+!>    (the same computation on the same states: equal as numbers); it writes
+!>    no bruise_* key and no threshold, mask or failure-time field;
+!>    ENVELOPES=NO keeps nothing; another value is refused at its column.
 program test_bruise
   use visco2d_kinds, only: dp, pi
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, summary_value
+  use visco2d_bruise, only: measure_names
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
   use visco2d_test_decks, only: deck_line_length, pressed_sphere, try_read_deck, check_error_location
@@ -54,6 +61,7 @@ program test_bruise
   call volume_convergence()
   call dynamic_impacts()
   call bad_cards()
+  call envelope_option()
   call test_summary('test_bruise')
 
 contains
@@ -320,6 +328,49 @@ contains
     allocate(values(4, 1))
     values = 0.0_dp
   end function field
+
+  !> OUTPUT ENVELOPES=YES against a BRUISE card on the impact deck; ENVELOPES=NO; a bad value.
+  subroutine envelope_option()
+    character(len=*), parameter :: envelope_keys(4) = [character(len=32) :: 'envelope_max_shear_max_Pa', &
+      'envelope_von_mises_max_Pa', 'envelope_octahedral_max_Pa', 'envelope_energy_density_max_J_m3']
+    character(len=deck_line_length), allocatable :: base(:)
+    type(record_t) :: with_card, with_option, with_neither
+    logical :: was_refused, same
+    character(:), allocatable :: text, path, name, key, option_value, card_value
+    integer :: m, i
+    base = [character(len=deck_line_length) :: 'TITLE dropped sphere', 'ANALYSIS DYNAMIC', &
+      'GEOMETRY AXISYMMETRIC', 'MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=800', 'MESH SPHERE R=0.0381 LEVEL=2', &
+      'INITIAL VZ=-1', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=MAXDEFORMATION', 'TIME DT=1e-5 TEND=4e-3']
+    call run('envelopes_card', [character(len=deck_line_length) :: base, &
+      'BRUISE CRITERION=MAXSHEAR STRESS=0.2e6', 'END'], with_card)
+    call run('envelopes_option', [character(len=deck_line_length) :: base, 'OUTPUT EVERY=1 ENVELOPES=YES', 'END'], &
+             with_option)
+    call run('envelopes_off', [character(len=deck_line_length) :: base, 'OUTPUT ENVELOPES=NO', 'END'], with_neither)
+    do m = 1, 4
+      name = trim(measure_names(m))
+      same = all(field(with_option, name//'_envelope') == field(with_card, name//'_envelope')) .and. &
+             all(field(with_option, name//'_time') == field(with_card, name//'_time'))
+      call check('envelopes_option_'//name//'_equals_bruise_card', same, 'envelope or time field differs')
+      key = trim(envelope_keys(m))
+      option_value = summary_value(with_option, key)
+      card_value = summary_value(with_card, key)
+      call check('envelopes_option_key_'//key, option_value == card_value .and. len(card_value) > 0, &
+                 '"'//option_value//'" against "'//card_value//'"')
+    end do
+    call check('envelopes_option_no_bruise_keys', &
+               .not. any([(index(with_option%summary(i)%key, 'bruise_') == 1, i = 1, with_option%nsummary)]), &
+               'a bruise_* key without a BRUISE card')
+    call check('envelopes_option_no_threshold_fields', .not. any([(any(with_option%bruise_fields(i)%name == &
+               [character(len=12) :: 'threshold', 'assessed', 'bruised', 'failure_time']), &
+               i = 1, size(with_option%bruise_fields))]), 'a threshold, mask or failure-time field')
+    call check('envelopes_off_keeps_nothing', .not. allocated(with_neither%bruise_fields) .and. &
+               len(summary_value(with_neither, 'envelope_max_shear_max_Pa')) == 0, 'envelopes with ENVELOPES=NO')
+    path = folder//'/bad_envelopes_value.inp'
+    call try_read_deck(path, was_refused, text, [character(len=deck_line_length) :: base, &
+      'OUTPUT EVERY=1 ENVELOPES=MAYBE', 'END'])
+    call check('bad_envelopes_value_refused', was_refused, 'accepted')
+    call check_error_location('bad_envelopes_value', text, path, 10, 16, 'OUTPUT', 'ENVELOPES must be YES or NO')
+  end subroutine envelope_option
 
   subroutine bad_cards()
     character(len=deck_line_length), allocatable :: deck_lines(:)
