@@ -331,6 +331,7 @@ contains
     end if
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
+    call record_put(record, 'energy_basis', energy_basis(deck%geometry))   ! of the reaction columns
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
     call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     end associate
