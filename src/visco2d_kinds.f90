@@ -16,4 +16,29 @@ module visco2d_kinds
   !> Element formulation codes (FORMULATION card): the legacy fully integrated
   !> element, or B-bar (mean dilatation) against volumetric locking.
   integer, parameter, public :: formulation_standard = 1, formulation_bbar = 2
+
+  public :: whole_body_factor, energy_basis
+
+contains
+
+  !> The factor from the solver's integrals (over r dr dz per radian in
+  !> axisymmetry, over dx dy per metre of thickness in plane strain) to the
+  !> reported energies, masses and reactions: 2 pi in axisymmetry (the whole
+  !> body of revolution), 1 in plane strain (per metre of thickness).
+  pure real(dp) function whole_body_factor(geometry)
+    integer, intent(in) :: geometry  !< geometry_axisymmetric or geometry_plane_strain
+    whole_body_factor = 1.0_dp
+    if (geometry == geometry_axisymmetric) whole_body_factor = 2.0_dp*pi
+  end function whole_body_factor
+
+  !> The summary's energy_basis: what the energy, mass and reaction keys are integrated over.
+  pure function energy_basis(geometry) result(basis)
+    integer, intent(in) :: geometry  !< geometry_axisymmetric or geometry_plane_strain
+    character(len=:), allocatable :: basis
+    if (geometry == geometry_axisymmetric) then
+      basis = 'whole body'
+    else
+      basis = 'per metre of thickness'
+    end if
+  end function energy_basis
 end module visco2d_kinds

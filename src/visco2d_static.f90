@@ -14,7 +14,7 @@
 !> reused while dt is constant (elastic bodies: one factorization in all).
 module visco2d_static
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, whole_body_factor, energy_basis
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, total_steps
@@ -31,7 +31,7 @@ module visco2d_static
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
   use visco2d_bruise, only: bruise_static
-  use visco2d_record, only: record_t, snapshot_t, record_put_real, record_put_integer, history_define, &
+  use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
   private
@@ -229,14 +229,18 @@ contains
     associate (mesh => deck%mesh)
     call put_field_summary(solution%displacement, solution%stress, record)
     call bruise_static(deck, solution%stress, solution%strain, record)
-    call record_put_real(record, 'strain_energy_J', solution%strain_energy)
-    call record_put_real(record, 'external_work_J', solution%external_work)
-    call record_put_real(record, 'reaction_r_N', sum(solution%reaction(1, :)))
-    call record_put_real(record, 'reaction_z_N', sum(solution%reaction(2, :)))
+    ! Energies and reactions on the energy_basis (whole body in axisymmetry).
+    associate (factor => whole_body_factor(deck%geometry))
+    call record_put(record, 'energy_basis', energy_basis(deck%geometry))
+    call record_put_real(record, 'strain_energy_J', factor*solution%strain_energy)
+    call record_put_real(record, 'external_work_J', factor*solution%external_work)
+    call record_put_real(record, 'reaction_r_N', factor*sum(solution%reaction(1, :)))
+    call record_put_real(record, 'reaction_z_N', factor*sum(solution%reaction(2, :)))
 
     columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'strain_J', 'work_J']
-    row = [1.0_dp, 0.0_dp, maxval(norm2(solution%displacement, dim=1)), solution%strain_energy, &
-           solution%external_work]
+    row = [1.0_dp, 0.0_dp, maxval(norm2(solution%displacement, dim=1)), factor*solution%strain_energy, &
+           factor*solution%external_work]
+    end associate
     call put_probe_summary(deck, solution%displacement, solution%stress, record)
     do k = 1, size(deck%probes)
       node = deck%probes(k)%node
@@ -327,6 +331,7 @@ contains
     end if
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
+    call record_put(record, 'energy_basis', energy_basis(deck%geometry))   ! of the reaction columns
     call put_field_summary(nodal_field(deck%mesh, u), stress, record)
     call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
     end associate
@@ -422,7 +427,8 @@ contains
       real(dp), allocatable :: row(:)
       integer :: p, node
       row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
-             sum(residual(1::2), mask=fixed(1::2)), sum(residual(2::2), mask=fixed(2::2))]
+             whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
+                                               sum(residual(2::2), mask=fixed(2::2))]]
       do p = 1, size(deck%probes)
         node = deck%probes(p)%node
         row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]

@@ -45,7 +45,7 @@
 module visco2d_wilson
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_kinds, only: dp, pi, geometry_axisymmetric
+  use visco2d_kinds, only: dp, whole_body_factor, energy_basis
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
@@ -146,6 +146,7 @@ contains
     logical :: memory, contact_on
     integer :: step, stage, k, factorizations, step_count, next_field, width
     real(dp) :: t, t_next, dt, tau, theta, stage_start, body_mass
+    real(dp) :: basis_factor   !< whole_body_factor: solver integrals to the reported energy_basis
     real(dp) :: kinetic, kinetic0, internal_work, load_work, support_work, gravity_work, contact_loss
     real(dp) :: positive_input            !< initial kinetic energy + positive work of loads, gravity, FIX motions
     real(dp) :: excess(0:growth_window)   !< kinetic + internal energy - positive_input, the last steps
@@ -172,6 +173,7 @@ contains
     allocate(held_rows(0))
     mass = lumped_mass(deck)                                   ! eq. [32], row sums
     body_mass = sum(mass(2::2))
+    basis_factor = whole_body_factor(deck%geometry)
     gravity = gravity_load(deck)
     call operators_create(deck, operators)
     allocate(du(2*mesh%nnode), dv(2*mesh%nnode), da(2*mesh%nnode), prescribed(2*mesh%nnode), &
@@ -277,21 +279,24 @@ contains
       call record_put_integer(record, 'capacitance_factorizations', capacitance%factorizations)
     end if
     call record_put_real(record, 'time_end_s', t)
-    call record_put_real(record, 'mass_kg', body_mass)
+    ! Masses and energies on the energy_basis: the solver's per-radian integrals
+    ! times 2 pi in axisymmetry (whole body), per metre of thickness in plane strain.
+    call record_put(record, 'energy_basis', energy_basis(deck%geometry))
+    call record_put_real(record, 'mass_kg', whole_body_mass())
     call record_put_real(record, 'body_mass_kg', whole_body_mass())
     call record_put_integer(record, 'history_values', history_values())
     call record_put_real(record, 'uz_cm_m', centre_of_mass(u))
     call record_put_real(record, 'vz_cm_m_s', centre_of_mass(v))
     call record_put_real(record, 'az_cm_m_s2', centre_of_mass(a))
-    call record_put_real(record, 'kinetic_J', kinetic)
-    call record_put_real(record, 'strain_energy_J', stored)
-    call record_put_real(record, 'dissipated_J', internal_work - stored)
-    call record_put_real(record, 'external_work_J', load_work + support_work)
-    call record_put_real(record, 'gravity_work_J', gravity_work)
-    call record_put_real(record, 'initial_kinetic_J', kinetic0)
-    if (contact_on) call record_put_real(record, 'contact_loss_J', contact_loss)
-    call record_put_real(record, 'balance_error_J', balance)
-    call record_put_real(record, 'balance_error_max_J', balance_max)
+    call record_put_real(record, 'kinetic_J', basis_factor*kinetic)
+    call record_put_real(record, 'strain_energy_J', basis_factor*stored)
+    call record_put_real(record, 'dissipated_J', basis_factor*(internal_work - stored))
+    call record_put_real(record, 'external_work_J', basis_factor*(load_work + support_work))
+    call record_put_real(record, 'gravity_work_J', basis_factor*gravity_work)
+    call record_put_real(record, 'initial_kinetic_J', basis_factor*kinetic0)
+    if (contact_on) call record_put_real(record, 'contact_loss_J', basis_factor*contact_loss)
+    call record_put_real(record, 'balance_error_J', basis_factor*balance)
+    call record_put_real(record, 'balance_error_max_J', basis_factor*balance_max)
     call record_put_real(record, 'balance_error_max_rel', balance_max/max(input_max, tiny(1.0_dp)))
     if (contact_on) then
       call impact_summary(impact, deck, contact, record, whole_body_mass(), t)
@@ -738,8 +743,7 @@ contains
 
     !> Mass of the whole body, kg (2 pi times the mass per radian in axisymmetry).
     real(dp) function whole_body_mass()
-      whole_body_mass = body_mass
-      if (deck%geometry == geometry_axisymmetric) whole_body_mass = 2.0_dp*pi*body_mass
+      whole_body_mass = basis_factor*body_mass
     end function whole_body_mass
 
     !> Number of Prony history values allocated (0 without viscoelastic memory).
@@ -826,15 +830,15 @@ contains
       do node = 1, deck%mesh%nnode
         largest = max(largest, hypot(u(node_dof(deck%mesh, node, 1)), u(node_dof(deck%mesh, node, 2))))
       end do
-      row(1:14) = [real(step_count, dp), t, largest, centre_of_mass(u), centre_of_mass(v), &
-                   centre_of_mass(a), kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
-                   balance, sum(reaction(1::2)), sum(reaction(2::2))]
+      row(1:14) = [real(step_count, dp), t, largest, centre_of_mass(u), centre_of_mass(v), centre_of_mass(a), &
+                   basis_factor*[kinetic, stored, internal_work - stored, load_work + support_work, gravity_work, &
+                           balance, sum(reaction(1::2)), sum(reaction(2::2))]]
       first = 15
       ! t_ms and alpha_mm are filled in by impact_summary, once first contact is known.
       if (contact_on) then
         columns_impact = size(impact_columns())
         row(first:first + columns_impact - 1) = impact_row(impact)
-        row(first + columns_impact) = contact_loss
+        row(first + columns_impact) = basis_factor*contact_loss
         first = first + columns_impact + 1
       end if
       do p = 1, size(deck%probes)

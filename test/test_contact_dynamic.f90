@@ -13,7 +13,7 @@
 !>     contact: they are printed, not checked for an order.
 !>  2. Restitution (elastic, level 3, RELEASE=YES, STOP AT=SEPARATION),
 !>     SLIP and STICK: the energy books close (energy_absorbed_J against the
-!>     per-radian split times 2 pi), where the deficit 1 - e^2 goes, and the
+!>     whole-body energy split), where the deficit 1 - e^2 goes, and the
 !>     contact duration against the Hertz duration 2.9432 alpha_m / V with
 !>     the run's own alpha_m, and against an independent integration of the
 !>     Hertz oscillator with gravity.
@@ -46,7 +46,7 @@
 !> study (level 5, dt to 1.25e-6) is scripts/convergence_table1.py.
 program test_contact_dynamic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-  use visco2d_kinds, only: dp, pi
+  use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_wilson, only: solve_dynamic
@@ -85,7 +85,7 @@ program test_contact_dynamic
 
   !> The energy split of a run to separation (whole body, J).
   type :: split_t
-    real(dp) :: e, v_in, v_out, v_cm, absorbed, input, mass, mass_per_radian, ke0
+    real(dp) :: e, v_in, v_out, v_cm, absorbed, input, mass, body_mass, ke0
     real(dp) :: vibration, strain, dissipated, loss, w_ext, w_grav, balance, books
   end type split_t
 
@@ -574,19 +574,19 @@ contains
     split%v_in = value_of(run, 'impact_velocity_m_s')
     split%v_out = value_of(run, 'rebound_velocity_m_s')
     split%absorbed = value_of(run, 'energy_absorbed_J')
-    split%mass = value_of(run, 'body_mass_kg')
-    split%mass_per_radian = value_of(run, 'mass_kg')
+    split%mass = value_of(run, 'mass_kg')
+    split%body_mass = value_of(run, 'body_mass_kg')
     split%input = 0.5_dp*split%mass*split%v_in**2
-    ! Per-radian energies from the last history row (full precision), times 2 pi.
-    split%ke0 = 2*pi*run%record%history(index_of(run, 'kinetic_J'), 1)
+    ! Whole-body energies (the axisymmetric energy_basis) from the last history row (full precision).
+    split%ke0 = run%record%history(index_of(run, 'kinetic_J'), 1)
     split%v_cm = history_last(run%record, 'vz_cm_m_s')
-    split%vibration = 2*pi*(history_last(run%record, 'kinetic_J') - 0.5_dp*split%mass_per_radian*split%v_cm**2)
-    split%strain = 2*pi*history_last(run%record, 'strain_J')
-    split%dissipated = 2*pi*history_last(run%record, 'dissipated_J')
-    split%loss = 2*pi*history_last(run%record, 'contact_loss_J')
-    split%w_ext = 2*pi*history_last(run%record, 'external_work_J')
-    split%w_grav = 2*pi*history_last(run%record, 'gravity_work_J')
-    split%balance = 2*pi*history_last(run%record, 'balance_error_J')
+    split%vibration = history_last(run%record, 'kinetic_J') - 0.5_dp*split%mass*split%v_cm**2
+    split%strain = history_last(run%record, 'strain_J')
+    split%dissipated = history_last(run%record, 'dissipated_J')
+    split%loss = history_last(run%record, 'contact_loss_J')
+    split%w_ext = history_last(run%record, 'external_work_J')
+    split%w_grav = history_last(run%record, 'gravity_work_J')
+    split%balance = history_last(run%record, 'balance_error_J')
     ! The books: the run's energy balance, kinetic + internal + loss = initial
     ! kinetic + works + balance, rearranged for 1/2 M (V0^2 - v_out^2), less
     ! the pre-contact fall (KE0 - 1/2 M V^2; zero here, contact at t = 0).
@@ -610,7 +610,7 @@ contains
       if (.not. runs(k)%ok) return
     end do
     print '(a)', ''
-    print '(a)', 'Energies in J for the whole body (2 pi x the per-radian values). absorbed = 1/2 M (V^2 - v_out^2) ='// &
+    print '(a)', 'Energies in J for the whole body (energy_basis = whole body). absorbed = 1/2 M (V^2 - v_out^2) ='// &
                  ' vibration left in the body (kinetic - 1/2 M v_cm^2, and strain) + contact loss (kinetic energy of'// &
                  ' nodes stopped by the plate) + work against gravity (-W_g: the centre of mass is higher at'// &
                  ' separation than at first contact) + work of the plate (-W_ext) + what the balance does not'// &
@@ -659,7 +659,9 @@ contains
       call check_text_contains(tag//'_stops_at_separation', summary_value(runs(k)%record, 'stop_reason'), &
                                'separation')
       ! Summary keys agree with their definitions (10 printed digits: rtol 1e-8).
-      call check_close(tag//'_whole_body_mass_is_2pi_per_radian', split%mass, 2*pi*split%mass_per_radian, 1.0e-8_dp)
+      call check_close(tag//'_mass_kg_is_the_whole_body_mass', split%mass, split%body_mass, 1.0e-8_dp)
+      call check_text_contains(tag//'_energy_basis_is_whole_body', summary_value(runs(k)%record, 'energy_basis'), &
+                               'whole body')
       call check_close(tag//'_rebound_is_final_cm_velocity', split%v_out, split%v_cm, 1.0e-8_dp)
       call check_close(tag//'_e2_is_1_minus_absorbed_fraction', split%e**2, 1.0_dp - split%absorbed/split%input, &
                        1.0e-8_dp)

@@ -21,7 +21,7 @@
 !> overshoot, E_1/E_0 > 100 from dt/T = 3.22 on), the row is checked for that
 !> reason and is otherwise analytic only.
 program test_wilson
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, whole_body_factor
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_wilson, only: solve_dynamic, energy_growth_limit
@@ -868,7 +868,7 @@ contains
     g = deck%gravity
     tau = deck%dynamics%theta*minval(deck%stages%dt)
     masses = lumped_mass(deck)
-    mass = sum(masses(2::2))
+    mass = whole_body_factor(deck%geometry)*sum(masses(2::2))   ! the energies' basis: whole body
     col_t = history_index(record, 't_s')
     col_u = history_index(record, 'uz_cm_m')
     col_v = history_index(record, 'vz_cm_m_s')
