@@ -22,8 +22,11 @@ setup:
 	@bash scripts/setup.sh
 
 build: setup
-	@fpm install --profile release --prefix $(PREFIX) > build.log 2>&1 || { cat build.log; exit 1; }
-	@rm -f build.log
+	@start=$$(date +%s); echo "visco2d: building with fpm (release profile; full log in build/build.log) ..."; \
+	  mkdir -p build; fpm install --profile release --prefix $(PREFIX) > build/build.log 2>&1 \
+	    || { cat build/build.log; exit 1; }; \
+	  n=$$(grep -c 'done\.' build/build.log); \
+	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"

@@ -10,7 +10,7 @@ OUT/decks/), so each run does what a user's run does, history and files
 included. One run at a time, one core (BLAS/OpenMP threads set to 1).
 
 Measures the whole process's wall time around the subprocess and parses the
-'timing:' lines visco2d prints (src/visco2d_timers.f90): seconds per phase
+'timing:' lines visco2d prints (src/core/visco2d_timers.f90): seconds per phase
 (assembly, factorization, back-substitution, constitutive update, contact,
 output), the run's total, the time per step of the step loop, and the floor
 (one dpbtrs back-substitution of the run's banded system) with their ratio.

@@ -20,10 +20,14 @@ count() {  # count PASS/FAIL lines of a log; echo the FAIL lines
   grep '^FAIL ' "$file" || true
 }
 
-echo "== unit and verification tests (fpm test)"
-fpm test --profile release > "$log/fpm-test.log" 2>&1
-status=$?
-grep -E '^(FAIL |[a-z_]+: [0-9]+ passed)' "$log/fpm-test.log" | grep -v '^FAIL ' || true
+echo "== source floors (scripts/check_layers.py: no module uses one of a floor above it)"
+python3 scripts/check_layers.py src > "$log/layers.log" 2>&1
+count "$log/layers.log"
+echo "   $(grep -c '^PASS ' "$log/layers.log") files checked"
+
+echo "== unit and verification tests (fpm test; one line per test program as it finishes)"
+fpm test --profile release 2>&1 | tee "$log/fpm-test.log" | grep --line-buffered -E '^[a-z_]+: [0-9]+ passed' | sed -u 's/^/   /'
+status=${PIPESTATUS[0]}
 count "$log/fpm-test.log"
 if [ $status -ne 0 ] && ! grep -q '^FAIL ' "$log/fpm-test.log"; then
   echo "FAIL fpm test exited with status $status without a failed check (a crash?); see $log/fpm-test.log"

@@ -13,6 +13,7 @@ module visco2d_driver
   use visco2d_wilson, only: solve_dynamic
   use visco2d_progress, only: progress_begin, progress_end
   use visco2d_contact, only: solve_static_contact
+  use visco2d_bruise, only: bruise_static
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn
   use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
   use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5, write_pressure
@@ -217,6 +218,7 @@ contains
           call solve_static(deck, static_solution, error)
           if (allocated(error)) return
           call static_record(deck, static_solution, record)
+          call bruise_static(deck, static_solution%stress, static_solution%strain, record)
           call record_put_integer(record, 'factorizations', 1)
         end if
       case (analysis_quasistatic, analysis_dynamic)                ! time stepping, with progress on stderr

@@ -1,6 +1,6 @@
 !> The capacitance (Schur-complement) treatment of the contact equations
-!> (src/visco2d_capacitance.f90) gives the same answer as eliminating them
-!> from S~ and refactoring (src/visco2d_banded.f90, band_constrain):
+!> (src/contact/visco2d_capacitance.f90) gives the same answer as eliminating them
+!> from S~ and refactoring (src/base/visco2d_banded.f90, band_constrain):
 !>
 !>  1. Algebra: a banded SPD matrix (n = 120, kd = 9, diagonally dominant,
 !>     condition number ~10), supports with prescribed values eliminated in

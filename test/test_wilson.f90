@@ -1,4 +1,4 @@
-!> Verification of the Wilson-theta integrator (src/visco2d_wilson.f90, eqs. [34]-[42])
+!> Verification of the Wilson-theta integrator (src/dynamics/visco2d_wilson.f90, eqs. [34]-[42])
 !> against independent computations:
 !>   1. A single degree of freedom: one plane-strain element in uniaxial strain
 !>      (bottom fixed, top free in z only), k/m = 2 M_c/(rho h^2) with the

@@ -26,6 +26,7 @@ module visco2d_contact
                             band_multiply
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress, singular_message
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer
+  use visco2d_bruise, only: bruise_static
   implicit none
   private
 
@@ -516,6 +517,7 @@ contains
     call check_settled(deck, contact, u, reaction, error)
     if (allocated(error)) return
     call static_record(deck, solution, record)
+    call bruise_static(deck, solution%stress, solution%strain, record)
     allocate(pressure(mesh%nnode))
     call contact_pressure(deck, contact, reaction, pressure, q)
     weight = volume_weights(deck)

@@ -17,7 +17,8 @@ module visco2d_deck
   use visco2d_curve, only: curve_t, read_curve
   use visco2d_time, only: time_stage_t, read_time
   use visco2d_dynamic_cards, only: dynamics_t, output_request_t, read_wilson, read_initial, read_drop, &
-                                   read_gravity, read_output, read_formulation, standard_gravity, theta_unconditional
+                                   read_gravity, read_output, read_formulation, standard_gravity, theta_unconditional, &
+                                   read_integrator
   use visco2d_contact_cards, only: plate_t, read_plate, read_stop, stop_name, stop_at_tend, &
                                    stop_at_max_deformation, stop_at_separation
   use visco2d_bruise_cards, only: bruise_card_t, read_bruise, check_bruise_cards
@@ -38,9 +39,9 @@ module visco2d_deck
   integer, parameter :: analysis_dynamic = 3      !< incremental in time with inertia (Wilson-theta, the extension)
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(25) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+  character(len=11), parameter :: card_keywords(26) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
     'FORMULATION', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
-    'CURVE', 'TIME', 'WILSON', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'BRUISE', 'END']
+    'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'BRUISE', 'END']
 
   !> A warning about a deck that still runs (file:line: CARD: text).
   type :: warning_t
@@ -191,7 +192,7 @@ contains
     character(len=32), allocatable :: pressure_curves(:)
     integer, allocatable :: pressure_cards(:)
     integer :: i, title_line, analysis_line, geometry_line, material_card, formulation_line
-    character(:), allocatable :: word
+    character(:), allocatable :: word, warning
 
     call read_cards(file, deck%cards, error, card_keywords)
     if (allocated(error)) return
@@ -275,6 +276,12 @@ contains
         if (deck%dynamics%theta < theta_unconditional) call add_warning(deck, card%line, 'WILSON', &
           'THETA = '//short_real(deck%dynamics%theta)//' < 1.37: Wilson-theta is then only conditionally stable;'// &
           ' a large DT may blow up (1.4 is the usual value)')
+      case ('INTEGRATOR')
+        if (deck%dynamics%wilson_line > 0) then
+          call duplicate_card(deck%dynamics%wilson_line); return
+        end if
+        call read_integrator(cards, card, deck%dynamics, error, warning); if (allocated(error)) return
+        if (allocated(warning)) call add_warning(deck, card%line, 'INTEGRATOR', warning)
       case ('INITIAL')
         if (deck%dynamics%initial_line > 0) then
           call duplicate_card(deck%dynamics%initial_line); return
@@ -341,7 +348,7 @@ contains
         call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
           suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
           'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
-          'WILSON INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT BRUISE END)')
+          'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT BRUISE END)')
         return
       end select
       end associate
@@ -822,13 +829,14 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: k, lines(3)
     real(dp) :: speed(2)
-    character(len=7), parameter :: names(3) = ['WILSON ', 'INITIAL', 'DROP   ']
+    character(len=10), parameter :: names(3) = ['WILSON    ', 'INITIAL   ', 'DROP      ']
     associate (d => deck%dynamics)
     lines = [d%wilson_line, d%initial_line, d%drop_line]
     if (deck%analysis /= analysis_dynamic) then
       do k = 1, size(lines)
         if (lines(k) == 0) cycle
-        call line_error(error, deck, lines(k), trim(names(k))//' needs ANALYSIS DYNAMIC (this deck is '// &
+        call line_error(error, deck, lines(k), trim(card_keyword_at(deck, lines(k), names(k)))// &
+                        ' needs ANALYSIS DYNAMIC (this deck is '// &
                         analysis_name(deck%analysis)//')')
         return
       end do
@@ -867,6 +875,22 @@ contains
       end if
     end if
   end subroutine check_dynamic_cards
+
+  !> The keyword of the card on `line` (`fallback` if no card starts there).
+  function card_keyword_at(deck, line, fallback) result(keyword)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: fallback
+    character(:), allocatable :: keyword
+    integer :: k
+    keyword = trim(fallback)
+    do k = 1, deck%cards%count
+      if (deck%cards%cards(k)%line == line) then
+        keyword = trim(deck%cards%cards(k)%keyword)
+        return
+      end if
+    end do
+  end function card_keyword_at
 
   !> PLATE belongs to STATIC (the body pressed onto the plate) and DYNAMIC
   !> (impact); STOP to DYNAMIC. MAXDEFORMATION and SEPARATION need a plate,

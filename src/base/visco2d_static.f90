@@ -30,7 +30,6 @@ module visco2d_static
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
                                   update_history
-  use visco2d_bruise, only: bruise_static
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
@@ -228,7 +227,6 @@ contains
 
     associate (mesh => deck%mesh)
     call put_field_summary(solution%displacement, solution%stress, record)
-    call bruise_static(deck, solution%stress, solution%strain, record)
     ! Energies and reactions on the energy_basis (whole body in axisymmetry).
     associate (factor => whole_body_factor(deck%geometry))
     call record_put(record, 'energy_basis', energy_basis(deck%geometry))

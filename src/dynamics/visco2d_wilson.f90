@@ -49,7 +49,7 @@ module visco2d_wilson
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa, rtoa, short_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
-  use visco2d_dynamic_cards, only: theta_unconditional
+  use visco2d_dynamic_cards, only: theta_unconditional, integrator_wilson
   use visco2d_material, only: has_memory
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
@@ -154,6 +154,11 @@ contains
     real(dp) :: stored, balance, balance_max, input_max, growth_limit, omega_max
     real(dp) :: touch_fraction
 
+    if (deck%dynamics%integrator /= integrator_wilson) then
+      call set_error(error, 'only INTEGRATOR WILSON is implemented so far', file=deck%cards%file, &
+                     line=deck%dynamics%wilson_line, card='INTEGRATOR')
+      return
+    end if
     associate (mesh => deck%mesh, materials => deck%materials)
     by_refactoring = .false.
     if (present(refactor_contact)) by_refactoring = refactor_contact

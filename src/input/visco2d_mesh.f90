@@ -7,7 +7,7 @@ module visco2d_mesh
   use visco2d_error, only: error_t, set_error
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
                            positional_real, positional_integer, positional_word, check_fields_used, field_column
-  use visco2d_element, only: element_min_jacobian
+  use visco2d_quadrilateral, only: element_min_jacobian
   use visco2d_mesh_generator, only: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core, &
                                     edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, &
                                     edge_set_bottom, edge_set_top, edge_set_name

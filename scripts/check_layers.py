@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""Check that the source tree keeps its floors.
+
+src/ is grouped in floors, from the bottom up (see doc/architecture.md):
+
+  core      kinds, errors, strings, the results record, timers, progress
+  input     the cards and the deck: everything read from the input file
+  base      the legacy static program: element, viscoelastic law, banded
+            matrices, assembly, static and quasi-static solution
+  io        writing the results (text, CSV, HDF5, XDMF)
+  bruise    bruise prediction from the stress and strain fields
+  contact   the rigid plate: contact conditions, capacitance system, impact
+  dynamics  the time integration (Wilson-theta and its family)
+  (src/)    the driver, which runs a deck through all of them
+
+A module may use modules of its own floor and of the floors below it, never
+one above: the base imports nothing of the extensions. Every Fortran file
+under src/ must be in one of the floors. Prints one PASS/FAIL line per file
+and exits 1 on any violation.
+
+usage: check_layers.py [SRC_DIR]
+"""
+import os
+import re
+import sys
+
+FLOORS = ["core", "input", "base", "io", "bruise", "contact", "dynamics", ""]
+USE = re.compile(r"^\s*use\s+(visco2d_\w+)", re.IGNORECASE | re.MULTILINE)
+MODULE = re.compile(r"^\s*module\s+(visco2d_\w+)\s*$", re.IGNORECASE | re.MULTILINE)
+
+
+def main():
+    src = sys.argv[1] if len(sys.argv) > 1 else "src"
+    floor_of, uses, path_of = {}, {}, {}
+    failures = 0
+    for root, _, files in os.walk(src):
+        floor = os.path.relpath(root, src)
+        floor = "" if floor == "." else floor
+        for name in sorted(files):
+            if not name.endswith((".f90", ".F90")):
+                continue
+            path = os.path.join(root, name)
+            if floor not in FLOORS:
+                print(f"FAIL layers {path}: folder {floor!r} is not a floor ({', '.join(f for f in FLOORS if f)})")
+                failures += 1
+                continue
+            text = open(path, encoding="utf-8").read()
+            for module in MODULE.findall(text):
+                floor_of[module.lower()] = floor
+                path_of[module.lower()] = path
+            uses[path] = (floor, sorted({u.lower() for u in USE.findall(text)}))
+    for path, (floor, used) in sorted(uses.items()):
+        level = FLOORS.index(floor)
+        above = [u for u in used if u in floor_of and FLOORS.index(floor_of[u]) > level]
+        unknown = [u for u in used if u not in floor_of]
+        if above or unknown:
+            failures += 1
+            details = [f"uses {u} from floor {floor_of[u] or 'src'} above {floor or 'src'}" for u in above]
+            details += [f"uses {u}, which no file under {src} defines" for u in unknown]
+            print(f"FAIL layers {path}: " + "; ".join(details))
+        else:
+            print(f"PASS layers {path}")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
