@@ -325,6 +325,35 @@ program test_bad_decks
   call expect_read_error('wilson_twice', [lines(1:7), lines(7:11)], 8, 0, 'WILSON', &
                          'only one WILSON card is allowed (first on line 7)')
 
+  lines = dynamic()
+  lines(7) = 'INTEGRATOR LEAPFROG'
+  call expect_read_error('integrator_unknown', lines, 7, 12, 'INTEGRATOR', &
+                         'unknown integrator ''LEAPFROG'': expected WILSON, NEWMARK, HHT, GENERALIZED_ALPHA or BATHE')
+
+  lines = dynamic()
+  lines(7) = 'INTEGRATOR NEWMARK BETA=0.25 GAMMA=0.4'
+  call expect_read_error('newmark_gamma_below_half', lines, 7, 30, 'INTEGRATOR', 'GAMMA must lie in 0.5 ... 1')
+
+  lines = dynamic()
+  lines(7) = 'INTEGRATOR NEWMARK BETA=0'
+  call expect_read_error('newmark_explicit', lines, 7, 20, 'INTEGRATOR', 'BETA must lie in 0 < BETA <= 0.5')
+
+  lines = dynamic()
+  lines(7) = 'INTEGRATOR HHT ALPHA=-0.1'
+  call expect_read_error('hht_alpha_negative', lines, 7, 16, 'INTEGRATOR', 'ALPHA must lie in 0 ... 1/3')
+
+  lines = dynamic()
+  lines(7) = 'INTEGRATOR GENERALIZED_ALPHA RHO_INF=1.5'
+  call expect_read_error('rho_inf_above_one', lines, 7, 30, 'INTEGRATOR', 'RHO_INF must lie in 0 ... 1')
+
+  lines = dynamic()
+  lines(7) = 'INTEGRATOR HHT THETA=1.4'
+  call expect_read_error('hht_with_theta', lines, 7, 16, 'INTEGRATOR', 'THETA')
+
+  lines = dynamic()
+  call expect_read_error('wilson_and_integrator', [lines(1:7), 'INTEGRATOR BATHE', lines(8:)], 8, 0, 'INTEGRATOR', &
+                         'only one')
+
   lines = creep()
   call expect_read_error('wilson_in_quasistatic', [lines(1:10), 'WILSON THETA=1.4', lines(11:)], 11, 0, 'WILSON', &
                          'WILSON needs ANALYSIS DYNAMIC (this deck is QUASISTATIC)')
