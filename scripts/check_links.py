@@ -10,6 +10,8 @@ For README.md, every doc/*.md and test/fuzz/README.md:
   - every repository path quoted in backquotes outside code blocks
     (`src/...`, `doc/...`, `scripts/...`, `test/...`, `inputs/...`, `app/...`,
     `reference_outputs/...`) exists;
+  - doc/architecture.md names every module under src/ (as `visco2d_name` in
+    backquotes), and every module it names exists;
   - every table renders: a table starts with a header row and a separator row
     of as many cells, and every row has that many cells (a blank line inside a
     table starts a new, headless, broken one).
@@ -33,6 +35,7 @@ PENDING = {"doc/integrators.md", "doc/walkthrough.md"}
 LINK = re.compile(r"(?<!!)\[([^\]]*)\]\(([^)\s]+)\)|!\[([^\]]*)\]\(([^)\s]+)\)")
 CODE_SPAN = re.compile(r"(`+)(.+?)\1")
 PATH = re.compile(r"(?<![\w/.-])((?:src|app|test|scripts|doc|inputs|reference_outputs)/[\w.\-/]*[\w/])")
+MODULE = re.compile(r"^\s*module\s+(visco2d_\w+)\s*$", re.IGNORECASE | re.MULTILINE)
 HEADING = re.compile(r"^(#{1,6})\s+(.*?)\s*#*\s*$")
 
 
@@ -140,6 +143,28 @@ def check_page(root, page):
     return defects, notes, links, paths
 
 
+def check_code_map(root):
+    """Defects of doc/architecture.md's code map: modules missing from it, or named but absent."""
+    page = os.path.join(root, "doc", "architecture.md")
+    if not os.path.exists(page):
+        return ["doc/architecture.md is missing"]
+    named = set()
+    with open(page, encoding="utf-8") as handle:
+        for _, line in outside_fences(handle.read().split("\n")):
+            named |= {span.group(2).lower() for span in CODE_SPAN.finditer(line)
+                      if re.fullmatch(r"visco2d_\w+", span.group(2))}
+    modules = {}
+    for path in glob.glob(os.path.join(root, "src", "**", "*.f90"), recursive=True):
+        with open(path, encoding="utf-8") as handle:
+            for module in MODULE.findall(handle.read()):
+                modules[module.lower()] = os.path.relpath(path, root)
+    defects = [f"doc/architecture.md: module {name} ({modules[name]}) is not in the code map"
+               for name in sorted(set(modules) - named)]
+    defects += [f"doc/architecture.md: names module {name}, which no file under src/ defines"
+                for name in sorted(named - set(modules))]
+    return defects
+
+
 def main():
     root = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
     pages = ["README.md"] + sorted(os.path.relpath(p, root) for p in glob.glob(os.path.join(root, "doc", "*.md")))
@@ -157,6 +182,14 @@ def main():
                 print(f"   {defect}")
         else:
             print(f"PASS links {page}: {links} links, {paths} quoted paths, tables whole")
+    defects = check_code_map(root)
+    if defects:
+        failures += 1
+        print(f"FAIL code map doc/architecture.md: {len(defects)} defect(s)")
+        for defect in defects:
+            print(f"   {defect}")
+    else:
+        print("PASS code map doc/architecture.md: every module under src/ is named, every named module exists")
     return 1 if failures else 0
 
 
