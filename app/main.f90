@@ -312,6 +312,6 @@ contains
     print '(a)', 'run goes on with the next deck; the exit status is 1 if any deck failed, 2 for'
     print '(a)', 'usage errors and an output folder that is empty or cannot be written (checked'
     print '(a)', 'before any deck runs). Folders left by runs that no longer exist are removed.'
-    print '(a)', 'Errors read  file:line:column: CARD: message.  The card format is in README.md.'
+    print '(a)', 'Errors read  file:line:column: CARD: message.  The cards: doc/cards.md.'
   end subroutine print_help
 end program visco2d

@@ -5,7 +5,7 @@ The sphere of Table 1 (R 36.6 mm, E 18.11 MPa, nu 0.219, rho 756.85,
 V 0.9982 m/s, g 9.8, Wilson theta 1.4) on a rigid plate (PLATE Z=0, STICK,
 stop at maximum deformation), run by the installed executable:
 
-  * mesh levels 1..MAX_LEVEL at dt = 1e-5 s (level 5 takes a minute or more),
+  * mesh levels 1..MAX_LEVEL at dt = 1e-5 s (level 5 takes seconds),
   * dt = 4e-5 .. 1.25e-6 s at level DT_LEVEL (default 3),
 
 with the observed orders p = log2(|f1 - f2| / |f2 - f3|) of alpha_m and the

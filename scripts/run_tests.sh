@@ -25,6 +25,12 @@ python3 scripts/check_layers.py src > "$log/layers.log" 2>&1
 count "$log/layers.log"
 echo "   $(grep -c '^PASS ' "$log/layers.log") files checked"
 
+echo "== documentation links (scripts/check_links.py: links, anchors, quoted paths, tables of README.md and doc/)"
+python3 scripts/check_links.py > "$log/links.log" 2>&1
+count "$log/links.log"
+grep '^   ' "$log/links.log" || true
+echo "   $(grep -c '^PASS ' "$log/links.log") pages checked"
+
 echo "== unit and verification tests (fpm test; one line per test program as it finishes)"
 fpm test --profile release 2>&1 | tee "$log/fpm-test.log" | grep --line-buffered -E '^[a-z_]+: [0-9]+ passed' | sed -u 's/^/   /'
 status=${PIPESTATUS[0]}

@@ -343,7 +343,7 @@ def markdown(rows, refs, cases, levels, dts_ms, fast, version, machine):
         if hertz:
             lines += ["Against Hertz the finite sphere converges about 5 % below in α (and sooner in t): Hertz's α "
                       "is the approach of far-away points of a half-space, visco2d's the approach of the centre "
-                      "of mass of a finite sphere, whose force–approach curve is stiffer (README, \"Where visco2d "
+                      "of mass of a finite sphere, whose force–approach curve is stiffer (doc/verification.md, \"Where visco2d "
                       "and the paper differ\"). That is physics, not discretization error, so the 1 % criterion "
                       "is taken against f*, not Hertz.", ""]
     return "\n".join(lines)

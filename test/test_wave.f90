@@ -12,7 +12,7 @@
 !> lumped-mass chain, integrated in time by RK4 at a tiny step), whose
 !> front is the Airy front of the dispersive lattice. What Wilson-theta adds
 !> to it (wider front, smaller overshoot, dissipated energy) is printed as
-!> a table for the README and checked for the expected trends.
+!> a table for doc/verification.md and checked for the expected trends.
 program test_wave
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
@@ -195,7 +195,7 @@ contains
 
   !> Wilson-theta's overshoot and smoothing of the front for several time
   !> steps (Courant numbers C = c dt/dz), theta = 1.4, and theta = 1.0 at
-  !> C = 0.25, against the semi-discrete reference; the table for the README.
+  !> C = 0.25, against the semi-discrete reference; the table for doc/verification.md.
   !>
   !> For small omega dt, Wilson-theta's amplification matrix (free vibration
   !> at omega, eqs. [34]-[42] with R = 0) has a period elongation

@@ -645,7 +645,7 @@ contains
     end do
   end function cycle_maxima_decrease
 
-  !> The period elongation / amplitude decay table for the README.
+  !> The period elongation / amplitude decay table for doc/verification.md.
   subroutine print_table()
     integer :: j
     character(len=160) :: line
@@ -776,7 +776,7 @@ contains
     call check('theta = 1: stability limit by bisection = sqrt(3)/pi to 1e-15', &
                abs(limit - sqrt(3.0_qp)/pi_qp) < 1.0e-15_qp, 'limit '//trim(qtoa(limit)))
     ! theta = 1.4: where the principal pair turns into two real roots (the
-    ! table's largest steps). Bisection on the oscillating flag, for the README.
+    ! table's largest steps). Bisection on the oscillating flag, for doc/verification.md.
     low = 2.0_qp
     high = 5.0_qp
     do iteration = 1, 200
