@@ -12,7 +12,7 @@ module visco2d_driver
   use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
   use visco2d_wilson, only: solve_dynamic
   use visco2d_progress, only: progress_begin, progress_end
-  use visco2d_contact, only: solve_static_contact
+  use visco2d_static_contact, only: solve_static_contact
   use visco2d_bruise, only: bruise_static
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn
   use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
