@@ -21,7 +21,8 @@ module visco2d_deck
   use visco2d_contact_cards, only: plate_t, read_plate, read_stop, stop_name, stop_at_tend, &
                                    stop_at_max_deformation, stop_at_separation
   use visco2d_bruise_cards, only: read_bruise, check_bruise_cards
-  use visco2d_mesh, only: mesh_input_t, read_node_card, read_element_card, read_mesh_card, build_mesh
+  use visco2d_mesh_cards, only: mesh_input_t, read_node_card, read_element_card, read_mesh_card
+  use visco2d_mesh_build, only: build_mesh
   use visco2d_deck_types, only: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t, &
                                 analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
                                 geometry_name, total_steps, formulation_name, initial_velocity, add_warning
