@@ -16,7 +16,8 @@ module visco2d_driver
   use visco2d_bruise, only: bruise_static
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn
   use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
-  use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5, write_pressure
+  use visco2d_output, only: write_summary, write_history, write_results_h5, write_pressure
+  use visco2d_listing, only: write_listing
   use visco2d_xdmf, only: write_results_xdmf
   use visco2d_output_check, only: check_finite_outputs, finite_text
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
