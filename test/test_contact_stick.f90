@@ -35,7 +35,7 @@ program test_contact_stick
   use visco2d_static_contact, only: solve_static_contact
   use visco2d_assembly, only: node_dof, band_vector
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
   use visco2d_test_decks, only: pressed_sphere
