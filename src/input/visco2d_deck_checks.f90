@@ -215,6 +215,7 @@ contains
     end subroutine check_product
   end subroutine check_load_sizes
 
+  !> Each PRESSURE edge set has boundary edges in the mesh.
   subroutine check_pressures(deck, error)
     type(deck_t), intent(in) :: deck
     type(error_t), allocatable, intent(inout) :: error

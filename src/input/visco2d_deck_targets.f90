@@ -175,6 +175,7 @@ contains
     expects = [expects, expect]
   end subroutine read_expect
 
+  !> Each element's MAT= name to its material (the only one if none is named).
   subroutine resolve_materials(deck, error)
     type(deck_t), intent(inout) :: deck
     type(error_t), allocatable, intent(inout) :: error
@@ -278,6 +279,7 @@ contains
     end do
   end subroutine resolve_fixes
 
+  !> FORCE targets to nodes, CURVE= names to curves.
   subroutine resolve_forces(deck, pending, error)
     type(deck_t), intent(inout) :: deck
     type(pending_t), intent(in) :: pending(:)
@@ -321,6 +323,7 @@ contains
 
   !> TIME belongs to QUASISTATIC and DYNAMIC (required there), not to STATIC.
 
+  !> PROBE targets to nodes (NODE=, or the node nearest R=, Z=).
   subroutine resolve_probes(deck, pending, error)
     type(deck_t), intent(inout) :: deck
     type(pending_t), intent(in) :: pending(:)

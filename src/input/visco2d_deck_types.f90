@@ -104,6 +104,7 @@ module visco2d_deck_types
 
 contains
 
+  !> The analysis kind's name as on the ANALYSIS card ('NONE' for none).
   pure function analysis_name(code) result(name)
     integer, intent(in) :: code
     character(:), allocatable :: name
@@ -115,6 +116,7 @@ contains
     end select
   end function analysis_name
 
+  !> The element formulation's name as on the FORMULATION card.
   pure function formulation_name(code) result(name)
     integer, intent(in) :: code
     character(:), allocatable :: name
@@ -136,6 +138,7 @@ contains
     end if
   end function initial_velocity
 
+  !> The geometry's name as on the GEOMETRY card.
   pure function geometry_name(code) result(name)
     integer, intent(in) :: code
     character(:), allocatable :: name
