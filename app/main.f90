@@ -7,7 +7,9 @@ program visco2d
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
-  use visco2d_driver, only: run_deck, check_deck, run_line, prepare_output_root, expect_tally_t
+  use visco2d_driver, only: run_deck, check_deck
+  use visco2d_expect, only: run_line, expect_tally_t
+  use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear

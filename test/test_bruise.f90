@@ -45,7 +45,8 @@ program test_bruise
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_record, only: record_t
-  use visco2d_driver, only: run_deck, summary_value
+  use visco2d_driver, only: run_deck
+  use visco2d_expect, only: summary_value
   use visco2d_bruise, only: measure_names
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text

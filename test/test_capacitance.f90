@@ -27,7 +27,7 @@ program test_capacitance
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column
   implicit none
 

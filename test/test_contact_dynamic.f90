@@ -50,9 +50,9 @@ program test_contact_dynamic
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_wilson, only: solve_dynamic
-  use visco2d_contact, only: hertz_duration_constant, put_hertz_summary
+  use visco2d_hertz, only: hertz_duration_constant, put_hertz_summary
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa, to_lower
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
                              history_column, history_last

@@ -42,11 +42,13 @@ program test_contact_static
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_pressure, &
-                             solve_static_contact, hertz_impact, hertz_t, hertz_time_constant, volume_weights
+                             volume_weights
+  use visco2d_static_contact, only: solve_static_contact
+  use visco2d_hertz, only: hertz_impact, hertz_t, hertz_time_constant
   use visco2d_assembly, only: node_dof, band_vector
   use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text, history_column
   use visco2d_test_decks, only: pressed_sphere

@@ -31,10 +31,11 @@ program test_contact_stick
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_static, only: static_solution_t, solve_static
-  use visco2d_contact, only: contact_t, contact_create, contact_gap, solve_static_contact, volume_weights
+  use visco2d_contact, only: contact_t, contact_create, contact_gap, volume_weights
+  use visco2d_static_contact, only: solve_static_contact
   use visco2d_assembly, only: node_dof, band_vector
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
   use visco2d_test_decks, only: pressed_sphere

@@ -20,7 +20,8 @@ program test_effects
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_scene, only: effects_t, scene_effects, effects_text
-  use visco2d_driver, only: run_deck, summary_value
+  use visco2d_driver, only: run_deck
+  use visco2d_expect, only: summary_value
   use visco2d_record, only: record_t
   use visco2d_strings, only: rtoa
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &

@@ -13,7 +13,8 @@ program test_input_guards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck, total_steps
-  use visco2d_driver, only: run_deck, summary_value
+  use visco2d_driver, only: run_deck
+  use visco2d_expect, only: summary_value
   use visco2d_record, only: record_t
   use visco2d_cards, only: parse_real, max_line_length
   use visco2d_curve, only: curve_t, curve_value

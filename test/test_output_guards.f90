@@ -22,10 +22,12 @@ program test_output_guards
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, history_define, history_append, &
                             record_add_snapshot, record_warn
-  use visco2d_output, only: write_summary, write_history, write_listing, write_results_h5
+  use visco2d_output, only: write_summary, write_history, write_results_h5
+  use visco2d_listing, only: write_listing
   use visco2d_output_check, only: check_finite_outputs, finite_text
-  use visco2d_driver, only: run_deck, prepare_output_root, remove_stale_folders, relative_error, expect_tally_t, &
-                            run_line, summary_value, run_warning_count
+  use visco2d_driver, only: run_deck, run_warning_count
+  use visco2d_expect, only: relative_error, expect_tally_t, run_line, summary_value
+  use visco2d_case_folder, only: prepare_output_root, remove_stale_folders
   use visco2d_system, only: make_directory, directory_exists, path_exists, process_id, process_alive, remove_tree
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck, message_of, read_lines
   implicit none

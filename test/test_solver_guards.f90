@@ -16,9 +16,10 @@ program test_solver_guards
   use visco2d_static, only: static_solution_t, solve_static, solve_quasistatic
   use visco2d_wilson, only: solve_dynamic
   use visco2d_record, only: record_t
-  use visco2d_driver, only: run_deck, summary_value
+  use visco2d_driver, only: run_deck
+  use visco2d_expect, only: summary_value
   use visco2d_advice, only: time_scales_t, time_scales
-  use visco2d_contact, only: hertz_impact, hertz_t
+  use visco2d_hertz, only: hertz_impact, hertz_t
   use visco2d_kinds, only: pi
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
   use visco2d_strings, only: rtoa

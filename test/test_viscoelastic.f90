@@ -24,7 +24,7 @@ program test_viscoelastic
   use visco2d_static, only: solve_quasistatic, solve_static, static_solution_t
   use visco2d_scene, only: scene_effects, effects_text
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_analytic, only: shear_relaxation, shear_ramp_response, uniaxial_creep_compliance_one_term, &
                               cylinder_bore_displacement
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column

@@ -28,7 +28,8 @@ program test_wilson
   use visco2d_static, only: solve_static, static_solution_t
   use visco2d_assembly, only: lumped_mass, node_dof
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value, run_deck
+  use visco2d_driver, only: run_deck
+  use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_index
   implicit none

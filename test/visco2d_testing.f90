@@ -6,7 +6,7 @@ module visco2d_testing
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t, record_column
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   implicit none
   private
 

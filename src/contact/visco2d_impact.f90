@@ -14,7 +14,8 @@ module visco2d_impact
   use visco2d_material, only: stress_from_strain
   use visco2d_viscoelastic, only: step_coefficients_t, viscoelastic_state_t, element_terms, history_stress
   use visco2d_contact, only: contact_t, contact_count, contact_pressure, contact_force, contact_radius, &
-                             nearest_free_node, put_hertz_summary
+                             nearest_free_node
+  use visco2d_hertz, only: put_hertz_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column, record_warn
   implicit none
   private

@@ -41,7 +41,7 @@ module visco2d_progress
   real(dp), parameter :: left_cap = 1.0e6_dp         !< s; longer estimates print as "?"
   integer, parameter :: line_length = 200
   !> Hertz's t_m V/alpha_m (eq. [44]; 0.4 B(0.4, 0.5) = 1.47162), as
-  !> visco2d_contact's hertz_time_constant (not used here: no module cycle).
+  !> visco2d_hertz's hertz_time_constant (not used here: no module cycle).
   real(dp), parameter :: hertz_constant = 1.4716_dp
 
   interface

@@ -1,6 +1,6 @@
 !> Mesh generators: the graded half-disc section of a sphere (the fruit grid
 !> of Fig. 1) and a structured rectangle. They return raw coordinates,
-!> counter-clockwise connectivity and tagged boundary edges; `visco2d_mesh`
+!> counter-clockwise connectivity and tagged boundary edges; `visco2d_mesh_build`
 !> checks and numbers them.
 module visco2d_mesh_generator
   use visco2d_kinds, only: dp, pi

@@ -12,7 +12,7 @@ module visco2d_xdmf
   use visco2d_strings, only: itoa
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, snapshot_t
-  use visco2d_output, only: text_file_t, text_open, text_put, text_close
+  use visco2d_text_file, only: text_file_t, text_open, text_put, text_close
   implicit none
   private
 

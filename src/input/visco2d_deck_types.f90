@@ -1,0 +1,229 @@
+!> The model a deck describes (deck_t and the records it holds: supports,
+!> pressures, point loads, probes, expected values, warnings), the analysis
+!> kinds, the small queries on a deck (names, total steps, initial velocity)
+!> and the located errors and warnings on its cards. visco2d_deck reads a
+!> deck into these types and re-exports them.
+module visco2d_deck_types
+  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_standard, formulation_bbar
+  use visco2d_error, only: error_t, set_error
+  use, intrinsic :: iso_fortran_env, only: int64
+  use visco2d_strings, only: itoa
+  use visco2d_cards, only: card_deck_t, card_error, field_column
+  use visco2d_material, only: material_t
+  use visco2d_curve, only: curve_t
+  use visco2d_time, only: time_stage_t
+  use visco2d_dynamic_cards, only: dynamics_t, output_request_t, standard_gravity
+  use visco2d_contact_cards, only: plate_t, stop_at_tend
+  use visco2d_bruise_cards, only: bruise_card_t
+  use visco2d_mesh, only: mesh_t, edge_set_none
+  implicit none
+  private
+
+  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t
+  public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
+  public :: formulation_name, initial_velocity
+  public :: card_at_line, line_error, card_keyword_at, add_warning
+
+
+  integer, parameter :: analysis_static = 1       !< S U = R once
+  integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
+  integer, parameter :: analysis_dynamic = 3      !< incremental in time with inertia (Wilson-theta, the extension)
+
+  !> A warning about a deck that still runs (file:line: CARD: text).
+  type :: warning_t
+    character(:), allocatable :: text
+  end type warning_t
+
+  !> A support: components prescribed at a set of nodes, u = value * curve(t)
+  !> (value 0, no curve: a fixed support).
+  type :: fix_t
+    integer, allocatable :: nodes(:)
+    logical :: fix_r = .false., fix_z = .false.
+    real(dp) :: value(2) = 0.0_dp  !< prescribed (u_r, u_z), m
+    integer :: curve = 0           !< index into deck%curves; 0 = constant
+    integer :: line = 0
+  end type fix_t
+
+  !> A uniform normal pressure on a boundary edge set (positive = compressive), p * curve(t).
+  type :: pressure_t
+    integer :: edge_set = edge_set_none
+    real(dp) :: value = 0.0_dp     !< Pa
+    integer :: curve = 0           !< index into deck%curves; 0 = constant
+    integer :: line = 0
+  end type pressure_t
+
+  !> A point load at a node (per radian in axisymmetry), N, times curve(t).
+  type :: force_t
+    integer :: node = 0
+    real(dp) :: value(2) = 0.0_dp
+    integer :: curve = 0           !< index into deck%curves; 0 = constant
+    integer :: line = 0
+  end type force_t
+
+  !> A node whose displacement and stress are reported in the summary and history.
+  type :: probe_t
+    character(:), allocatable :: name
+    integer :: node = 0
+  end type probe_t
+
+  !> An expected value of a summary key (an analytic answer the deck documents).
+  type :: expect_t
+    character(:), allocatable :: key   !< summary key, upper case
+    real(dp) :: value = 0.0_dp
+    real(dp) :: tolerance = 1.0e-2_dp  !< relative
+    integer :: line = 0
+    integer :: column = 0              !< column of the key on the EXPECT card
+  end type expect_t
+
+  !> The model a deck describes.
+  type :: deck_t
+    type(card_deck_t) :: cards                     !< the cards as read (for the listing echo)
+    character(:), allocatable :: title
+    integer :: analysis = 0
+    integer :: geometry = geometry_axisymmetric
+    type(material_t), allocatable :: materials(:)
+    type(mesh_t) :: mesh
+    type(fix_t), allocatable :: fixes(:)
+    type(pressure_t), allocatable :: pressures(:)
+    type(force_t), allocatable :: forces(:)
+    type(probe_t), allocatable :: probes(:)
+    type(expect_t), allocatable :: expects(:)
+    type(curve_t), allocatable :: curves(:)
+    type(time_stage_t), allocatable :: stages(:)  !< TIME cards, in order (QUASISTATIC, DYNAMIC)
+    type(dynamics_t) :: dynamics                  !< WILSON, INITIAL, DROP (DYNAMIC)
+    real(dp) :: gravity = 0.0_dp                  !< GRAVITY G=, m/s^2 in -z; 0: no gravity
+    integer :: gravity_line = 0
+    type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
+    integer :: formulation = formulation_standard !< FORMULATION STANDARD | BBAR
+    type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
+    integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)
+    integer :: stop_line = 0
+    type(bruise_card_t), allocatable :: bruises(:) !< BRUISE cards (visco2d_bruise); none: no envelopes kept
+    type(warning_t), allocatable :: warnings(:)
+  end type deck_t
+
+contains
+
+  !> The analysis kind's name as on the ANALYSIS card ('NONE' for none).
+  pure function analysis_name(code) result(name)
+    integer, intent(in) :: code
+    character(:), allocatable :: name
+    select case (code)
+    case (analysis_static); name = 'STATIC'
+    case (analysis_quasistatic); name = 'QUASISTATIC'
+    case (analysis_dynamic); name = 'DYNAMIC'
+    case default; name = 'NONE'
+    end select
+  end function analysis_name
+
+  !> The element formulation's name as on the FORMULATION card.
+  pure function formulation_name(code) result(name)
+    integer, intent(in) :: code
+    character(:), allocatable :: name
+    name = merge('BBAR    ', 'STANDARD', code == formulation_bbar)
+    name = trim(name)
+  end function formulation_name
+
+  !> Initial (v_r, v_z) of the free nodes, m/s: INITIAL VR=/VZ=, or VZ = -sqrt(2 g h) of DROP HEIGHT=h
+  !> (g of the GRAVITY card, 9.8 m/s^2 without one).
+  pure function initial_velocity(deck) result(velocity)
+    type(deck_t), intent(in) :: deck
+    real(dp) :: velocity(2)
+    real(dp) :: g
+    velocity = deck%dynamics%velocity
+    if (deck%dynamics%drop_line > 0) then
+      g = standard_gravity
+      if (deck%gravity_line > 0) g = deck%gravity
+      velocity(2) = -sqrt(2.0_dp*g*deck%dynamics%drop_height)
+    end if
+  end function initial_velocity
+
+  !> The geometry's name as on the GEOMETRY card.
+  pure function geometry_name(code) result(name)
+    integer, intent(in) :: code
+    character(:), allocatable :: name
+    name = merge('AXISYMMETRIC', 'PLANESTRAIN ', code == geometry_axisymmetric)
+    name = trim(name)
+  end function geometry_name
+
+  !> Total number of time steps of the deck's TIME stages (read_time keeps
+  !> it at most max_steps; summed in 64 bits all the same).
+  pure integer function total_steps(deck)
+    type(deck_t), intent(in) :: deck
+    integer(int64) :: steps
+    integer :: k
+    steps = 0
+    if (allocated(deck%stages)) then
+      do k = 1, size(deck%stages)
+        steps = steps + int(deck%stages(k)%steps, int64)
+      end do
+    end if
+    total_steps = int(min(steps, int(huge(total_steps), int64)))
+  end function total_steps
+
+  !> Index of the card on a line (0 if none: a line is always a card's here).
+  integer function card_at_line(deck, line) result(found)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    integer :: low, high, middle
+    found = 0
+    low = 1
+    high = deck%cards%count
+    do while (low <= high)                  ! cards are in line order
+      middle = (low + high)/2
+      if (deck%cards%cards(middle)%line == line) then
+        found = middle
+        return
+      else if (deck%cards%cards(middle)%line < line) then
+        low = middle + 1
+      else
+        high = middle - 1
+      end if
+    end do
+  end function card_at_line
+
+  !> An error at the card on `line`, at the column of its field `field` (a
+  !> name, or a position as '1') if it has one, else at its keyword.
+  subroutine line_error(error, deck, line, message, field)
+    type(error_t), allocatable, intent(inout) :: error
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: message
+    character(*), intent(in), optional :: field
+    integer :: k
+    k = card_at_line(deck, line)
+    if (k == 0) then
+      call set_error(error, message, file=deck%cards%file, line=line)
+    else if (present(field)) then
+      call card_error(error, deck%cards, deck%cards%cards(k), message, field_column(deck%cards%cards(k), field))
+    else
+      call card_error(error, deck%cards, deck%cards%cards(k), message)
+    end if
+  end subroutine line_error
+
+  !> The keyword of the card on `line` (`fallback` if no card starts there).
+  function card_keyword_at(deck, line, fallback) result(keyword)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: fallback
+    character(:), allocatable :: keyword
+    integer :: k
+    keyword = trim(fallback)
+    do k = 1, deck%cards%count
+      if (deck%cards%cards(k)%line == line) then
+        keyword = trim(deck%cards%cards(k)%keyword)
+        return
+      end if
+    end do
+  end function card_keyword_at
+
+  !> Add a located warning to the deck.
+  subroutine add_warning(deck, line, card, message)
+    type(deck_t), intent(inout) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: card, message
+    type(warning_t) :: warning
+    warning%text = deck%cards%file//':'//itoa(line)//': '//card//': '//message
+    deck%warnings = [deck%warnings, warning]
+  end subroutine add_warning
+end module visco2d_deck_types
