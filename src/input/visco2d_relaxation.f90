@@ -38,6 +38,18 @@ module visco2d_relaxation
   !> Bisection steps per root: enough to reach adjacent doubles from any bracket.
   integer, parameter :: max_bisections = 4000
 
+  !> The state of one partial-fraction inversion (find_poles): the scaled
+  !> series c_k, a_k, the numerator N and target T, and the poles found so far.
+  type :: pole_search_t
+    integer :: n = 0                              !< terms (and poles to find)
+    integer :: count = 0                          !< poles found
+    real(dp) :: scale = 1.0_dp                    !< sum of the moduli: c_k = modulus_k/scale
+    real(dp) :: numerator = 0.0_dp, target = 0.0_dp, total = 0.0_dp  !< N, T, sum c
+    real(dp), allocatable :: coefficient(:), rate(:)
+    real(dp), allocatable :: residue(:), pole_rate(:)
+    character(:), allocatable :: message          !< '' while all is well
+  end type pole_search_t
+
 contains
 
   !> Uniaxial Prony series (E_i, alpha_i) (eq. [47]) and Poisson's ratio nu at
@@ -230,190 +242,203 @@ contains
     real(dp), intent(in) :: modulus(:), rate(:), modulus_numerator, modulus_target
     real(dp), allocatable, intent(out) :: residue(:), pole_rate(:)
     character(:), allocatable, intent(out) :: message
-    real(dp) :: coefficient(size(modulus)), numerator, target, scale
-    real(dp) :: total, zero_rate_coefficient, root_rate, root_residue
-    integer :: n, first_positive, k, count
+    type(pole_search_t) :: search
+    real(dp) :: zero_rate_coefficient, root_rate, root_residue
+    integer :: first_positive, k
 
-    n = size(rate)
-    allocate(residue(n), pole_rate(n))
-    message = ''
-    count = 0
-    scale = sum(modulus)
-    coefficient = modulus/scale
-    numerator = modulus_numerator/scale
-    target = modulus_target/scale
-    total = sum(coefficient)
-    if (any(coefficient < tiny(1.0_dp))) then
-      k = minloc(coefficient, dim=1)
-      message = 'conversion failed: the modulus '//short_real(modulus(k))//' of the term with rate '// &
-                short_real(rate(k))//' 1/s is negligible against their sum '//short_real(scale)
-      return
+    search%n = size(rate)
+    allocate(search%residue(search%n), search%pole_rate(search%n))
+    search%message = ''
+    search%count = 0
+    search%rate = rate
+    search%scale = sum(modulus)
+    search%coefficient = modulus/search%scale
+    search%numerator = modulus_numerator/search%scale
+    search%target = modulus_target/search%scale
+    search%total = sum(search%coefficient)
+    call find_poles_scaled(search, modulus, first_positive, zero_rate_coefficient)
+    if (len(search%message) == 0 .and. first_positive <= search%n) then
+      ! one root between consecutive poles, -a_(k+1) < s < -a_k
+      do k = first_positive, search%n - 1
+        call root_between(search, rate(k + 1), rate(k), root_rate, root_residue)
+        if (len(search%message) == 0) call add_pole(search, root_rate, root_residue)
+        if (len(search%message) > 0) exit
+      end do
+      ! one root in (-inf, -a_max) if T > sum c (there h runs from sum c to +inf)
+      if (len(search%message) == 0 .and. search%target > search%total) then
+        call root_below(search, root_rate, root_residue)
+        if (len(search%message) == 0) call add_pole(search, root_rate, root_residue)
+      end if
+      ! one root in (-a_min, 0) if T < c_0 (there h runs from -inf to c_0)
+      if (len(search%message) == 0 .and. search%target < zero_rate_coefficient) then
+        call root_between(search, rate(first_positive), 0.0_dp, root_rate, root_residue)
+        if (len(search%message) == 0) call add_pole(search, root_rate, root_residue)
+      end if
     end if
+    if (len(search%message) == 0 .and. search%count /= search%n) &
+      search%message = 'conversion failed: found '//itoa(search%count)//' poles for '//itoa(search%n)// &
+                       ' distinct rates'
+    message = search%message
+    residue = search%residue*search%scale
+    pole_rate = search%pole_rate
+    if (len(message) == 0) call sort_by_rate(residue, pole_rate)
+  end subroutine find_poles
+
+  !> The checks before the roots are sought (moduli not negligible, no pole at
+  !> s > 0, no lost pole) and the pole s = 0 of an a = 0 term (the long-term
+  !> modulus), with residue lim s F(s) = N c_0/(T - c_0). Returns the first
+  !> term with a positive rate and c_0 (0 without an a = 0 term).
+  subroutine find_poles_scaled(search, modulus, first_positive, zero_rate_coefficient)
+    type(pole_search_t), intent(inout) :: search
+    real(dp), intent(in) :: modulus(:)
+    integer, intent(out) :: first_positive
+    real(dp), intent(out) :: zero_rate_coefficient
+    integer :: k
     zero_rate_coefficient = 0.0_dp
     first_positive = 1
-    if (rate(1) == 0.0_dp) then
-      zero_rate_coefficient = coefficient(1)
+    if (any(search%coefficient < tiny(1.0_dp))) then
+      k = minloc(search%coefficient, dim=1)
+      search%message = 'conversion failed: the modulus '//short_real(modulus(k))//' of the term with rate '// &
+                       short_real(search%rate(k))//' 1/s is negligible against their sum '//short_real(search%scale)
+      return
+    end if
+    if (search%rate(1) == 0.0_dp) then
+      zero_rate_coefficient = search%coefficient(1)
       first_positive = 2
     end if
     ! c_0 < T < sum c would put a root of h = T at s > 0 (a growing mode);
     ! T = c_0 or T = sum c would lose a pole (a double pole at 0, or one at -inf)
-    if (target > zero_rate_coefficient .and. target < total) then
-      message = 'no stable conversion: the transform has a pole at s > 0'
-    else if (target == zero_rate_coefficient .or. (target == total .and. first_positive <= n)) then
-      message = 'degenerate series: the transform has fewer poles than the series has terms'
+    if (search%target > zero_rate_coefficient .and. search%target < search%total) then
+      search%message = 'no stable conversion: the transform has a pole at s > 0'
+    else if (search%target == zero_rate_coefficient .or. &
+             (search%target == search%total .and. first_positive <= search%n)) then
+      search%message = 'degenerate series: the transform has fewer poles than the series has terms'
     end if
-    if (len(message) > 0) return
+    if (len(search%message) > 0) return
+    if (first_positive == 2) call add_pole(search, 0.0_dp, &
+      search%numerator*zero_rate_coefficient/(search%target - zero_rate_coefficient))
+  end subroutine find_poles_scaled
 
-    ! an a = 0 term (long-term modulus): pole s = 0, residue lim s F(s) = N c_0/(T - c_0)
-    if (first_positive == 2) then
-      call add_pole(0.0_dp, numerator*zero_rate_coefficient/(target - zero_rate_coefficient))
-      if (len(message) > 0) return
+  !> Store one pole after checking that it is usable.
+  subroutine add_pole(search, value_rate, value_residue)
+    type(pole_search_t), intent(inout) :: search
+    real(dp), intent(in) :: value_rate, value_residue
+    if (search%count >= search%n) then
+      search%message = 'conversion failed: more poles than terms'
+    else if (.not. (ieee_is_finite(value_residue) .and. value_residue > 0.0_dp)) then
+      search%message = 'conversion failed: the term with rate '//short_real(value_rate)// &
+                ' 1/s gets a modulus that is not positive and finite ('//short_real(value_residue*search%scale)// &
+                '); moduli or rates too far apart, or rates too close, for double precision'
+    else if (.not. (ieee_is_finite(value_rate) .and. value_rate >= 0.0_dp)) then
+      search%message = 'conversion failed: a rate that is not finite and >= 0 ('//short_real(value_rate)//')'
+    else
+      search%count = search%count + 1
+      search%residue(search%count) = value_residue
+      search%pole_rate(search%count) = value_rate
     end if
-    if (first_positive <= n) then
-      ! one root between consecutive poles, -a_(k+1) < s < -a_k
-      do k = first_positive, n - 1
-        call root_between(rate(k + 1), rate(k), root_rate, root_residue)
-        if (len(message) == 0) call add_pole(root_rate, root_residue)
-        if (len(message) > 0) return
-      end do
-      ! one root in (-inf, -a_max) if T > sum c (there h runs from sum c to +inf)
-      if (target > total) then
-        call root_below(root_rate, root_residue)
-        if (len(message) == 0) call add_pole(root_rate, root_residue)
-        if (len(message) > 0) return
+  end subroutine add_pole
+
+  !> The root in (-left_rate, -right_rate), left_rate > right_rate >= 0 (the
+  !> right end is a pole of h, or s = 0 where h = c_0 > T).
+  subroutine root_between(search, left_rate, right_rate, root_rate, root_residue)
+    type(pole_search_t), intent(inout) :: search
+    real(dp), intent(in) :: left_rate, right_rate
+    real(dp), intent(out) :: root_rate, root_residue
+    real(dp) :: middle, origin, low, high
+    ! which half holds the root? (h increases: h(middle) > T -> left half)
+    middle = -0.5_dp*(left_rate + right_rate)
+    if (shifted_h(search, middle, 0.0_dp) - search%target > 0.0_dp) then
+      origin = left_rate                  ! d = s + a_left in (0, a_left - a_right)
+      low = 0.0_dp
+      high = left_rate - right_rate
+    else
+      origin = right_rate                 ! d = s + a_right in (a_right - a_left, 0)
+      low = right_rate - left_rate
+      high = 0.0_dp
+    end if
+    call bisect(search, origin, low, high, root_rate, root_residue)
+  end subroutine root_between
+
+  !> The root in (-inf, -a_max) when T > sum c. There every |s + a_k| >=
+  !> |s + a_max|, so h - T <= (sum c - T) + sum(c a)/|d|, d = s + a_max:
+  !> at d = -2 sum(c a)/(T - sum c) h - T <= -(T - sum c)/2 < 0.
+  subroutine root_below(search, root_rate, root_residue)
+    type(pole_search_t), intent(inout) :: search
+    real(dp), intent(out) :: root_rate, root_residue
+    real(dp) :: low
+    low = -2.0_dp*sum(search%coefficient*search%rate)/(search%target - search%total)
+    call bisect(search, search%rate(search%n), low, 0.0_dp, root_rate, root_residue)
+  end subroutine root_below
+
+  !> Bisection in d = s + origin on (low, high), where h - T < 0 at low and > 0
+  !> at high (end points are not evaluated: they may be poles), to adjacent
+  !> doubles; then the rate beta = -s = origin - d and the residue
+  !> N T/(beta h'(s)).
+  subroutine bisect(search, origin, low, high, root_rate, root_residue)
+    type(pole_search_t), intent(inout) :: search
+    real(dp), intent(in) :: origin, low, high
+    real(dp), intent(out) :: root_rate, root_residue
+    real(dp) :: lower, upper, middle, value, lower_value, upper_value, root
+    integer :: iteration
+    lower = low
+    upper = high
+    lower_value = -huge(1.0_dp)
+    upper_value = huge(1.0_dp)
+    do iteration = 1, max_bisections
+      middle = lower + 0.5_dp*(upper - lower)
+      if (middle <= lower .or. middle >= upper) exit
+      value = shifted_h(search, middle, origin) - search%target
+      if (ieee_is_nan(value)) then
+        search%message = 'conversion failed: the transform is not finite near rate '//short_real(origin)//' 1/s'
+        return
       end if
-      ! one root in (-a_min, 0) if T < c_0 (there h runs from -inf to c_0)
-      if (target < zero_rate_coefficient) then
-        call root_between(rate(first_positive), 0.0_dp, root_rate, root_residue)
-        if (len(message) == 0) call add_pole(root_rate, root_residue)
-        if (len(message) > 0) return
-      end if
-    end if
-
-    if (count /= n) then
-      message = 'conversion failed: found '//itoa(count)//' poles for '//itoa(n)//' distinct rates'
-      return
-    end if
-    residue = residue*scale
-    call sort_by_rate(residue, pole_rate)
-
-  contains
-
-    !> Store one pole after checking that it is usable.
-    subroutine add_pole(value_rate, value_residue)
-      real(dp), intent(in) :: value_rate, value_residue
-      if (count >= n) then
-        message = 'conversion failed: more poles than terms'
-      else if (.not. (ieee_is_finite(value_residue) .and. value_residue > 0.0_dp)) then
-        message = 'conversion failed: the term with rate '//short_real(value_rate)// &
-                  ' 1/s gets a modulus that is not positive and finite ('//short_real(value_residue*scale)// &
-                  '); moduli or rates too far apart, or rates too close, for double precision'
-      else if (.not. (ieee_is_finite(value_rate) .and. value_rate >= 0.0_dp)) then
-        message = 'conversion failed: a rate that is not finite and >= 0 ('//short_real(value_rate)//')'
+      if (value < 0.0_dp) then
+        lower = middle
+        lower_value = value
+      else if (value > 0.0_dp) then
+        upper = middle
+        upper_value = value
       else
-        count = count + 1
-        residue(count) = value_residue
-        pole_rate(count) = value_rate
+        lower = middle
+        upper = middle
+        lower_value = 0.0_dp
+        exit
       end if
-    end subroutine add_pole
+    end do
+    if (abs(lower_value) <= abs(upper_value)) then
+      root = lower
+    else
+      root = upper
+    end if
+    root_rate = origin - root
+    root_residue = search%numerator*search%target/(root_rate*shifted_h_derivative(search, root, origin))
+  end subroutine bisect
 
-    !> The root in (-left_rate, -right_rate), left_rate > right_rate >= 0 (the
-    !> right end is a pole of h, or s = 0 where h = c_0 > T).
-    subroutine root_between(left_rate, right_rate, root_rate, root_residue)
-      real(dp), intent(in) :: left_rate, right_rate
-      real(dp), intent(out) :: root_rate, root_residue
-      real(dp) :: middle, origin, low, high
-      ! which half holds the root? (h increases: h(middle) > T -> left half)
-      middle = -0.5_dp*(left_rate + right_rate)
-      if (shifted_h(middle, 0.0_dp) - target > 0.0_dp) then
-        origin = left_rate                  ! d = s + a_left in (0, a_left - a_right)
-        low = 0.0_dp
-        high = left_rate - right_rate
+  !> h(s) = sum_k c_k s/(s + a_k) at s = d - origin, with s + a_k = d + (a_k - origin).
+  pure real(dp) function shifted_h(search, d, origin) result(value)
+    type(pole_search_t), intent(in) :: search
+    real(dp), intent(in) :: d, origin
+    real(dp) :: s
+    integer :: j
+    s = d - origin
+    value = 0.0_dp
+    do j = 1, search%n
+      if (search%rate(j) == 0.0_dp) then
+        value = value + search%coefficient(j)
       else
-        origin = right_rate                 ! d = s + a_right in (a_right - a_left, 0)
-        low = right_rate - left_rate
-        high = 0.0_dp
+        value = value + search%coefficient(j)*s/(d + (search%rate(j) - origin))
       end if
-      call bisect(origin, low, high, root_rate, root_residue)
-    end subroutine root_between
+    end do
+  end function shifted_h
 
-    !> The root in (-inf, -a_max) when T > sum c. There every |s + a_k| >=
-    !> |s + a_max|, so h - T <= (sum c - T) + sum(c a)/|d|, d = s + a_max:
-    !> at d = -2 sum(c a)/(T - sum c) h - T <= -(T - sum c)/2 < 0.
-    subroutine root_below(root_rate, root_residue)
-      real(dp), intent(out) :: root_rate, root_residue
-      real(dp) :: low
-      low = -2.0_dp*sum(coefficient*rate)/(target - total)
-      call bisect(rate(n), low, 0.0_dp, root_rate, root_residue)
-    end subroutine root_below
-
-    !> Bisection in d = s + origin on (low, high), where h - T < 0 at low and > 0
-    !> at high (end points are not evaluated: they may be poles), to adjacent
-    !> doubles; then the rate beta = -s = origin - d and the residue
-    !> N T/(beta h'(s)).
-    subroutine bisect(origin, low, high, root_rate, root_residue)
-      real(dp), intent(in) :: origin, low, high
-      real(dp), intent(out) :: root_rate, root_residue
-      real(dp) :: lower, upper, middle, value, lower_value, upper_value, root
-      integer :: iteration
-      lower = low
-      upper = high
-      lower_value = -huge(1.0_dp)
-      upper_value = huge(1.0_dp)
-      do iteration = 1, max_bisections
-        middle = lower + 0.5_dp*(upper - lower)
-        if (middle <= lower .or. middle >= upper) exit
-        value = shifted_h(middle, origin) - target
-        if (ieee_is_nan(value)) then
-          message = 'conversion failed: the transform is not finite near rate '//short_real(origin)//' 1/s'
-          return
-        end if
-        if (value < 0.0_dp) then
-          lower = middle
-          lower_value = value
-        else if (value > 0.0_dp) then
-          upper = middle
-          upper_value = value
-        else
-          lower = middle
-          upper = middle
-          lower_value = 0.0_dp
-          exit
-        end if
-      end do
-      if (abs(lower_value) <= abs(upper_value)) then
-        root = lower
-      else
-        root = upper
-      end if
-      root_rate = origin - root
-      root_residue = numerator*target/(root_rate*shifted_h_derivative(root, origin))
-    end subroutine bisect
-
-    !> h(s) = sum_k c_k s/(s + a_k) at s = d - origin, with s + a_k = d + (a_k - origin).
-    pure real(dp) function shifted_h(d, origin) result(value)
-      real(dp), intent(in) :: d, origin
-      real(dp) :: s
-      integer :: j
-      s = d - origin
-      value = 0.0_dp
-      do j = 1, n
-        if (rate(j) == 0.0_dp) then
-          value = value + coefficient(j)
-        else
-          value = value + coefficient(j)*s/(d + (rate(j) - origin))
-        end if
-      end do
-    end function shifted_h
-
-    !> h'(s) = sum_k c_k a_k/(s + a_k)^2 at s = d - origin (all terms positive).
-    pure real(dp) function shifted_h_derivative(d, origin) result(value)
-      real(dp), intent(in) :: d, origin
-      integer :: j
-      value = 0.0_dp
-      do j = 1, n
-        if (rate(j) > 0.0_dp) value = value + coefficient(j)*rate(j)/(d + (rate(j) - origin))**2
-      end do
-    end function shifted_h_derivative
-  end subroutine find_poles
+  !> h'(s) = sum_k c_k a_k/(s + a_k)^2 at s = d - origin (all terms positive).
+  pure real(dp) function shifted_h_derivative(search, d, origin) result(value)
+    type(pole_search_t), intent(in) :: search
+    real(dp), intent(in) :: d, origin
+    integer :: j
+    value = 0.0_dp
+    do j = 1, search%n
+      if (search%rate(j) > 0.0_dp) value = value + search%coefficient(j)*search%rate(j)/(d + (search%rate(j) - origin))**2
+    end do
+  end function shifted_h_derivative
 end module visco2d_relaxation
