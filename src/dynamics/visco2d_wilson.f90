@@ -56,7 +56,8 @@ module visco2d_wilson
   use visco2d_static, only: singular_error, node_text, put_field_summary, put_probe_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer
   use visco2d_timers, only: timer_start, timer_stop, timers_enabled, timers_set_floor, timers_set_steps, &
-                            phase_assembly, phase_factorization, phase_constitutive, phase_contact, phase_output, phase_step_loop
+                            phase_assembly, phase_factorization, phase_constitutive, phase_solve, phase_contact, &
+                            phase_output, phase_step_loop
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_advice, only: deformation_warnings, largest_strain
   use visco2d_bruise, only: bruise_t, bruise_update, bruise_report
@@ -277,8 +278,12 @@ contains
       associate (point => stepper%points(r))
       t_end = t_next
       if (r < size(stepper%points)) t_end = state%t + point%length
+      call timer_start(phase_constitutive)
       call effective_load(stepper, deck, r, state, start, t_end)                ! eq. [36]
+      call timer_stop(phase_constitutive)
+      call timer_start(phase_solve)
       call solve_supports(stepper, r, state)                                    ! eq. [34], supports only
+      call timer_stop(phase_solve)
       call contact_repeat(stepper, deck, r, state, start, finite, error)        ! the plate, eqs. [37]-[39], [13]-[23]
       if (allocated(error)) return
       if (.not. finite) then
@@ -300,8 +305,8 @@ contains
       end if
       call book_growth(measures%book, energy, what)
       if (allocated(what)) return
-      call commit_substep(stepper, deck, r, state, t_end)                       ! eqs. [24], [40]-[42]
       call timer_start(phase_constitutive)
+      call commit_substep(stepper, deck, r, state, t_end)                       ! eqs. [24], [40]-[42]
       call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain, state%history)
       call timer_stop(phase_constitutive)
       offset = offset + point%row%fraction
