@@ -123,7 +123,7 @@ contains
     call timer_start(phase_step_loop)
     stages: do stage = 1, size(deck%stages)
       dt = deck%stages(stage)%dt
-      call factor_for(stepper, deck, stage, dt, measures%book, error)
+      call factor_stage(stepper, deck, stage, dt, measures%book, error)
       if (allocated(error)) return
       do step = 1, deck%stages(stage)%steps
         t_next = stage_start + step*dt
@@ -183,7 +183,7 @@ contains
   !> also the energy bound of the instability check, widened by the
   !> integrator's overshoot for the highest frequency of the mesh, bounded by
   !> Gershgorin's theorem: omega_max^2 <= max_i sum_j |S_ij|/m_i.
-  subroutine factor_for(stepper, deck, stage, dt, book, error)
+  subroutine factor_stage(stepper, deck, stage, dt, book, error)
     type(stepper_t), intent(inout) :: stepper
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: stage
@@ -212,7 +212,7 @@ contains
         return
       end if
     end do
-  end subroutine factor_for
+  end subroutine factor_stage
 
   !> S~ = S + c M with a positive lumped mass is positive definite in exact
   !> arithmetic: it fails only when the mass term is lost in round-off
