@@ -24,6 +24,8 @@ program test_integrators_fe
   use visco2d_driver, only: summary_value
   use visco2d_wilson, only: solve_dynamic
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, read_lines
+  use visco2d_dynamic_cards, only: dynamics_t, integrator_newmark, integrator_hht, integrator_bathe
+  use visco2d_integrators, only: integrator_t, integrator_create, energy_overshoot
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
 
@@ -37,6 +39,7 @@ program test_integrators_fe
   call impact_family('table1_elastic')
   call impact_family('table2_viscoelastic')
   call newmark_advice()
+  call overshoot_factors()
   call test_summary('test_integrators_fe')
 
 contains
@@ -99,6 +102,40 @@ contains
                   free_flight=.true., message=message)
     call check('NEWMARK 0.25, 0.5: the same deck runs (unconditionally stable)', ran, message)
   end subroutine newmark_advice
+
+  !> The widening of the instability bound (energy_overshoot), measured on a
+  !> single degree of freedom: the trapezoidal rule conserves the energy of a
+  !> linear oscillator (factor 1 to round-off at any omega dt); Bathe's
+  !> method never raises it (factor 1 to round-off); HHT's first-step overshoot grows as
+  !> (omega dt)^2 at large omega dt (ratio 100 from 1e3 to 1e4, within 1 %).
+  subroutine overshoot_factors()
+    type(dynamics_t) :: dynamics
+    type(integrator_t) :: integrator
+    real(dp) :: large, larger
+    dynamics%integrator = integrator_newmark
+    integrator = integrator_create(dynamics)
+    call check_close('overshoot NEWMARK 1/4, 1/2 at omega dt = 1e3: 1 (energy conserved)', &
+                     energy_overshoot(integrator, 1.0e3_dp, 1.0_dp), 1.0_dp, rtol=1.0e-10_dp)
+    dynamics%integrator = integrator_bathe
+    integrator = integrator_create(dynamics)
+    call check_close('overshoot BATHE at omega dt = 0.1: 1', energy_overshoot(integrator, 0.1_dp, 1.0_dp), 1.0_dp, &
+                     rtol=1.0e-10_dp)
+    call check_close('overshoot BATHE at omega dt = 1e5: 1', energy_overshoot(integrator, 1.0e5_dp, 1.0_dp), 1.0_dp, &
+                     rtol=1.0e-10_dp)
+    dynamics%integrator = integrator_hht
+    integrator = integrator_create(dynamics)
+    large = energy_overshoot(integrator, 1.0e3_dp, 1.0_dp)
+    larger = energy_overshoot(integrator, 1.0e4_dp, 1.0_dp)
+    call check('overshoot HHT 0.05 at omega dt = 1e3 above 1', large > 1.0_dp, exact_ratio(large))
+    call check_close('overshoot HHT 0.05 grows as (omega dt)^2', larger/large, 100.0_dp, rtol=0.01_dp)
+  end subroutine overshoot_factors
+
+  !> A real for a detail.
+  function exact_ratio(value) result(text)
+    real(dp), intent(in) :: value
+    character(len=24) :: text
+    write(text, '(es24.16)') value
+  end function exact_ratio
 
   !> Run inputs/<deck_name>.inp with its WILSON card replaced by `card`
   !> (optionally its TIME card, and without plate and stop: free flight).
