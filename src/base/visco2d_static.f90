@@ -8,7 +8,8 @@
 !> mu = G(0)); each later step n solves S_n dU = R(t_n) - F(sigma_{n-1} + s0_n)
 !> with S_n assembled from mu_n (eq. [21]) and the history stress s0_n
 !> (eq. [23]) as a pseudo-load, then updates stress and history
-!> (eqs. [13], [14], [24], module visco2d_viscoelastic). Writing the right-hand
+!> (eqs. [13], [14], [24]; the history stress and update shared with the
+!> dynamic loop, module visco2d_constitutive). Writing the right-hand
 !> side as the full out-of-balance force (not Delta R alone) keeps round-off
 !> from accumulating into drift. S_n depends on dt only, so its factor is
 !> reused while dt is constant (elastic bodies: one factorization in all).
@@ -28,8 +29,8 @@ module visco2d_static
                               prescribed_displacement, internal_force, scatter_add, gravity_load, nodal_field
   use visco2d_element, only: element_internal_force
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
-                                  viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
-                                  update_history
+                                  viscoelastic_state_create, element_terms
+  use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
@@ -272,9 +273,9 @@ contains
     real(dp), allocatable :: shear(:), bulk(:), gravity(:)
     logical, allocatable :: fixed(:)
     logical :: memory
-    integer :: step, stage, k, e, g, nterm, factorizations, first_step
+    integer :: step, stage, k, e, g, factorizations, first_step
     real(dp) :: t, dt, stage_start, equilibrium_error
-    real(dp) :: increment(4, 4), deviatoric(4), volumetric
+    real(dp), allocatable :: s0(:, :, :), increments(:, :, :)
 
     associate (mesh => deck%mesh, materials => deck%materials)
     memory = .false.
@@ -288,11 +289,12 @@ contains
     allocate(u(2*mesh%nnode), du(2*mesh%nnode), internal(2*mesh%nnode))
     u = 0.0_dp
     internal = 0.0_dp
-    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem))
+    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem), &
+             s0(4, 4, mesh%nelem), increments(4, 4, mesh%nelem))
     stress = 0.0_dp
     factorizations = 0
     equilibrium_error = 0.0_dp
-    call define_history()
+    call quasistatic_history_define(deck, record)
 
     ! Step 0 (t = 0, dt = 0), then each TIME stage.
     stage_start = 0.0_dp
@@ -310,17 +312,17 @@ contains
           if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
         end if
         if (coefficients(1)%dt /= dt .and. (memory .or. factorizations == 0)) then
-          call factor_for(dt)
+          call quasistatic_factor(dt)
           if (allocated(error)) return
         end if
-        call advance(t)
+        call quasistatic_increment(t)
         if (allocated(error)) return
         if (stage > 0) call progress_step(sum(deck%stages(:stage - 1)%steps) + step, t, -1.0_dp)
       end do
       if (stage > 0) stage_start = deck%stages(stage)%end_time
-      if (stage == 0) call keep_snapshot('step_000000', 'initial', 0.0_dp)
+      if (stage == 0) call quasistatic_snapshot(deck, record, 'step_000000', 'initial', 0.0_dp, u, stress)
     end do
-    call keep_snapshot('step_'//zero_padded(total_steps(deck)), 'final', t)
+    call quasistatic_snapshot(deck, record, 'step_'//zero_padded(total_steps(deck)), 'final', t, u, stress)
     call record_put_integer(record, 'factorizations', factorizations)
     if (memory) then
       call record_put_integer(record, 'history_values', size(state%history))
@@ -337,7 +339,7 @@ contains
   contains
 
     !> S_n with the moduli (mu_n, K) of step length dt, constrained and factored.
-    subroutine factor_for(dt)
+    subroutine quasistatic_factor(dt)
       real(dp), intent(in) :: dt
       integer :: info, m
       do m = 1, size(deck%materials)
@@ -351,29 +353,20 @@ contains
       call band_factor(factor, info)
       factorizations = factorizations + 1
       if (info > 0) call singular_error(deck, info, error)
-    end subroutine factor_for
+    end subroutine quasistatic_factor
 
     !> One increment to time t: pseudo-load, solve, stress and history update.
-    subroutine advance(t)
+    subroutine quasistatic_increment(t)
       real(dp), intent(in) :: t
-      integer :: slot
-      real(dp) :: s0(4)
       trial = stress
       rhs = -internal                                   ! F(sigma_{n-1})
       if (memory) then
+        call history_stresses(deck%materials, deck%mesh%element_material, state, coefficients, s0)   ! eq. [23]
         do e = 1, deck%mesh%nelem
-          nterm = element_terms(state, e)
-          if (nterm == 0) cycle
-          associate (material => deck%materials(deck%mesh%element_material(e)), &
-                     c => coefficients(deck%mesh%element_material(e)))
-          do g = 1, 4
-            slot = state%first(e) + (g - 1)*nterm
-            s0 = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
-            trial(:, g, e) = trial(:, g, e) + s0
-          end do
+          if (element_terms(state, e) == 0) cycle
+          trial(:, :, e) = trial(:, :, e) + s0(:, :, e)
           call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
             deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e), deck%formulation), rhs)
-          end associate
         end do
       end if
       load = external_load(deck, t) + gravity
@@ -384,20 +377,13 @@ contains
       du = rhs
       u = u + du
       do e = 1, deck%mesh%nelem
-        increment = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                    gather(deck%mesh, e, du), deck%formulation)
-        nterm = 0
-        if (memory) nterm = element_terms(state, e)
+        increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                              gather(deck%mesh, e, du), deck%formulation)
         do g = 1, 4
-          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increment(:, g))  ! [13], [14]
-          if (nterm > 0) then
-            call deviatoric_part(increment(:, g), deviatoric, volumetric)
-            slot = state%first(e) + (g - 1)*nterm
-            call update_history(coefficients(deck%mesh%element_material(e)), deviatoric, &
-                                state%history(:, slot:slot + nterm - 1))                        ! eq. [24]
-          end if
+          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increments(:, g, e))  ! [13], [14]
         end do
       end do
+      if (memory) call commit_history(deck%mesh%element_material, state, coefficients, increments)   ! eq. [24]
       internal = internal_force(deck, stress)
       if (.not. all(ieee_is_finite(u)) .or. .not. all(ieee_is_finite(stress))) then
         call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)
@@ -405,47 +391,59 @@ contains
       end if
       equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
                               max(maxval(abs(internal)), tiny(1.0_dp)))
-      call append_row(t, internal - load)
-    end subroutine advance
-
-    subroutine define_history()
-      character(len=48), allocatable :: columns(:)
-      integer :: p
-      columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'reaction_r_N', 'reaction_z_N']
-      do p = 1, size(deck%probes)
-        columns = [character(len=48) :: columns, deck%probes(p)%name//'_ur_m', deck%probes(p)%name//'_uz_m', &
-                   deck%probes(p)%name//'_sr_Pa', deck%probes(p)%name//'_sz_Pa', &
-                   deck%probes(p)%name//'_st_Pa', deck%probes(p)%name//'_trz_Pa']
-      end do
-      call history_define(record, columns, total_steps(deck) + 1)
-    end subroutine define_history
-
-    subroutine append_row(t, residual)
-      real(dp), intent(in) :: t, residual(:)
-      real(dp), allocatable :: row(:)
-      integer :: p, node
-      row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
-             whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
-                                               sum(residual(2::2), mask=fixed(2::2))]]
-      do p = 1, size(deck%probes)
-        node = deck%probes(p)%node
-        row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]
-      end do
-      call history_append(record, row)
-    end subroutine append_row
-
-    subroutine keep_snapshot(name, label, time)
-      character(*), intent(in) :: name, label
-      real(dp), intent(in) :: time
-      type(snapshot_t) :: snapshot
-      snapshot%name = name
-      snapshot%label = label
-      snapshot%time = time
-      snapshot%displacement = nodal_field(deck%mesh, u)
-      call set_snapshot_stress(deck%mesh, stress, snapshot)
-      call record_add_snapshot(record, snapshot)
-    end subroutine keep_snapshot
+      call quasistatic_row(deck, record, t, u, stress, fixed, internal - load)
+    end subroutine quasistatic_increment
   end subroutine solve_quasistatic
+
+  !> The history columns of a quasi-static run: step, time, largest
+  !> displacement, support reactions, and per probe its u and nodal stresses.
+  subroutine quasistatic_history_define(deck, record)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    character(len=48), allocatable :: columns(:)
+    integer :: p
+    columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'reaction_r_N', 'reaction_z_N']
+    do p = 1, size(deck%probes)
+      columns = [character(len=48) :: columns, deck%probes(p)%name//'_ur_m', deck%probes(p)%name//'_uz_m', &
+                 deck%probes(p)%name//'_sr_Pa', deck%probes(p)%name//'_sz_Pa', &
+                 deck%probes(p)%name//'_st_Pa', deck%probes(p)%name//'_trz_Pa']
+    end do
+    call history_define(record, columns, total_steps(deck) + 1)
+  end subroutine quasistatic_history_define
+
+  !> One history row of a quasi-static run at time t (`residual` = F - R:
+  !> the support reactions on the fixed equations).
+  subroutine quasistatic_row(deck, record, t, u, stress, fixed, residual)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: t, u(:), stress(:, :, :), residual(:)
+    logical, intent(in) :: fixed(:)
+    real(dp), allocatable :: row(:)
+    integer :: p, node
+    row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
+           whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
+                                             sum(residual(2::2), mask=fixed(2::2))]]
+    do p = 1, size(deck%probes)
+      node = deck%probes(p)%node
+      row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]
+    end do
+    call history_append(record, row)
+  end subroutine quasistatic_row
+
+  !> A snapshot of a quasi-static run: displacements and stresses.
+  subroutine quasistatic_snapshot(deck, record, name, label, time, u, stress)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: name, label
+    real(dp), intent(in) :: time, u(:), stress(:, :, :)
+    type(snapshot_t) :: snapshot
+    snapshot%name = name
+    snapshot%label = label
+    snapshot%time = time
+    snapshot%displacement = nodal_field(deck%mesh, u)
+    call set_snapshot_stress(deck%mesh, stress, snapshot)
+    call record_add_snapshot(record, snapshot)
+  end subroutine quasistatic_snapshot
 
   !> Nodal stress at one node: Gauss values extrapolated in each element that
   !> has the node, then averaged (the same recovery as nodal_average).
