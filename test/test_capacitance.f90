@@ -25,7 +25,7 @@ program test_capacitance
                             band_factor, band_solve, band_multiply
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_wilson, only: solve_dynamic
+  use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column

@@ -1,6 +1,6 @@
 !> Verification of impact on a rigid plate: Wilson-theta (theta = 1.4) with
 !> the PLATE card (src/contact/visco2d_contact.f90, the contact part of
-!> src/dynamics/visco2d_wilson.f90), on the paper's sphere (MESH SPHERE, R = 36.6 mm).
+!> src/dynamics/visco2d_dynamic.f90), on the paper's sphere (MESH SPHERE, R = 36.6 mm).
 !>
 !>  1. Convergence, elastic sphere of Table 1 (E 18.11 MPa, nu 0.219,
 !>     rho 756.85, V 0.9982 m/s, g 9.8): alpha_m, t_alpha, q_max, force_max
@@ -49,7 +49,7 @@ program test_contact_dynamic
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_wilson, only: solve_dynamic
+  use visco2d_dynamic, only: solve_dynamic
   use visco2d_hertz, only: hertz_duration_constant, put_hertz_summary
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value

@@ -46,7 +46,7 @@ program test_contact_static
   use visco2d_static_contact, only: solve_static_contact
   use visco2d_hertz, only: hertz_impact, hertz_t, hertz_time_constant
   use visco2d_assembly, only: node_dof, band_vector
-  use visco2d_wilson, only: solve_dynamic
+  use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa

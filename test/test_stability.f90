@@ -49,7 +49,7 @@
 !> Hughes 1978). On the column the energy ratio after step 1 is measured as
 !> ~3.4e-2 (DT/dt_crit)^2 (3.4 at DT = 10 dt_crit: checked to be transient
 !> below); it decays by the spectral radius (0.778 per step at omega dt ->
-!> infinity). visco2d_wilson's instability guard therefore widens its limit
+!> infinity). visco2d_dynamic's instability guard therefore widens its limit
 !> (100 x the input energy) by 2 ((1 - 1/theta^2) omega_max dt)^2, with
 !> omega_max from a Gershgorin bound; the default start at 1000 dt_crit must
 !> run, and its overshoot must die out. (Ramping the load over the
@@ -60,7 +60,7 @@ program test_stability
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_wilson, only: solve_dynamic
+  use visco2d_dynamic, only: solve_dynamic
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck

@@ -18,7 +18,7 @@ program test_wave
   use visco2d_error, only: error_t, error_text
   use visco2d_strings, only: gtoa, short_real
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_wilson, only: solve_dynamic
+  use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column, history_last, read_lines
   implicit none

@@ -1,4 +1,4 @@
-!> Verification of the Wilson-theta integrator (src/dynamics/visco2d_wilson.f90, eqs. [34]-[42])
+!> Verification of the Wilson-theta integrator (src/dynamics/visco2d_dynamic.f90, eqs. [34]-[42])
 !> against independent computations:
 !>   1. A single degree of freedom: one plane-strain element in uniaxial strain
 !>      (bottom fixed, top free in z only), k/m = 2 M_c/(rho h^2) with the
@@ -24,7 +24,7 @@ program test_wilson
   use visco2d_kinds, only: dp, whole_body_factor
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_wilson, only: solve_dynamic, energy_growth_limit
+  use visco2d_dynamic, only: solve_dynamic, energy_growth_limit
   use visco2d_static, only: solve_static, static_solution_t
   use visco2d_assembly, only: lumped_mass, node_dof
   use visco2d_record, only: record_t

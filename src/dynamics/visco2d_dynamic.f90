@@ -41,7 +41,7 @@
 !> finite, or if kinetic + internal energy grows far beyond what can have
 !> been put into the body: an unstable integration. No NaN and no blown-up
 !> value reaches the results.
-module visco2d_wilson
+module visco2d_dynamic
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
@@ -454,4 +454,4 @@ contains
     end do
     end associate
   end subroutine put_summary
-end module visco2d_wilson
+end module visco2d_dynamic
