@@ -2,7 +2,8 @@
 """The integrator family side by side: amplification matrices and the Table 1 impact.
 
     python3 scripts/integrators.py [--out DIR] [--exe PATH] [--levels 1] [--dts-ms 0.04,0.02,0.01]
-                                   [--integrators WILSON,NEWMARK,...] [--table-only] [--reuse]
+                                   [--integrators WILSON,NEWMARK,...] [--deck inputs/table1_elastic.inp]
+                                   [--reference-mm 1.0388] [--table-only] [--reuse]
 
 Part 1 (no runs, --table-only stops here): each integrator's amplification
 matrix A on a single degree of freedom (u'' + omega^2 u = 0, state x = (u, v, a),
@@ -16,7 +17,9 @@ From the principal eigenvalue pair lambda = r e^{+-i phi} at Omega = omega dt:
   spectral radius       rho(A) = max |lambda| (at dt/T = 0.1 and at Omega = 1e6, "infinity").
 
 Part 2: the Table 1 impact (inputs/table1_elastic.inp: STICK, to maximum
-deformation, OUTPUT EVERY=1 so that every step is in history.csv) with each
+deformation; --deck another impact deck with MESH SPHERE, e.g.
+inputs/apple_center_accel.inp, the Fig. 2 accelerometer deck), OUTPUT EVERY=1
+so that every step is in history.csv, with each
 integrator at each DT and mesh level: alpha_m, t_m, q_m, the peak centre
 acceleration, the CPU seconds of the solve (summary cpu_s) and two noise
 measures over the contact phase (force > 0):
@@ -28,7 +31,8 @@ difference of order DT^2 f'' (small, and falling 4x per halving of DT);
 ringing from period to period of the step is of the order of its own
 amplitude. alpha errors are against the converged reference of the Table 1
 impact (scripts/study.py's f*, out of `make study`: 1.0388 mm, levels 3-5 at
-DT 0.0025 ms), unless --reference-mm says otherwise.
+DT 0.0025 ms), unless --reference-mm says otherwise (for another --deck:
+no alpha error unless --reference-mm is given).
 
 Writes OUT/integrators.md (and .csv) and prints the markdown.
 """
@@ -107,9 +111,11 @@ def step(params, x, w2, h):
 
 
 def amplification(params, omega_dt):
-    """A (3 x 3, columns = the step of the unit states) at Omega = omega dt (omega = 1)."""
+    """A (3 x 3, columns = the step of the unit states) at Omega = omega dt (omega = 1), in the state
+    (u, dt v, dt^2 a): a similarity of the (u, v, a) matrix (the same eigenvalues) with entries of order 1."""
     columns = [step(params, unit, 1.0, omega_dt) for unit in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
-    return [[columns[j][i] for j in range(3)] for i in range(3)]
+    scale = (1.0, omega_dt, omega_dt**2)
+    return [[columns[j][i] * scale[i] / scale[j] for j in range(3)] for i in range(3)]
 
 
 def eigenvalues(a):
@@ -130,15 +136,21 @@ def properties(params, omega_dt):
     return radius, omega_dt / phase - 1.0, -math.log(abs(z)) / phase
 
 
+#: "Delta t / T -> infinity": Omega = omega dt = 1e12. The radius approaches its limit as Omega^-2
+#: (Wilson, HHT), Omega^-1 (Bathe: 5/Omega) or Omega^(-2/3) (generalized-alpha, whose three eigenvalues
+#: meet at -rho_inf: 0.78 Omega^(-2/3)), so at 1e12 all are within 1e-8 of the limit.
+OMEGA_INFINITY = 1e12
+
+
 def amplification_table():
     """Markdown: the integrators' period error, damping and spectral radius at dt/T = 0.1 and infinity."""
     omega = 2 * math.pi * 0.1
     lines = ["| integrator | INTEGRATOR card | period error T̄/T − 1 at Δt/T = 0.1 | damping ratio ξ̄ at 0.1 "
-             "| ρ(A) at 0.1 | ρ(A) at Δt/T → ∞ (Ω = 1e6) | period error at 0.05 |",
+             "| ρ(A) at 0.1 | ρ(A) at Δt/T → ∞ (Ω = 1e12) | period error at 0.05 |",
              "|---|---|---|---|---|---|---|"]
     for name, (card, params) in SCHEMES.items():
         radius, period, xi = properties(params, omega)
-        radius_inf = properties(params, 1e6)[0]
+        radius_inf = properties(params, OMEGA_INFINITY)[0]
         period_half = properties(params, omega / 2)[1]
         lines.append("| %s | `%s` | %+.2f %% | %.4f | %.5f | %.4f | %+.2f %% |" % (
             LABELS[name], card, 100 * period, xi, radius, radius_inf, 100 * period_half))
@@ -183,9 +195,9 @@ def impact_deck(source_text, card, level, dt_ms):
     return text
 
 
-def run_impact(exe, out, name, level, dt_ms, source_text, reuse):
+def run_impact(exe, out, name, level, dt_ms, source_text, reuse, case="table1_elastic"):
     card = SCHEMES[name][0]
-    tag = "%s_L%d_dt%dns" % (name.lower(), level, round(dt_ms * 1e6))
+    tag = "%s_%s_L%d_dt%dns" % (case, name.lower(), level, round(dt_ms * 1e6))
     decks, runs = os.path.join(out, "decks"), os.path.join(out, "runs")
     os.makedirs(decks, exist_ok=True)
     deck_path = os.path.join(decks, tag + ".inp")
@@ -214,6 +226,10 @@ def run_impact(exe, out, name, level, dt_ms, source_text, reuse):
     return row
 
 
+def percent_error(value, reference):
+    return "—" if reference is None else "%+.2f" % (100 * (value / reference - 1))
+
+
 def impact_table(rows, reference):
     lines = ["| integrator | level | Δt (ms) | steps | α_m (mm) | α error % | t_m (ms) | q_m (MPa) "
              "| centre accel. max (g) | CM decel. max (g) | force noise | accel. noise | CPU s |",
@@ -223,9 +239,9 @@ def impact_table(rows, reference):
             lines.append("| %s | %d | %g | FAILED: %s | | | | | | | | | |" % (
                 r["integrator"], r["level"], r["dt_ms"], r.get("detail", "")))
             continue
-        lines.append("| %s | %d | %g | %d | %.4f | %+.2f | %.4f | %.3f | %.0f | %.1f | %.2e | %.2e | %.3f |" % (
+        lines.append("| %s | %d | %g | %d | %.4f | %s | %.4f | %.3f | %.0f | %.1f | %.2e | %.2e | %.3f |" % (
             r["integrator"], r["level"], r["dt_ms"], r["steps"], r["alpha_max_mm"],
-            100 * (r["alpha_max_mm"] / reference - 1), r["t_alpha_max_ms"], r["q_max_MPa"],
+            percent_error(r["alpha_max_mm"], reference), r["t_alpha_max_ms"], r["q_max_MPa"],
             r["accel_center_max_g"], r["accel_cm_max_g"], r["noise_force"], r["noise_accel"], r["cpu_s"]))
     return "\n".join(lines)
 
@@ -237,8 +253,10 @@ def main():
     parser.add_argument("--levels", default="1")
     parser.add_argument("--dts-ms", default="0.04,0.02,0.01")
     parser.add_argument("--integrators", default=",".join(SCHEMES))
-    parser.add_argument("--reference-mm", type=float, default=CONVERGED_ALPHA_MM,
-                        help="converged alpha_m of Table 1 (default: make study's f*, %g mm)" % CONVERGED_ALPHA_MM)
+    parser.add_argument("--deck", default=os.path.join("inputs", "table1_elastic.inp"),
+                        help="the impact deck (MESH SPHERE ... LEVEL=, TIME DT=, OUTPUT EVERY=, one WILSON card)")
+    parser.add_argument("--reference-mm", type=float,
+                        help="converged alpha_m (default for Table 1: make study's f*, %g mm)" % CONVERGED_ALPHA_MM)
     parser.add_argument("--table-only", action="store_true", help="the amplification table only (no runs)")
     parser.add_argument("--reuse", action="store_true", help="do not rerun an identical deck already run in OUT")
     args = parser.parse_args()
@@ -252,8 +270,13 @@ def main():
         exe = os.path.abspath(args.exe)
         if not os.access(exe, os.X_OK):
             sys.exit("integrators: no executable %s (run `make build`)" % exe)
-        with open(os.path.join(ROOT, "inputs", "table1_elastic.inp")) as handle:
+        deck_path = args.deck if os.path.isabs(args.deck) else os.path.join(ROOT, args.deck)
+        with open(deck_path) as handle:
             source = handle.read()
+        case = os.path.splitext(os.path.basename(deck_path))[0]
+        reference = args.reference_mm
+        if reference is None and case == "table1_elastic":
+            reference = CONVERGED_ALPHA_MM
         levels = [int(v) for v in args.levels.split(",")]
         dts = sorted((float(v) for v in args.dts_ms.split(",")), reverse=True)
         rows = []
@@ -261,15 +284,15 @@ def main():
             for name in names:
                 for dt in dts:
                     start = time.perf_counter()
-                    row = run_impact(exe, args.out, name, level, dt, source, args.reuse)
+                    row = run_impact(exe, args.out, name, level, dt, source, args.reuse, case)
                     print("integrators: %s level %d DT %g ms: %s (%.1f s)" % (
                         name, level, dt, row["status"], time.perf_counter() - start), file=sys.stderr, flush=True)
                     rows.append(row)
-        text += ["## The Table 1 impact (STICK, to maximum deformation)", "",
-                 "CPU: %s; one run at a time. α error against the converged α_m = %g mm. Noise: RMS of the "
+        text += ["## The impact: %s" % os.path.relpath(deck_path, ROOT), "",
+                 "CPU: %s; one run at a time. α error against the converged α_m = %s mm. Noise: RMS of the "
                  "step-to-step second difference f(n+1) − 2 f(n) + f(n−1) over the contact phase (force > 0), "
-                 "divided by the peak of |f| there." % (cpu_model(), args.reference_mm), "",
-                 impact_table(rows, args.reference_mm), ""]
+                 "divided by the peak of |f| there." % (cpu_model(), "—" if reference is None else "%g" % reference),
+                 "", impact_table(rows, reference), ""]
         os.makedirs(args.out, exist_ok=True)
         with open(os.path.join(args.out, "integrators.csv"), "w", newline="") as handle:
             columns = ["integrator", "level", "dt_ms", "steps", "alpha_max_mm", "t_alpha_max_ms", "q_max_MPa",
