@@ -28,8 +28,8 @@ module visco2d_static
                               prescribed_displacement, internal_force, scatter_add, gravity_load, nodal_field
   use visco2d_element, only: element_internal_force
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
-                                  viscoelastic_state_create, element_terms, deviatoric_part, history_stress, &
-                                  update_history
+                                  viscoelastic_state_create, element_terms
+  use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
@@ -272,9 +272,9 @@ contains
     real(dp), allocatable :: shear(:), bulk(:), gravity(:)
     logical, allocatable :: fixed(:)
     logical :: memory
-    integer :: step, stage, k, e, g, nterm, factorizations, first_step
+    integer :: step, stage, k, e, g, factorizations, first_step
     real(dp) :: t, dt, stage_start, equilibrium_error
-    real(dp) :: increment(4, 4), deviatoric(4), volumetric
+    real(dp), allocatable :: s0(:, :, :), increments(:, :, :)
 
     associate (mesh => deck%mesh, materials => deck%materials)
     memory = .false.
@@ -288,7 +288,8 @@ contains
     allocate(u(2*mesh%nnode), du(2*mesh%nnode), internal(2*mesh%nnode))
     u = 0.0_dp
     internal = 0.0_dp
-    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem))
+    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem), &
+             s0(4, 4, mesh%nelem), increments(4, 4, mesh%nelem))
     stress = 0.0_dp
     factorizations = 0
     equilibrium_error = 0.0_dp
@@ -356,24 +357,15 @@ contains
     !> One increment to time t: pseudo-load, solve, stress and history update.
     subroutine advance(t)
       real(dp), intent(in) :: t
-      integer :: slot
-      real(dp) :: s0(4)
       trial = stress
       rhs = -internal                                   ! F(sigma_{n-1})
       if (memory) then
+        call history_stresses(deck%materials, deck%mesh%element_material, state, coefficients, s0)   ! eq. [23]
         do e = 1, deck%mesh%nelem
-          nterm = element_terms(state, e)
-          if (nterm == 0) cycle
-          associate (material => deck%materials(deck%mesh%element_material(e)), &
-                     c => coefficients(deck%mesh%element_material(e)))
-          do g = 1, 4
-            slot = state%first(e) + (g - 1)*nterm
-            s0 = history_stress(material, c, state%history(:, slot:slot + nterm - 1))   ! eq. [23]
-            trial(:, g, e) = trial(:, g, e) + s0
-          end do
+          if (element_terms(state, e) == 0) cycle
+          trial(:, :, e) = trial(:, :, e) + s0(:, :, e)
           call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
             deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e), deck%formulation), rhs)
-          end associate
         end do
       end if
       load = external_load(deck, t) + gravity
@@ -384,20 +376,13 @@ contains
       du = rhs
       u = u + du
       do e = 1, deck%mesh%nelem
-        increment = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                    gather(deck%mesh, e, du), deck%formulation)
-        nterm = 0
-        if (memory) nterm = element_terms(state, e)
+        increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                              gather(deck%mesh, e, du), deck%formulation)
         do g = 1, 4
-          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increment(:, g))  ! [13], [14]
-          if (nterm > 0) then
-            call deviatoric_part(increment(:, g), deviatoric, volumetric)
-            slot = state%first(e) + (g - 1)*nterm
-            call update_history(coefficients(deck%mesh%element_material(e)), deviatoric, &
-                                state%history(:, slot:slot + nterm - 1))                        ! eq. [24]
-          end if
+          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increments(:, g, e))  ! [13], [14]
         end do
       end do
+      if (memory) call commit_history(deck%mesh%element_material, state, coefficients, increments)   ! eq. [24]
       internal = internal_force(deck, stress)
       if (.not. all(ieee_is_finite(u)) .or. .not. all(ieee_is_finite(stress))) then
         call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)

@@ -1,0 +1,25 @@
+!> The state of a dynamic run at one time t: what a time step reads at t and
+!> writes at t + dt. Nodal vectors are in band (equation) order, two per node
+!> (r, z); stresses and strains at the Gauss points, (4, gauss_count, nelem).
+module visco2d_dynamic_state
+  use visco2d_kinds, only: dp
+  use visco2d_viscoelastic, only: viscoelastic_state_t
+  implicit none
+  private
+
+  public :: dynamic_state_t
+
+  !> u, v, a of eqs. [40]-[42], the stresses and strains of eqs. [13], [14],
+  !> the Prony histories of eqs. [23], [24], and the forces at t.
+  type :: dynamic_state_t
+    real(dp) :: t = 0.0_dp                          !< time, s
+    real(dp), allocatable :: u(:), v(:), a(:)       !< displacement U, velocity U', acceleration U''
+    real(dp), allocatable :: stress(:, :, :)        !< sigma at the Gauss points
+    real(dp), allocatable :: strain(:, :, :)        !< total strain at the Gauss points
+    type(viscoelastic_state_t) :: history           !< the Prony histories C_m (only with memory)
+    real(dp), allocatable :: load(:)                !< external load R(t)
+    real(dp), allocatable :: internal(:)            !< internal force F(sigma_t) = sum B^T sigma |J| r
+    real(dp), allocatable :: reaction(:)            !< support reactions M a + F - R - G (0 off the supports)
+    real(dp), allocatable :: target(:)              !< the prescribed (FIX) displacements at t
+  end type dynamic_state_t
+end module visco2d_dynamic_state

@@ -1,0 +1,446 @@
+!> The stages of one time step, each a procedure with explicit arguments, in
+!> the order the step runs them (one sub-step per row of the integrator,
+!> module visco2d_integrators; Wilson-theta and the Newmark family have one,
+!> Bathe two):
+!>   effective_stiffness   S~ = (1 - alpha_f) S_h + c M                 eq. [35]
+!>   factor_effective      S~ with the supports imposed, factored (dpbtrf)
+!>   effective_load        R~ = R_h - F(sigma_t) - (1 - alpha_f) F(s0_h) + M b   eq. [36]
+!>   solve_supports        S~ dU = R~ with the supports only             eq. [34]
+!>   contact_repeat        the plate's conditions on dU (capacitance system), the
+!>                         update to the sub-step's end (eqs. [37]-[39]) and the
+!>                         trial stresses (eqs. [13], [14], [23]), repeated while the
+!>                         contact set changes
+!>   commit_substep        strains, stresses, histories (eq. [24]) and
+!>                         U, U', U'' (eqs. [40]-[42]) at the sub-step's end
+!> The right side of eq. [36] is written in residual form: with F(sigma_t)
+!> the internal force of the current stresses it also carries the out-of-
+!> balance force R_t - F_t - M U''_t that the printed eq. [36] drops (Wilson-
+!> theta does not hold equilibrium at t + dt); keeping it makes the step
+!> exactly Bathe and Wilson's total form and keeps round-off from drifting.
+!>
+!> S~ depends on dt and on the supports only: it is factored once per TIME
+!> stage (and row). The equations the plate holds are imposed through a
+!> capacitance (Schur-complement) system on that factor (module
+!> visco2d_capacitance): a change of the contact set costs one
+!> back-substitution per new held equation, not a refactorization. Tests
+!> may instead choose, once, the refactoring strategy (S~ refactored with the
+!> held equations eliminated) to check the capacitance system against it.
+module visco2d_time_step
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, set_error
+  use visco2d_strings, only: itoa
+  use visco2d_deck, only: deck_t
+  use visco2d_material, only: has_memory
+  use visco2d_element, only: gauss_count
+  use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
+  use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_factor, band_solve, band_constrain_matrix, &
+                            band_constrain_rhs
+  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, prescribed_displacement, &
+                              scatter_add, lumped_mass, gravity_load
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms
+  use visco2d_constitutive, only: history_stresses, commit_history
+  use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
+                             contact_gap
+  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
+  use visco2d_timers, only: timer_start, timer_stop, phase_solve, phase_constitutive, phase_contact, &
+                            phase_factorization
+  use visco2d_integrators, only: integrator_t, row_t, integrator_create, solve_interval, mass_coefficient, &
+                                 inertia_load, solve_point_inertia, update_kinematics
+  use visco2d_dynamic_state, only: dynamic_state_t
+  implicit none
+  private
+
+  public :: stepper_t, point_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
+            solve_supports, contact_repeat, commit_substep, hold_contact
+
+  !> The solve point of one row: its intervals, S~ and its factor, the
+  !> capacitance system of the held equations on that factor, and the step
+  !> constants of the viscoelastic law over h (the solve) and over the
+  !> sub-step (the stress update).
+  type :: point_t
+    type(row_t) :: row
+    real(dp) :: length = 0.0_dp                     !< the sub-step, fraction dt
+    real(dp) :: h = 0.0_dp                          !< the solve interval, theta length
+    type(band_matrix_t) :: effective, factor
+    type(capacitance_t) :: capacitance
+    type(step_coefficients_t), allocatable :: over_h(:), over_length(:)   !< per material
+    real(dp), allocatable :: shear(:), bulk(:)      !< per element, over the sub-step
+  end type point_t
+
+  !> What the step needs besides the state: the integrator and its solve
+  !> points, the operators, mass and gravity, supports and the plate's held
+  !> equations, and the step's work arrays (the values at the sub-step's end:
+  !> load_next, internal_next, reaction_next, target_next).
+  type :: stepper_t
+    type(integrator_t) :: integrator
+    type(point_t), allocatable :: points(:)
+    type(operators_t) :: operators
+    real(dp), allocatable :: mass(:), gravity(:)
+    logical, allocatable :: supports(:), fixed(:), held(:)
+    integer, allocatable :: held_rows(:)          !< the equations held by the plate
+    logical :: memory = .false., contact_on = .false.
+    logical :: by_refactoring = .false.            !< tests only: contact by refactoring S~
+    type(contact_t) :: contact
+    integer :: factorizations = 0
+    real(dp) :: touch_fraction = 1.0_dp            !< earliest touch in the sub-step (0..1)
+    real(dp), allocatable :: reaction_solve(:)     !< plate reactions at the solve point
+    real(dp), allocatable :: base(:), free(:), solution(:), prescribed(:), du(:), dv(:), da(:)
+    real(dp), allocatable :: load_next(:), internal_next(:), reaction_next(:), target_next(:)
+    real(dp), allocatable :: trial(:, :, :), increments(:, :, :), history_h(:, :, :), history_length(:, :, :)
+  end type stepper_t
+
+contains
+
+  !> The stepper of a deck: integrator rows, mass (eq. [32]), gravity, supports,
+  !> operators, the contact state, work arrays.
+  subroutine stepper_create(deck, by_refactoring, stepper)
+    type(deck_t), intent(in) :: deck
+    logical, intent(in) :: by_refactoring
+    type(stepper_t), intent(out) :: stepper
+    integer :: k, n, nmat
+    associate (mesh => deck%mesh, materials => deck%materials)
+    n = 2*mesh%nnode
+    nmat = size(materials)
+    stepper%integrator = integrator_create(deck%dynamics)
+    stepper%by_refactoring = by_refactoring
+    do k = 1, nmat
+      if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
+    end do
+    stepper%contact_on = deck%plate%line > 0
+    allocate(stepper%points(size(stepper%integrator%rows)))
+    do k = 1, size(stepper%points)
+      stepper%points(k)%row = stepper%integrator%rows(k)
+      allocate(stepper%points(k)%over_h(nmat), stepper%points(k)%over_length(nmat))
+    end do
+    stepper%supports = support_mask(deck)
+    stepper%fixed = stepper%supports
+    allocate(stepper%held_rows(0), stepper%held(n), stepper%reaction_solve(n))
+    stepper%held = .false.
+    stepper%reaction_solve = 0.0_dp
+    stepper%mass = lumped_mass(deck)                                   ! eq. [32], row sums
+    stepper%gravity = gravity_load(deck)
+    call operators_create(deck, stepper%operators)
+    allocate(stepper%base(n), stepper%free(n), stepper%solution(n), stepper%prescribed(n), stepper%du(n), &
+             stepper%dv(n), stepper%da(n), stepper%load_next(n), stepper%internal_next(n), stepper%reaction_next(n), &
+             stepper%target_next(n))
+    allocate(stepper%trial(4, gauss_count, mesh%nelem), stepper%increments(4, gauss_count, mesh%nelem))
+    if (stepper%memory) allocate(stepper%history_h(4, gauss_count, mesh%nelem), &
+                                 stepper%history_length(4, gauss_count, mesh%nelem))
+    if (stepper%contact_on) call contact_create(deck, stepper%contact)
+    end associate
+  end subroutine stepper_create
+
+  !> Eq. [35] for row r and time step dt: S~ = (1 - alpha_f) S_h + c M, S_h
+  !> assembled with the moduli over the solve interval h; also the step
+  !> constants over the sub-step for the stress update. `stiffness_rows`
+  !> returns the absolute row sums of S_h (for the instability bound).
+  subroutine effective_stiffness(stepper, deck, r, dt, stiffness_rows)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    real(dp), intent(in) :: dt
+    real(dp), intent(out) :: stiffness_rows(:)
+    integer :: m, i, j
+    associate (point => stepper%points(r), material_of => deck%mesh%element_material)
+    point%length = point%row%fraction*dt
+    point%h = solve_interval(point%row, point%length)
+    do m = 1, size(deck%materials)
+      point%over_h(m) = step_coefficients(deck%materials(m), point%h)
+      point%over_length(m) = step_coefficients(deck%materials(m), point%length)
+    end do
+    point%shear = point%over_length(material_of)%shear
+    point%bulk = point%over_length(material_of)%bulk
+    call assemble_stiffness(deck, point%over_h(material_of)%shear, point%over_h(material_of)%bulk, point%effective)
+    stiffness_rows = 0.0_dp
+    associate (effective => point%effective)
+    do j = 1, effective%n
+      do i = j, min(effective%n, j + effective%kd)
+        stiffness_rows(j) = stiffness_rows(j) + abs(effective%ab(1 + i - j, j))
+        if (i /= j) stiffness_rows(i) = stiffness_rows(i) + abs(effective%ab(1 + i - j, j))
+      end do
+    end do
+    if (point%row%alpha_f /= 0.0_dp) effective%ab = (1.0_dp - point%row%alpha_f)*effective%ab
+    effective%ab(1, :) = effective%ab(1, :) + mass_coefficient(point%row, point%h)*stepper%mass
+    end associate
+    end associate
+  end subroutine effective_stiffness
+
+  !> S~ of row r with the supports imposed (with the refactoring strategy:
+  !> also the held equations), factored by dpbtrf; info > 0: not positive
+  !> definite at that equation. With the capacitance strategy the held
+  !> equations are then put in the capacitance system (hold_contact).
+  subroutine factor_effective(stepper, r, info)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(in) :: r
+    integer, intent(out) :: info
+    associate (point => stepper%points(r))
+    point%factor = point%effective
+    if (stepper%by_refactoring) then
+      call band_constrain_matrix(point%factor, stepper%fixed)
+    else
+      call band_constrain_matrix(point%factor, stepper%supports)
+    end if
+    call band_factor(point%factor, info)
+    stepper%factorizations = stepper%factorizations + 1
+    if (info > 0) return
+    if (.not. stepper%by_refactoring) then
+      call capacitance_reset(point%capacitance, point%factor%n)
+      if (stepper%contact_on) call capacitance_set(point%capacitance, point%factor, &
+                                                   stepper%held .and. .not. stepper%supports, info)
+      if (info > 0) info = -info                      ! the capacitance matrix, not S~
+    end if
+    end associate
+  end subroutine factor_effective
+
+  !> The contact set has changed: its held equations into every row's
+  !> capacitance system, or (refactoring strategy) every S~ refactored.
+  !> info > 0: S~ not positive definite; < 0: the capacitance matrix.
+  subroutine hold_contact(stepper, info)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(out) :: info
+    integer :: r
+    info = 0
+    do r = 1, size(stepper%points)
+      if (stepper%by_refactoring) then
+        call factor_effective(stepper, r, info)
+      else
+        call capacitance_set(stepper%points(r)%capacitance, stepper%points(r)%factor, &
+                             stepper%held .and. .not. stepper%supports, info)
+        info = -info
+      end if
+      if (info /= 0) return
+    end do
+  end subroutine hold_contact
+
+  !> Eq. [36] for row r from `state` (at the sub-step's start; `start` is the
+  !> state at the step's start) to t_next, into stepper%base:
+  !>   R~ = R_t + theta (1 - alpha_f)(R_next - R_t) + G - F(sigma_t) - (1 - alpha_f) F(s0_h) + M b
+  !> with b the integrator's mass part (6/tau U'_t + 2 U''_t for Wilson-theta)
+  !> and s0_h the history stress of eq. [23] over h as a pseudo-load; the
+  !> history stress over the sub-step (for the trial stresses) is kept.
+  subroutine effective_load(stepper, deck, r, state, start, t_next)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state, start
+    real(dp), intent(in) :: t_next
+    integer :: e
+    associate (point => stepper%points(r), row => stepper%points(r)%row)
+    stepper%load_next = external_load(deck, t_next)
+    stepper%target_next = prescribed_displacement(deck, t_next)
+    stepper%base = state%load + row%theta*(1.0_dp - row%alpha_f)*(stepper%load_next - state%load) + stepper%gravity &
+                   - state%internal + stepper%mass*inertia_load(row, point%h, state%u, state%v, state%a, start%u, start%v)
+    if (.not. stepper%memory) return
+    call timer_start(phase_constitutive)
+    call history_stresses(deck%materials, deck%mesh%element_material, state%history, point%over_h, stepper%history_h)
+    if (point%h == point%length) then
+      stepper%history_length = stepper%history_h
+    else
+      call history_stresses(deck%materials, deck%mesh%element_material, state%history, point%over_length, &
+                            stepper%history_length)
+    end if
+    do e = 1, deck%mesh%nelem
+      if (element_terms(state%history, e) == 0) cycle
+      if (row%alpha_f == 0.0_dp) then
+        call scatter_add(deck%mesh, e, -operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), &
+                         stepper%base)
+      else
+        call scatter_add(deck%mesh, e, -(1.0_dp - row%alpha_f)* &
+                         operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), stepper%base)
+      end if
+    end do
+    call timer_stop(phase_constitutive)
+    end associate
+  end subroutine effective_load
+
+  !> Eq. [34] with the supports only, once per sub-step: the prescribed
+  !> values at the solve point (fraction theta of their change) and
+  !> free = S~^-1 R~. A repeat after a contact change only changes the
+  !> capacitance correction of `free`.
+  subroutine solve_supports(stepper, r, state)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state
+    associate (point => stepper%points(r))
+    stepper%prescribed = state%target + point%row%theta*(stepper%target_next - state%target) - state%u
+    if (stepper%contact_on) then
+      call contact_begin_increment(stepper%contact)
+      stepper%touch_fraction = 1.0_dp
+    end if
+    if (stepper%by_refactoring) return
+    call timer_start(phase_solve)
+    stepper%free = stepper%base
+    call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%free)
+    call band_solve(point%factor, stepper%free)                               ! eq. [34] without contact
+    call timer_stop(phase_solve)
+    end associate
+  end subroutine solve_supports
+
+  !> The contact repeat of row r: dU with the plate's conditions (eq. [34]),
+  !> the plate reactions at the solve point, the increments to the
+  !> sub-step's end (eqs. [37]-[39]) and the trial stresses (eqs. [13], [14],
+  !> [23]); with a plate, repeated while the contact search changes the set
+  !> (the paper's iteration). finite = .false.: dU or dU'' is not finite.
+  subroutine contact_repeat(stepper, deck, r, state, start, finite, error)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state, start
+    logical, intent(out) :: finite
+    type(error_t), allocatable, intent(inout) :: error
+    logical :: changed
+    real(dp) :: fraction
+    integer :: i, info
+    finite = .true.
+    associate (point => stepper%points(r), row => stepper%points(r)%row)
+    do
+      if (stepper%contact_on) call adjusted_displacements(stepper, deck, state%u, row%theta)
+      call timer_start(phase_solve)
+      call solve_held(stepper, r)
+      call timer_stop(phase_solve)
+      if (stepper%contact_on) call solve_point_reactions(stepper, r, state, start)
+      call update_kinematics(row, point%length, stepper%solution, state%u, state%v, state%a, start%u, start%v, &
+                             stepper%du, stepper%dv, stepper%da)                       ! eqs. [37]-[39]
+      if (stepper%contact_on) then                                      ! held on the plate: U'' = U' = 0
+        call adjusted_displacements(stepper, deck, state%u, 1.0_dp)
+        stepper%du = merge(stepper%prescribed, stepper%du, stepper%held)
+        stepper%dv = merge(-state%v, stepper%dv, stepper%held)
+        stepper%da = merge(-state%a, stepper%da, stepper%held)
+      end if
+      if (.not. all(ieee_is_finite(stepper%da)) .or. .not. all(ieee_is_finite(stepper%du))) then
+        finite = .false.
+        return
+      end if
+      call timer_start(phase_constitutive)
+      call trial_stresses(stepper, point, state)
+      call timer_stop(phase_constitutive)
+      stepper%reaction_next = merge(stepper%mass*(state%a + stepper%da) + stepper%internal_next - stepper%load_next &
+                                    - stepper%gravity, 0.0_dp, stepper%fixed)
+      if (.not. stepper%contact_on) exit
+      call timer_start(phase_contact)
+      call contact_search(deck, stepper%contact, state%u, stepper%du, stepper%reaction_solve, changed, fraction)
+      call timer_stop(phase_contact)
+      if (.not. changed) exit
+      stepper%touch_fraction = min(stepper%touch_fraction, fraction)
+      stepper%held = contact_held_dofs(deck, stepper%contact)
+      stepper%fixed = stepper%supports .or. stepper%held
+      stepper%held_rows = pack([(i, i = 1, size(stepper%held))], stepper%held)
+      call timer_start(phase_factorization)
+      call hold_contact(stepper, info)
+      call timer_stop(phase_factorization)
+      if (info > 0) then
+        call set_error(error, 'the effective stiffness is not positive definite at equation '//itoa(info)// &
+          ' after a contact change', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+        return
+      else if (info < 0) then
+        call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(-info)// &
+          ' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+        return
+      end if
+    end do
+    end associate
+  end subroutine contact_repeat
+
+  !> dU of eq. [34] with the held equations: the capacitance correction of
+  !> `free`, or (refactoring strategy) a solve with S~ refactored.
+  subroutine solve_held(stepper, r)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(in) :: r
+    associate (point => stepper%points(r))
+    if (stepper%by_refactoring) then
+      stepper%solution = stepper%base
+      call band_constrain_rhs(point%effective, stepper%fixed, stepper%prescribed, stepper%solution)
+      call band_solve(point%factor, stepper%solution)
+    else
+      stepper%solution = stepper%free
+      if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%prescribed, stepper%solution)
+    end if
+    end associate
+  end subroutine solve_held
+
+  !> The plate reactions at the solve point (t + theta dt for Wilson-theta,
+  !> the sub-step's end otherwise), where the integrator holds equilibrium:
+  !> the residual S~ dU - R~ of eq. [34] on the held rows, without the
+  !> inertia M a of the held node itself. At t + dt a held node's Wilson-
+  !> theta reaction carries the stiff modes a contact event excites, damped
+  !> only by the limit spectral radius (-0.78 per step at theta = 1.4), so it
+  !> would flip sign from step to step (spikes of 5x the impact force at
+  !> nu = 0.4999, release/recapture chatter with RELEASE=YES). The inertia of
+  !> the held node is zero once it is held; in the step it touches, it is
+  !> the impulse that stops the node's mass (contact_loss_J), not a pressure.
+  subroutine solve_point_reactions(stepper, r, state, start)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state, start
+    real(dp) :: inertia(size(stepper%solution))
+    associate (point => stepper%points(r), p => stepper%held_rows)
+    inertia = solve_point_inertia(point%row, point%h, stepper%solution, state%u, state%v, state%a, start%u, start%v)
+    stepper%reaction_solve = 0.0_dp
+    stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%base(p) &
+                                - stepper%mass(p)*inertia(p)
+    end associate
+  end subroutine solve_point_reactions
+
+  !> The trial stresses over the sub-step (eqs. [13], [14] with the history
+  !> stress of eq. [23]) from the increment du, and their internal force.
+  subroutine trial_stresses(stepper, point, state)
+    type(stepper_t), intent(inout) :: stepper
+    type(point_t), intent(in) :: point
+    type(dynamic_state_t), intent(in) :: state
+    if (stepper%memory) then
+      call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &
+                                  stepper%increments, stepper%trial, stepper%internal_next, stepper%history_length)
+    else
+      call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &
+                                  stepper%increments, stepper%trial, stepper%internal_next)
+    end if
+  end subroutine trial_stresses
+
+  !> The adjusted displacements of the contact conditions, into
+  !> stepper%prescribed: a contact node's u_z goes to the plate over the
+  !> sub-step (0 once it is there), u_r stays (STICK); `fraction` = theta
+  !> gives the values at the solve point. Supports keep their own values.
+  subroutine adjusted_displacements(stepper, deck, u, fraction)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(in) :: fraction
+    integer :: i, node
+    associate (contact => stepper%contact)
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (.not. contact%active(node)) cycle
+      associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
+      if (.not. stepper%supports(z)) stepper%prescribed(z) = -fraction*contact_gap(deck, contact, u, node)
+      if (contact%stick .and. .not. stepper%supports(r)) stepper%prescribed(r) = 0.0_dp
+      end associate
+    end do
+    end associate
+  end subroutine adjusted_displacements
+
+  !> The sub-step stands: strains, stresses (the trial stresses) and the
+  !> histories (eq. [24], over the sub-step), then U'' += dU'', U' += dU',
+  !> U += dU (eqs. [40]-[42]) and the forces at the sub-step's end.
+  subroutine commit_substep(stepper, deck, r, state, t_next)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(inout) :: state
+    real(dp), intent(in) :: t_next
+    call timer_start(phase_constitutive)
+    state%strain = state%strain + stepper%increments
+    if (stepper%memory) call commit_history(deck%mesh%element_material, state%history, &
+                                            stepper%points(r)%over_length, stepper%increments)
+    state%stress = stepper%trial
+    call timer_stop(phase_constitutive)
+    state%a = state%a + stepper%da                                    ! eqs. [40]-[42]
+    state%v = state%v + stepper%dv
+    state%u = state%u + stepper%du
+    state%load = stepper%load_next
+    state%internal = stepper%internal_next
+    state%reaction = stepper%reaction_next
+    state%target = stepper%target_next
+    state%t = t_next
+  end subroutine commit_substep
+end module visco2d_time_step
