@@ -177,4 +177,17 @@ for case in cases:
           "alpha* = %.6g mm; err_alpha_pct differs from the recomputed error by up to %.3g %%" % (ref, worst))
 sys.exit(1 if failed else 0)
 EOF
+
+# scripts/integrators.py --table-only (the amplification table of doc/integrators.md, no runs): its spectral
+# radius at dt/T -> infinity against the closed forms (trapezoidal 1, HHT (1 - 0.05)/(1 + 0.05) = 0.9048,
+# generalized-alpha rho_inf = 0.8000, Bathe 0, Wilson 1.4: 0.7784, the limit matrix's radius that
+# test_integrators checks), to the table's 4 decimals.
+table=$(python3 "$root/scripts/integrators.py" --table-only 2>&1)
+radii=$(printf '%s\n' "$table" | awk -F'|' '/`INTEGRATOR /{gsub(/ /, "", $8); printf "%s ", $8}')
+if [ "$radii" = "0.7784 1.0000 0.9048 0.8000 0.0000 " ]; then
+  echo "PASS integrators_table_limit_radii"
+else
+  echo "FAIL integrators_table_limit_radii: got '$radii' from scripts/integrators.py --table-only"
+  status=1
+fi
 exit $status
