@@ -8,7 +8,8 @@
 !> mu = G(0)); each later step n solves S_n dU = R(t_n) - F(sigma_{n-1} + s0_n)
 !> with S_n assembled from mu_n (eq. [21]) and the history stress s0_n
 !> (eq. [23]) as a pseudo-load, then updates stress and history
-!> (eqs. [13], [14], [24], module visco2d_viscoelastic). Writing the right-hand
+!> (eqs. [13], [14], [24]; the history stress and update shared with the
+!> dynamic loop, module visco2d_constitutive). Writing the right-hand
 !> side as the full out-of-balance force (not Delta R alone) keeps round-off
 !> from accumulating into drift. S_n depends on dt only, so its factor is
 !> reused while dt is constant (elastic bodies: one factorization in all).
@@ -293,7 +294,7 @@ contains
     stress = 0.0_dp
     factorizations = 0
     equilibrium_error = 0.0_dp
-    call define_history()
+    call quasistatic_history_define(deck, record)
 
     ! Step 0 (t = 0, dt = 0), then each TIME stage.
     stage_start = 0.0_dp
@@ -311,17 +312,17 @@ contains
           if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
         end if
         if (coefficients(1)%dt /= dt .and. (memory .or. factorizations == 0)) then
-          call factor_for(dt)
+          call quasistatic_factor(dt)
           if (allocated(error)) return
         end if
-        call advance(t)
+        call quasistatic_increment(t)
         if (allocated(error)) return
         if (stage > 0) call progress_step(sum(deck%stages(:stage - 1)%steps) + step, t, -1.0_dp)
       end do
       if (stage > 0) stage_start = deck%stages(stage)%end_time
-      if (stage == 0) call keep_snapshot('step_000000', 'initial', 0.0_dp)
+      if (stage == 0) call quasistatic_snapshot(deck, record, 'step_000000', 'initial', 0.0_dp, u, stress)
     end do
-    call keep_snapshot('step_'//zero_padded(total_steps(deck)), 'final', t)
+    call quasistatic_snapshot(deck, record, 'step_'//zero_padded(total_steps(deck)), 'final', t, u, stress)
     call record_put_integer(record, 'factorizations', factorizations)
     if (memory) then
       call record_put_integer(record, 'history_values', size(state%history))
@@ -338,7 +339,7 @@ contains
   contains
 
     !> S_n with the moduli (mu_n, K) of step length dt, constrained and factored.
-    subroutine factor_for(dt)
+    subroutine quasistatic_factor(dt)
       real(dp), intent(in) :: dt
       integer :: info, m
       do m = 1, size(deck%materials)
@@ -352,10 +353,10 @@ contains
       call band_factor(factor, info)
       factorizations = factorizations + 1
       if (info > 0) call singular_error(deck, info, error)
-    end subroutine factor_for
+    end subroutine quasistatic_factor
 
     !> One increment to time t: pseudo-load, solve, stress and history update.
-    subroutine advance(t)
+    subroutine quasistatic_increment(t)
       real(dp), intent(in) :: t
       trial = stress
       rhs = -internal                                   ! F(sigma_{n-1})
@@ -390,47 +391,59 @@ contains
       end if
       equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
                               max(maxval(abs(internal)), tiny(1.0_dp)))
-      call append_row(t, internal - load)
-    end subroutine advance
-
-    subroutine define_history()
-      character(len=48), allocatable :: columns(:)
-      integer :: p
-      columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'reaction_r_N', 'reaction_z_N']
-      do p = 1, size(deck%probes)
-        columns = [character(len=48) :: columns, deck%probes(p)%name//'_ur_m', deck%probes(p)%name//'_uz_m', &
-                   deck%probes(p)%name//'_sr_Pa', deck%probes(p)%name//'_sz_Pa', &
-                   deck%probes(p)%name//'_st_Pa', deck%probes(p)%name//'_trz_Pa']
-      end do
-      call history_define(record, columns, total_steps(deck) + 1)
-    end subroutine define_history
-
-    subroutine append_row(t, residual)
-      real(dp), intent(in) :: t, residual(:)
-      real(dp), allocatable :: row(:)
-      integer :: p, node
-      row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
-             whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
-                                               sum(residual(2::2), mask=fixed(2::2))]]
-      do p = 1, size(deck%probes)
-        node = deck%probes(p)%node
-        row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]
-      end do
-      call history_append(record, row)
-    end subroutine append_row
-
-    subroutine keep_snapshot(name, label, time)
-      character(*), intent(in) :: name, label
-      real(dp), intent(in) :: time
-      type(snapshot_t) :: snapshot
-      snapshot%name = name
-      snapshot%label = label
-      snapshot%time = time
-      snapshot%displacement = nodal_field(deck%mesh, u)
-      call set_snapshot_stress(deck%mesh, stress, snapshot)
-      call record_add_snapshot(record, snapshot)
-    end subroutine keep_snapshot
+      call quasistatic_row(deck, record, t, u, stress, fixed, internal - load)
+    end subroutine quasistatic_increment
   end subroutine solve_quasistatic
+
+  !> The history columns of a quasi-static run: step, time, largest
+  !> displacement, support reactions, and per probe its u and nodal stresses.
+  subroutine quasistatic_history_define(deck, record)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    character(len=48), allocatable :: columns(:)
+    integer :: p
+    columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'reaction_r_N', 'reaction_z_N']
+    do p = 1, size(deck%probes)
+      columns = [character(len=48) :: columns, deck%probes(p)%name//'_ur_m', deck%probes(p)%name//'_uz_m', &
+                 deck%probes(p)%name//'_sr_Pa', deck%probes(p)%name//'_sz_Pa', &
+                 deck%probes(p)%name//'_st_Pa', deck%probes(p)%name//'_trz_Pa']
+    end do
+    call history_define(record, columns, total_steps(deck) + 1)
+  end subroutine quasistatic_history_define
+
+  !> One history row of a quasi-static run at time t (`residual` = F - R:
+  !> the support reactions on the fixed equations).
+  subroutine quasistatic_row(deck, record, t, u, stress, fixed, residual)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: t, u(:), stress(:, :, :), residual(:)
+    logical, intent(in) :: fixed(:)
+    real(dp), allocatable :: row(:)
+    integer :: p, node
+    row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
+           whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
+                                             sum(residual(2::2), mask=fixed(2::2))]]
+    do p = 1, size(deck%probes)
+      node = deck%probes(p)%node
+      row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]
+    end do
+    call history_append(record, row)
+  end subroutine quasistatic_row
+
+  !> A snapshot of a quasi-static run: displacements and stresses.
+  subroutine quasistatic_snapshot(deck, record, name, label, time, u, stress)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: name, label
+    real(dp), intent(in) :: time, u(:), stress(:, :, :)
+    type(snapshot_t) :: snapshot
+    snapshot%name = name
+    snapshot%label = label
+    snapshot%time = time
+    snapshot%displacement = nodal_field(deck%mesh, u)
+    call set_snapshot_stress(deck%mesh, stress, snapshot)
+    call record_add_snapshot(record, snapshot)
+  end subroutine quasistatic_snapshot
 
   !> Nodal stress at one node: Gauss values extrapolated in each element that
   !> has the node, then averaged (the same recovery as nodal_average).

@@ -232,7 +232,6 @@ contains
     stepper%base = state%load + row%theta*(1.0_dp - row%alpha_f)*(stepper%load_next - state%load) + stepper%gravity &
                    - state%internal + stepper%mass*inertia_load(row, point%h, state%u, state%v, state%a, start%u, start%v)
     if (.not. stepper%memory) return
-    call timer_start(phase_constitutive)
     call history_stresses(deck%materials, deck%mesh%element_material, state%history, point%over_h, stepper%history_h)
     if (point%h == point%length) then
       stepper%history_length = stepper%history_h
@@ -250,7 +249,6 @@ contains
                          operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), stepper%base)
       end if
     end do
-    call timer_stop(phase_constitutive)
     end associate
   end subroutine effective_load
 
@@ -269,15 +267,14 @@ contains
       stepper%touch_fraction = 1.0_dp
     end if
     if (stepper%by_refactoring) return
-    call timer_start(phase_solve)
     stepper%free = stepper%base
     call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%free)
     call band_solve(point%factor, stepper%free)                               ! eq. [34] without contact
-    call timer_stop(phase_solve)
     end associate
   end subroutine solve_supports
 
-  !> The contact repeat of row r: dU with the plate's conditions (eq. [34]),
+  !> The contact repeat of row r (the timers of `--timing` are started and
+  !> stopped here, around the stages it calls, not inside them): dU with the plate's conditions (eq. [34]),
   !> the plate reactions at the solve point, the increments to the
   !> sub-step's end (eqs. [37]-[39]) and the trial stresses (eqs. [13], [14],
   !> [23]); with a plate, repeated while the contact search changes the set
@@ -428,12 +425,10 @@ contains
     integer, intent(in) :: r
     type(dynamic_state_t), intent(inout) :: state
     real(dp), intent(in) :: t_next
-    call timer_start(phase_constitutive)
     state%strain = state%strain + stepper%increments
     if (stepper%memory) call commit_history(deck%mesh%element_material, state%history, &
                                             stepper%points(r)%over_length, stepper%increments)
     state%stress = stepper%trial
-    call timer_stop(phase_constitutive)
     state%a = state%a + stepper%da                                    ! eqs. [40]-[42]
     state%v = state%v + stepper%dv
     state%u = state%u + stepper%du

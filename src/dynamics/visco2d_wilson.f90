@@ -56,7 +56,8 @@ module visco2d_wilson
   use visco2d_static, only: singular_error, node_text, put_field_summary, put_probe_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer
   use visco2d_timers, only: timer_start, timer_stop, timers_enabled, timers_set_floor, timers_set_steps, &
-                            phase_assembly, phase_factorization, phase_constitutive, phase_contact, phase_output, phase_step_loop
+                            phase_assembly, phase_factorization, phase_constitutive, phase_solve, phase_contact, &
+                            phase_output, phase_step_loop
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_advice, only: deformation_warnings, largest_strain
   use visco2d_bruise, only: bruise_t, bruise_update, bruise_report
@@ -122,7 +123,7 @@ contains
     call timer_start(phase_step_loop)
     stages: do stage = 1, size(deck%stages)
       dt = deck%stages(stage)%dt
-      call factor_for(stepper, deck, stage, dt, measures%book, error)
+      call factor_stage(stepper, deck, stage, dt, measures%book, error)
       if (allocated(error)) return
       do step = 1, deck%stages(stage)%steps
         t_next = stage_start + step*dt
@@ -182,7 +183,7 @@ contains
   !> also the energy bound of the instability check, widened by the
   !> integrator's overshoot for the highest frequency of the mesh, bounded by
   !> Gershgorin's theorem: omega_max^2 <= max_i sum_j |S_ij|/m_i.
-  subroutine factor_for(stepper, deck, stage, dt, book, error)
+  subroutine factor_stage(stepper, deck, stage, dt, book, error)
     type(stepper_t), intent(inout) :: stepper
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: stage
@@ -211,7 +212,7 @@ contains
         return
       end if
     end do
-  end subroutine factor_for
+  end subroutine factor_stage
 
   !> S~ = S + c M with a positive lumped mass is positive definite in exact
   !> arithmetic: it fails only when the mass term is lost in round-off
@@ -277,8 +278,12 @@ contains
       associate (point => stepper%points(r))
       t_end = t_next
       if (r < size(stepper%points)) t_end = state%t + point%length
+      call timer_start(phase_constitutive)
       call effective_load(stepper, deck, r, state, start, t_end)                ! eq. [36]
+      call timer_stop(phase_constitutive)
+      call timer_start(phase_solve)
       call solve_supports(stepper, r, state)                                    ! eq. [34], supports only
+      call timer_stop(phase_solve)
       call contact_repeat(stepper, deck, r, state, start, finite, error)        ! the plate, eqs. [37]-[39], [13]-[23]
       if (allocated(error)) return
       if (.not. finite) then
@@ -300,8 +305,8 @@ contains
       end if
       call book_growth(measures%book, energy, what)
       if (allocated(what)) return
-      call commit_substep(stepper, deck, r, state, t_end)                       ! eqs. [24], [40]-[42]
       call timer_start(phase_constitutive)
+      call commit_substep(stepper, deck, r, state, t_end)                       ! eqs. [24], [40]-[42]
       call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain, state%history)
       call timer_stop(phase_constitutive)
       offset = offset + point%row%fraction
