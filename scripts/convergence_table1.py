@@ -16,6 +16,9 @@ extrapolated: they are sampled at dt and q jumps when a node ring joins.
 
 Usage: python3 scripts/convergence_table1.py [--max-level 5] [--dt-level 3]
        [--exe build/install/bin/visco2d] [--out build/convergence_table1]
+       [--integrator WILSON|NEWMARK|HHT|GENERALIZED_ALPHA|BATHE]
+(--integrator: the card of scripts/deck_variants.py INTEGRATOR_CARDS in place
+of WILSON THETA=1.4; the default is the paper's Wilson-theta.)
 Writes OUT/table.md and prints it. Standard library only.
 """
 import argparse
@@ -26,11 +29,13 @@ import subprocess
 import sys
 import time
 
+from deck_variants import INTEGRATOR_CARDS
+
 KEYS = ["alpha_max_mm", "t_alpha_max_ms", "q_max_MPa", "t_q_max_ms", "q_surface_max_MPa", "force_max_N",
         "t_force_max_ms", "contact_nodes_max", "hertz_alpha_max_mm", "balance_error_J", "nodes", "elements"]
 
 
-def deck_text(name, level, dt):
+def deck_text(name, level, dt, integrator="WILSON"):
     return "\n".join([
         "TITLE " + name,
         "ANALYSIS DYNAMIC",
@@ -39,18 +44,18 @@ def deck_text(name, level, dt):
         "MESH SPHERE R=0.0366 LEVEL=%d" % level,
         "INITIAL VZ=-0.9982 AZ=-9.8",
         "GRAVITY G=9.8",
-        "WILSON THETA=1.4",
+        "WILSON THETA=1.4" if integrator == "WILSON" else INTEGRATOR_CARDS[integrator],
         "TIME DT=%g TEND=4e-3" % dt,
         "PLATE Z=0",
         "END", ""])
 
 
-def run(exe, out, name, level, dt):
+def run(exe, out, name, level, dt, integrator="WILSON"):
     decks = os.path.join(out, "decks")
     os.makedirs(decks, exist_ok=True)
     path = os.path.join(decks, name + ".inp")
     with open(path, "w") as handle:
-        handle.write(deck_text(name, level, dt))
+        handle.write(deck_text(name, level, dt, integrator))
     start = time.time()
     result = subprocess.run([exe, "-q", "-o", os.path.join(out, "runs"), path], capture_output=True, text=True)
     seconds = time.time() - start
@@ -104,6 +109,7 @@ def main():
     parser.add_argument("--dt-level", type=int, default=3)
     parser.add_argument("--exe", default=os.environ.get("VISCO2D", "build/install/bin/visco2d"))
     parser.add_argument("--out", default="build/convergence_table1")
+    parser.add_argument("--integrator", default="WILSON", choices=list(INTEGRATOR_CARDS))
     args = parser.parse_args()
     if not os.path.exists(args.exe):
         sys.exit("no executable %s: run `make build` first" % args.exe)
@@ -113,7 +119,9 @@ def main():
         print(text, flush=True)
         lines.append(text)
 
-    emit("## Table 1 elastic impact: convergence (PLATE Z=0 STICK, stop at maximum deformation)")
+    suffix = "" if args.integrator == "WILSON" else "_" + args.integrator.lower()
+    emit("## Table 1 elastic impact: convergence (PLATE Z=0 STICK, stop at maximum deformation; %s)"
+         % ("WILSON THETA=1.4" if args.integrator == "WILSON" else INTEGRATOR_CARDS[args.integrator]))
     emit()
     emit("Mesh refinement, dt = 1e-5 s:")
     emit()
@@ -122,7 +130,7 @@ def main():
     emit("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     mesh = []
     for level in range(1, args.max_level + 1):
-        r = run(args.exe, args.out, "table1_level%d" % level, level, 1e-5)
+        r = run(args.exe, args.out, "table1_level%d%s" % (level, suffix), level, 1e-5, args.integrator)
         mesh.append(r)
         emit("| %d | %d | %d | %.5f | %.5f | %.3f | %.3f | %.3f | %.3f | %.2f | %.3f | %d | %.4f | %.1f |" % (
             level, r["elements"], r["nodes"], r["alpha_max_mm"], r["alpha_parabola_mm"], r["t_alpha_max_ms"],
@@ -149,7 +157,8 @@ def main():
     emit("|---|---|---|---|---|---|---|---|---|")
     steps = []
     for dt in dts:
-        r = run(args.exe, args.out, "table1_level%d_dt%g" % (args.dt_level, dt), args.dt_level, dt)
+        r = run(args.exe, args.out, "table1_level%d_dt%g%s" % (args.dt_level, dt, suffix), args.dt_level, dt,
+                args.integrator)
         steps.append(r)
         emit("| %.3g | %.6f | %.6f | %.4f | %.3f | %.4f | %.2f | %.3e | %.1f |" % (
             dt, r["alpha_max_mm"], r["alpha_parabola_mm"], r["t_alpha_max_ms"], r["q_max_MPa"], r["t_q_max_ms"],

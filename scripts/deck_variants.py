@@ -32,3 +32,27 @@ def cpu_model():
             return next((line.split(":", 1)[1].strip() for line in handle if line.startswith("model name")), "?")
     except OSError:
         return "?"
+
+
+#: The integrators of the INTEGRATOR card as compared by scripts/study.py and
+#: scripts/integrators.py: name -> the card (each method's usual parameters).
+#: WILSON is the paper's (and every deck's default): its card is the deck's own.
+INTEGRATOR_CARDS = {
+    "WILSON": "INTEGRATOR WILSON THETA=1.4",
+    "NEWMARK": "INTEGRATOR NEWMARK BETA=0.25 GAMMA=0.5",
+    "HHT": "INTEGRATOR HHT ALPHA=0.05",
+    "GENERALIZED_ALPHA": "INTEGRATOR GENERALIZED_ALPHA RHO_INF=0.8",
+    "BATHE": "INTEGRATOR BATHE",
+}
+
+
+def set_integrator(text, card):
+    """Replace the one WILSON or INTEGRATOR card of a deck by `card` (added before TIME if there is none)."""
+    new, count = re.subn(r"(?im)^[ \t]*(WILSON|INTEGRATOR)\b[^\n]*$", card, text)
+    if count == 1:
+        return new
+    if count == 0:
+        new, count = re.subn(r"(?im)^([ \t]*TIME\b)", card + "\n" + r"\1", text, count=1)
+        if count == 1:
+            return new
+    raise ValueError("expected at most one WILSON or INTEGRATOR card and a TIME card, found %d" % count)

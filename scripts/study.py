@@ -3,13 +3,16 @@
 
     python3 scripts/study.py [--fast] [--out DIR] [--exe PATH] [--levels 1,2,3]
                              [--dts-ms 0.02,0.01] [--cases table1_elastic,...] [--reuse]
+                             [--integrators WILSON,NEWMARK,HHT,GENERALIZED_ALPHA,BATHE]
+                             [--integrator-cases table1_elastic]
 
 Runs the Table 1 elastic impact (inputs/table1_elastic.inp) and the Table 2
 viscoelastic impact (inputs/table2_viscoelastic.inp) over a grid of sphere
 mesh levels (MESH SPHERE LEVEL=1..5: 88 .. 22,528 elements) and time steps
 (DT = 0.04, 0.02, 0.01, 0.005, 0.0025 ms). Each deck is the paper deck with
-LEVEL= and DT= substituted, OUTPUT EVERY= set for one history row per
-0.04 ms, and the PROBE lines dropped; it is written to OUT/decks/ and run as
+LEVEL= and DT= substituted, OUTPUT EVERY=1 (history.csv every step: the
+noise measures below need it; without field output the rows are small), and
+the PROBE lines dropped; it is written to OUT/decks/ and run as
 `visco2d -q -o OUT/runs DECK`, one run at a time (one core: the BLAS/OpenMP
 thread variables are set to 1). Each run's summary.txt gives the results and
 cpu_s; wall_s is the whole process, measured here.
@@ -24,11 +27,29 @@ level (the same formula over the three finest DT; with only two DT, p = 2 is
 assumed). Errors are |f - f*|/|f*| in percent. The elastic case is also
 compared with Hertz (the summary's hertz_* keys, signed deviation).
 
+The integrators (--integrators, default all five of the INTEGRATOR card, on
+the --integrator-cases, default table1_elastic): the same grid again with the
+deck's WILSON THETA=1.4 card replaced by INTEGRATOR NEWMARK BETA=0.25
+GAMMA=0.5, HHT ALPHA=0.05, GENERALIZED_ALPHA RHO_INF=0.8 or BATHE
+(scripts/deck_variants.py INTEGRATOR_CARDS). The reference stays the
+Wilson-theta runs' f*; every row gets its errors against it, the peak centre
+acceleration (accel_center_max_g: the node nearest the centre, what an
+accelerometer there reads) and two noise measures over the contact phase
+(force > 0): noise_force and noise_accel = RMS_n (f_{n+1} - 2 f_n + f_{n-1})
+/ max |f|, the step-to-step second difference of the contact force
+(force_N) and of the centre acceleration (accel_center_g) relative to their
+peak (a smooth history gives O(DT^2); ringing from step to step O(1)).
+
 Writes OUT/study.csv (one row per run), OUT/study.md (tables, references,
-orders), OUT/study.png (error against CPU seconds) and prints study.md.
+orders, the integrator comparison), OUT/study.png (error against CPU seconds,
+Wilson-theta) and OUT/study_integrators.png (alpha error and centre
+acceleration against CPU seconds per integrator) and prints study.md.
 --fast (CI, `make study-fast`): levels 1-3 and DT 0.02, 0.01 ms into
 out/study-fast/ unless --out is given; the reference then comes from those
-levels and steps. Exit status 1 if any run failed (the rest still reported).
+levels and steps; the integrators on Table 1 at the same levels and steps
+(24 more runs of a few hundredths of a second). --integrators WILSON runs
+the Wilson-theta grid only. Exit status 1 if any run failed (the rest still
+reported).
 """
 import argparse
 import csv
@@ -39,7 +60,8 @@ import subprocess
 import sys
 import time
 
-from deck_variants import cpu_model, set_card_value
+from deck_variants import INTEGRATOR_CARDS, cpu_model, set_card_value, set_integrator
+from integrators import noise, read_history
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 CASES = {
@@ -51,8 +73,8 @@ LEVELS = [1, 2, 3, 4, 5]
 DTS_MS = [0.04, 0.02, 0.01, 0.005, 0.0025]
 FAST_LEVELS = [1, 2, 3]
 FAST_DTS_MS = [0.02, 0.01]
-HISTORY_INTERVAL_MS = 0.04          # one history row per 0.04 ms whatever DT
 TOLERANCE_PCT = 1.0
+DECK_INTEGRATOR = "WILSON"          # the paper decks' own (WILSON THETA=1.4): the reference's runs
 
 # (short name, summary key, Hertz key, label in tables)
 QUANTITIES = [
@@ -62,11 +84,12 @@ QUANTITIES = [
 ]
 INT_KEYS = ["elements", "dofs", "half_bandwidth", "steps", "factorizations"]
 
-COLUMNS = (["case", "level", "elements", "dofs", "half_bandwidth", "dt_ms", "steps", "factorizations",
+COLUMNS = (["case", "integrator", "level", "elements", "dofs", "half_bandwidth", "dt_ms", "steps", "factorizations",
             "alpha_max_mm", "t_alpha_max_ms", "q_max_MPa", "cpu_s", "wall_s",
             "err_alpha_pct", "err_t_alpha_pct", "err_q_pct", "err_max_pct", "within_1pct",
             "hertz_alpha_max_mm", "hertz_t_alpha_max_ms", "hertz_q_max_MPa",
-            "hertz_dev_alpha_pct", "hertz_dev_t_alpha_pct", "hertz_dev_q_pct", "status"])
+            "hertz_dev_alpha_pct", "hertz_dev_t_alpha_pct", "hertz_dev_q_pct",
+            "accel_center_max_g", "accel_cm_max_g", "noise_force", "noise_accel", "status"])
 
 REFERENCE_TEXT = (
     "Reference f* per case and quantity: Richardson extrapolation in the mesh (the three finest "
@@ -89,21 +112,25 @@ def dt_tag(dt_ms):
     return "%dns" % round(dt_ms * 1e6)
 
 
-def make_deck(source_text, case, level, dt_ms):
-    """The paper deck with LEVEL=, DT=, OUTPUT EVERY= substituted and PROBE lines dropped."""
+def make_deck(source_text, case, level, dt_ms, integrator=DECK_INTEGRATOR):
+    """The paper deck with LEVEL=, DT=, OUTPUT EVERY=1 substituted, PROBE lines dropped and, for an
+    integrator other than the deck's own, its INTEGRATOR card in place of WILSON THETA=."""
     text = source_text
-    every = max(1, round(HISTORY_INTERVAL_MS / dt_ms))
     try:
         text = set_card_value(text, r"MESH\s+SPHERE", "LEVEL", level)
         text = set_card_value(text, "TIME", "DT", "%.10g" % (dt_ms * 1e-3))
-        text = set_card_value(text, "OUTPUT", "EVERY", every)
+        text = set_card_value(text, "OUTPUT", "EVERY", 1)
+        if integrator != DECK_INTEGRATOR:
+            text = set_integrator(text, INTEGRATOR_CARDS[integrator])
     except ValueError as problem:
         sys.exit("study: %s: %s" % (CASES[case], problem))
     text = re.sub(r"(?im)^\s*PROBE\b[^\n]*\n", "", text)
-    text = re.sub(r"(?im)^(\s*TITLE\b[^\n]*)$", r"\g<1> [study: level %d, DT %g ms]" % (level, dt_ms),
+    label = "" if integrator == DECK_INTEGRATOR else ", %s" % integrator
+    text = re.sub(r"(?im)^(\s*TITLE\b[^\n]*)$", r"\g<1> [study: level %d, DT %g ms%s]" % (level, dt_ms, label),
                   text, count=1)
-    return ("# Generated by scripts/study.py from %s: LEVEL=%d, DT=%g ms, OUTPUT EVERY=%d, no PROBE.\n"
-            % (CASES[case], level, dt_ms, every)) + text
+    return ("# Generated by scripts/study.py from %s: LEVEL=%d, DT=%g ms, OUTPUT EVERY=1, no PROBE%s.\n"
+            % (CASES[case], level, dt_ms, "" if integrator == DECK_INTEGRATOR
+               else ", " + INTEGRATOR_CARDS[integrator])) + text
 
 
 def read_summary(path):
@@ -116,16 +143,18 @@ def read_summary(path):
     return values
 
 
-def run_one(exe, out, case, level, dt_ms, source_text, reuse):
+def run_one(exe, out, case, level, dt_ms, source_text, reuse, integrator=DECK_INTEGRATOR):
     """Write the deck, run it (unless --reuse finds the same deck already run), return a row."""
     name = "%s_L%d_dt%s" % (case, level, dt_tag(dt_ms))
+    if integrator != DECK_INTEGRATOR:
+        name = "%s_%s_L%d_dt%s" % (case, integrator.lower(), level, dt_tag(dt_ms))
     deck_dir = os.path.join(out, "decks")
     runs_dir = os.path.join(out, "runs")
     deck_path = os.path.join(deck_dir, name + ".inp")
     wall_path = os.path.join(deck_dir, name + ".wall_s")
     summary_path = os.path.join(runs_dir, name, "summary.txt")
-    text = make_deck(source_text, case, level, dt_ms)
-    row = {"case": case, "level": level, "dt_ms": dt_ms, "status": "failed"}
+    text = make_deck(source_text, case, level, dt_ms, integrator)
+    row = {"case": case, "integrator": integrator, "level": level, "dt_ms": dt_ms, "status": "failed"}
     reused = False
     if reuse and os.path.isfile(summary_path) and os.path.isfile(wall_path) and os.path.isfile(deck_path):
         with open(deck_path) as handle:
@@ -155,8 +184,14 @@ def run_one(exe, out, case, level, dt_ms, source_text, reuse):
             if case in HERTZ_CASES:
                 row[hertz_key] = float(summary[hertz_key])
         row["cpu_s"] = float(summary["cpu_s"])
-    except (KeyError, ValueError) as exc:
-        row["detail"] = ["summary.txt lacks or garbles %s" % exc]
+        row["accel_center_max_g"] = float(summary["accel_center_max_g"])
+        row["accel_cm_max_g"] = float(summary["accel_cm_max_g"])
+        history = read_history(os.path.join(runs_dir, name, "history.csv"))
+        active = [force > 0.0 for force in history["force_N"]]
+        row["noise_force"] = noise(history["force_N"], active)
+        row["noise_accel"] = noise(history["accel_center_g"], active)
+    except (KeyError, ValueError, OSError) as exc:
+        row["detail"] = ["summary.txt or history.csv lacks or garbles %s" % exc]
         return name, row, wall, reused
     row["wall_s"] = wall
     row["status"] = "ok"
@@ -194,7 +229,8 @@ def step_ratio(sequence, what):
 
 def references(rows, case, levels, dts_ms):
     """f* per quantity for one case, with the pieces that built it."""
-    by_key = {(r["level"], r["dt_ms"]): r for r in rows if r["case"] == case and r["status"] == "ok"}
+    by_key = {(r["level"], r["dt_ms"]): r for r in rows
+              if r["case"] == case and r["integrator"] == DECK_INTEGRATOR and r["status"] == "ok"}
     finest_level, finest_dt = max(levels), min(dts_ms)
     mesh_levels = sorted(levels)[-3:]
     time_dts = sorted(dts_ms, reverse=True)[-3:]          # coarse to fine
@@ -397,6 +433,80 @@ def plot(rows, cases, dts_ms, path):
     plt.close(fig)
 
 
+NOISE_TEXT = (
+    "Noise: RMS over the contact phase (force > 0) of the step-to-step second difference "
+    "f(n+1) − 2 f(n) + f(n−1), divided by the peak of |f| there, for the contact force (force_N) and the centre "
+    "acceleration (accel_center_g, the node nearest the centre). A smooth history sampled at Δt gives O(Δt²) "
+    "(it falls 4× per halving of Δt); ringing from step to step keeps it O(1).")
+
+
+def integrator_markdown(rows, cases, integrators):
+    """The integrator comparison: per case, one row per integrator, level and DT."""
+    lines = ["## The integrators", "",
+             "WILSON: the decks as they are (`WILSON THETA=1.4`); the others: the same decks with that card "
+             "replaced by %s. Errors against the Wilson-θ reference f* above; centre acceleration = the node "
+             "nearest the centre (accel_center_max_g), CM decel. = the centre-of-mass deceleration "
+             "(accel_cm_max_g = F/M − g)." % "; ".join(
+                 "`%s`" % INTEGRATOR_CARDS[name] for name in integrators if name != DECK_INTEGRATOR), "",
+             NOISE_TEXT, ""]
+    for case in cases:
+        lines += ["### %s" % case, "",
+                  "| integrator | level | DT (ms) | α_m (mm) | err α % | t (ms) | err t % | q_m (MPa) | err q % "
+                  "| centre accel. max (g) | CM decel. max (g) | force noise | accel. noise | CPU s |",
+                  "|" + "---|" * 14]
+        order = {name: k for k, name in enumerate(integrators)}
+        for r in sorted((r for r in rows if r["case"] == case and r["integrator"] in order),
+                        key=lambda r: (r["level"], -r["dt_ms"], order[r["integrator"]])):
+            if r["status"] != "ok":
+                lines.append("| %s | %d | %g | FAILED: %s |" % (r["integrator"], r["level"], r["dt_ms"],
+                                                                " ".join(r.get("detail", []))))
+                continue
+            lines.append("| %s | %d | %g | %s | %s | %s | %s | %s | %s | %.0f | %.1f | %.2e | %.2e | %s |" % (
+                r["integrator"], r["level"], r["dt_ms"], fmt(r["alpha_max_mm"], 5), fmt(r.get("err_alpha_pct"), 2),
+                fmt(r["t_alpha_max_ms"], 4), fmt(r.get("err_t_alpha_pct"), 2), fmt(r["q_max_MPa"], 4),
+                fmt(r.get("err_q_pct"), 2), r["accel_center_max_g"], r["accel_cm_max_g"], r["noise_force"],
+                r["noise_accel"], fmt(r["cpu_s"], 3)))
+        lines.append("")
+    return "\n".join(lines)
+
+
+def plot_integrators(rows, cases, integrators, path):
+    """Per case: alpha error and the peak centre acceleration against CPU seconds, one curve per integrator
+    and level (points along a curve: DT)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(len(cases), 2, figsize=(12.4, 4.8 * len(cases)), squeeze=False)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    markers = "os^vDP*X"
+    for row_axes, case in zip(axes, cases):
+        levels = sorted({r["level"] for r in rows if r["case"] == case})
+        for k, name in enumerate(integrators):
+            for j, level in enumerate(levels):
+                pts = sorted((r for r in rows if r["case"] == case and r["integrator"] == name
+                              and r["level"] == level and r["status"] == "ok"), key=lambda r: r["cpu_s"])
+                if not pts:
+                    continue
+                xs = [max(r["cpu_s"], 1e-4) for r in pts]
+                style = dict(color=colours[k % len(colours)], marker=markers[j % len(markers)], markersize=4,
+                             linewidth=0.8, label=name if j == 0 else None)
+                row_axes[0].plot(xs, [max(r.get("err_alpha_pct", 0.0), 1e-4) for r in pts], **style)
+                row_axes[1].plot(xs, [r["accel_center_max_g"] for r in pts], **style)
+        for ax in row_axes:
+            ax.set_xscale("log")
+            ax.set_xlabel("CPU seconds of the solve (one core)")
+            ax.grid(True, which="both", linewidth=0.3)
+        row_axes[0].set_yscale("log")
+        row_axes[0].set_ylabel("α_m error vs Wilson-θ's f* (%)")
+        row_axes[1].set_ylabel("peak centre acceleration (g)")
+        row_axes[0].set_title("%s: α_m (marker = level %s)" % (case, ", ".join(str(lv) for lv in levels)))
+        row_axes[1].set_title("%s: centre-node acceleration peak" % case)
+        row_axes[0].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--fast", action="store_true", help="levels 1-3, DT 0.02 and 0.01 ms (CI)")
@@ -408,6 +518,11 @@ def main():
     parser.add_argument("--reuse", action="store_true",
                         help="do not rerun a deck whose identical copy has a summary in OUT/runs (same executable "
                              "assumed: do not use across code changes)")
+    parser.add_argument("--integrators", default=",".join(INTEGRATOR_CARDS),
+                        help="comma list of integrators to compare (default all: %s; WILSON alone: no comparison)"
+                             % ", ".join(INTEGRATOR_CARDS))
+    parser.add_argument("--integrator-cases", default="table1_elastic",
+                        help="the cases the other integrators run (default table1_elastic)")
     args = parser.parse_args()
     levels = parse_list(args.levels, int) if args.levels else (FAST_LEVELS if args.fast else LEVELS)
     dts_ms = parse_list(args.dts_ms, float) if args.dts_ms else (FAST_DTS_MS if args.fast else DTS_MS)
@@ -415,6 +530,12 @@ def main():
     for case in cases:
         if case not in CASES:
             sys.exit("study: unknown case %s (known: %s)" % (case, ", ".join(CASES)))
+    integrators = [name.upper() for name in parse_list(args.integrators, str)]
+    unknown = [name for name in integrators if name not in INTEGRATOR_CARDS]
+    if unknown:
+        sys.exit("study: unknown integrator %s (known: %s)" % (", ".join(unknown), ", ".join(INTEGRATOR_CARDS)))
+    others = [name for name in INTEGRATOR_CARDS if name in integrators and name != DECK_INTEGRATOR]
+    integrator_cases = [case for case in parse_list(args.integrator_cases, str) if case in cases] if others else []
     if any(lv < 1 for lv in levels) or any(dt <= 0 for dt in dts_ms):
         sys.exit("study: levels must be >= 1 and time steps > 0")
     out = args.out or os.path.join(ROOT, "out", "study-fast" if args.fast else "study")
@@ -427,15 +548,17 @@ def main():
     machine = cpu_model()
 
     rows = []
-    total = len(cases) * len(levels) * len(dts_ms)
+    plan = [(case, DECK_INTEGRATOR) for case in cases] + [(case, name) for case in integrator_cases
+                                                          for name in others]
+    total = len(plan) * len(levels) * len(dts_ms)
     count = 0
-    for case in cases:
+    for case, integrator in plan:
         with open(os.path.join(ROOT, CASES[case])) as handle:
             source_text = handle.read()
         for level in sorted(levels):
             for dt in sorted(dts_ms, reverse=True):
                 count += 1
-                name, row, wall, reused = run_one(exe, out, case, level, dt, source_text, args.reuse)
+                name, row, wall, reused = run_one(exe, out, case, level, dt, source_text, args.reuse, integrator)
                 rows.append(row)
                 if row["status"] == "ok":
                     print("study: [%d/%d] %s: cpu %.3g s, wall %.3g s%s" % (
@@ -457,18 +580,25 @@ def main():
                 value = row.get(column, "")
                 cells.append(("%.10g" % value) if isinstance(value, float) else value)
             writer.writerow(cells)
-    text = markdown(rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast, version, machine)
+    wilson_rows = [r for r in rows if r["integrator"] == DECK_INTEGRATOR]
+    text = markdown(wilson_rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast, version,
+                    machine)
+    written = "study.csv, study.md, study.png"
+    if integrator_cases:
+        text += "\n" + integrator_markdown(rows, integrator_cases, [DECK_INTEGRATOR] + others)
+        plot_integrators(rows, integrator_cases, [DECK_INTEGRATOR] + others, os.path.join(out, "study_integrators.png"))
+        written += ", study_integrators.png"
     with open(os.path.join(out, "study.md"), "w") as handle:
         handle.write(text + "\n")
-    plot(rows, cases, dts_ms, os.path.join(out, "study.png"))
+    plot(wilson_rows, cases, dts_ms, os.path.join(out, "study.png"))
     print(text)
     print()
     for case in cases:
-        sentence, best = cost_sentence(rows, case)
+        sentence, best = cost_sentence(wilson_rows, case)
         print(sentence)
         if best is not None:
             print("  (whole process, wall: %.3g s)" % best["wall_s"])
-    print("\nstudy: wrote %s/study.csv, study.md, study.png" % os.path.relpath(out, os.getcwd()))
+    print("\nstudy: wrote %s/%s" % (os.path.relpath(out, os.getcwd()), written))
     failed = [r for r in rows if r["status"] != "ok"]
     if failed:
         print("study: %d of %d runs failed" % (len(failed), len(rows)), file=sys.stderr)

@@ -4,16 +4,25 @@
 #   bash scripts/test_study.sh [PATH/TO/visco2d]     (default build/install/bin/visco2d)
 #
 # Runs scripts/study.py --fast (the Table 1 and Table 2 impacts on mesh levels
-# 1-3 at DT 0.02 and 0.01 ms) into build/study-fast/ and prints one line per
-# check, `PASS name` or `FAIL name: detail`. Exit status 1 if any check failed.
+# 1-3 at DT 0.02 and 0.01 ms, and Table 1 with the four other integrators of
+# the INTEGRATOR card) into build/study-fast/ and prints one line per check,
+# `PASS name` or `FAIL name: detail`. Exit status 1 if any check failed.
 #
-# Checks: the script and every run succeeded; study.csv has 12 rows (2 cases x
-# 3 levels x 2 DT) and the documented columns; study.md and study.png exist;
+# Checks: the script and every run succeeded; study.csv has 12 Wilson-theta
+# rows (2 cases x 3 levels x 2 DT) and 24 rows of the other integrators
+# (4 x 3 levels x 2 DT, Table 1) and the documented columns; study.md,
+# study.png and study_integrators.png exist;
 # alpha_m's observed order from levels 1-3 (p = log2((f2 - f1)/(f3 - f2)),
 # recomputed here from study.csv) is positive, i.e. the changes shrink with
 # refinement, at each DT; alpha_m's error against the extrapolated reference
 # falls with level at each DT; and the reference behind err_alpha_pct,
 # recomputed here from the csv values by the documented formula, agrees.
+# Integrators: every row has finite, non-negative noise measures and a peak
+# centre acceleration; each integrator's alpha_m error falls with level at
+# each DT; at the same level and DT every integrator's alpha_m is within
+# 0.2 % of Wilson-theta's (alpha_m is a slow, quasi-static quantity: DT moves
+# it by < 0.1 % between 0.04 and 0.0025 ms on every level, README "What
+# accuracy costs", so the second-order methods can differ by no more).
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 exe=${1:-$root/build/install/bin/visco2d}
 out=$root/build/study-fast
@@ -44,10 +53,12 @@ def check(name, ok, detail=""):
         print("FAIL %s: %s" % (name, detail))
 
 
-columns = ["case", "level", "elements", "dofs", "half_bandwidth", "dt_ms", "steps", "factorizations",
+columns = ["case", "integrator", "level", "elements", "dofs", "half_bandwidth", "dt_ms", "steps", "factorizations",
            "alpha_max_mm", "t_alpha_max_ms", "q_max_MPa", "cpu_s", "wall_s",
            "err_alpha_pct", "err_t_alpha_pct", "err_q_pct", "err_max_pct",
-           "hertz_alpha_max_mm", "hertz_t_alpha_max_ms", "hertz_q_max_MPa", "status"]
+           "hertz_alpha_max_mm", "hertz_t_alpha_max_ms", "hertz_q_max_MPa",
+           "accel_center_max_g", "accel_cm_max_g", "noise_force", "noise_accel", "status"]
+others = ["NEWMARK", "HHT", "GENERALIZED_ALPHA", "BATHE"]
 cases = ["table1_elastic", "table2_viscoelastic"]
 levels = [1, 2, 3]
 dts = [0.02, 0.01]
@@ -56,7 +67,9 @@ try:
     with open(path, newline="") as handle:
         reader = csv.DictReader(handle)
         header = reader.fieldnames or []
-        rows = list(reader)
+        all_rows = list(reader)
+        rows = [r for r in all_rows if r.get("integrator") == "WILSON"]
+        other_rows = [r for r in all_rows if r.get("integrator") != "WILSON"]
 except OSError as exc:
     check("study_csv_exists", False, str(exc))
     sys.exit(1)
@@ -81,6 +94,49 @@ if os.path.isfile(png):
         magic = handle.read(8)
 check("study_png_exists", magic == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 10000,
       "%s missing or not a PNG of a plot" % png)
+png = os.path.join(out, "study_integrators.png")
+magic = b""
+if os.path.isfile(png):
+    with open(png, "rb") as handle:
+        magic = handle.read(8)
+check("study_integrators_png_exists", magic == b"\x89PNG\r\n\x1a\n" and os.path.getsize(png) > 10000,
+      "%s missing or not a PNG of a plot" % png)
+check("study_md_has_integrators", "## The integrators" in text and all("| %s |" % n in text for n in others),
+      "no integrator section in %s" % md)
+
+# The integrators: the rows, their measures, alpha's convergence and agreement with Wilson-theta.
+other_keys = sorted((r.get("integrator"), int(r.get("level") or 0), float(r.get("dt_ms") or 0)) for r in other_rows
+                    if r.get("case") == "table1_elastic")
+expected_other = sorted((n, lv, dt) for n in others for lv in levels for dt in dts)
+check("integrator_rows", other_keys == expected_other and len(other_rows) == len(expected_other),
+      "got %s, expected %s" % (other_keys, expected_other))
+bad = [(r.get("integrator"), r.get("level"), r.get("dt_ms")) for r in other_rows if r.get("status") != "ok"]
+check("every_integrator_run_succeeded", not bad, "failed runs: %s" % bad)
+def finite_nonnegative(text):
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        return False
+    return math.isfinite(value) and value >= 0.0
+bad = [(r.get("integrator"), r.get("case"), r.get("level"), r.get("dt_ms")) for r in all_rows
+       if r.get("status") == "ok" and not all(finite_nonnegative(r.get(c)) for c in
+                                              ("noise_force", "noise_accel", "accel_center_max_g"))]
+check("noise_and_acceleration_filled", not bad, "rows without finite noise / acceleration: %s" % bad)
+by_key = {(r["integrator"], int(r["level"]), float(r["dt_ms"])): r for r in all_rows
+          if r.get("case") == "table1_elastic" and r.get("status") == "ok"}
+for name in others:
+    for dt in dts:
+        try:
+            errs = [float(by_key[(name, lv, dt)]["err_alpha_pct"]) for lv in levels]
+            worst = max(abs(float(by_key[(name, lv, dt)]["alpha_max_mm"]) /
+                            float(by_key[("WILSON", lv, dt)]["alpha_max_mm"]) - 1.0) for lv in levels)
+        except (KeyError, ValueError) as exc:
+            check("integrator_alpha_%s_dt%g" % (name, dt), False, "missing run or value %s" % exc)
+            continue
+        check("integrator_alpha_error_falls_with_level_%s_dt%g" % (name, dt), errs[0] > errs[1] > errs[2],
+              "err_alpha_pct by level: %s" % errs)
+        check("integrator_alpha_within_0.2pct_of_wilson_%s_dt%g" % (name, dt), worst < 2e-3,
+              "largest |alpha/alpha_wilson - 1| = %.3g" % worst)
 
 good = {(r["case"], int(r["level"]), float(r["dt_ms"])): r for r in rows if r.get("status") == "ok"}
 for case in cases:
@@ -121,4 +177,17 @@ for case in cases:
           "alpha* = %.6g mm; err_alpha_pct differs from the recomputed error by up to %.3g %%" % (ref, worst))
 sys.exit(1 if failed else 0)
 EOF
+
+# scripts/integrators.py --table-only (the amplification table of doc/integrators.md, no runs): its spectral
+# radius at dt/T -> infinity against the closed forms (trapezoidal 1, HHT (1 - 0.05)/(1 + 0.05) = 0.9048,
+# generalized-alpha rho_inf = 0.8000, Bathe 0, Wilson 1.4: 0.7784, the limit matrix's radius that
+# test_integrators checks), to the table's 4 decimals.
+table=$(python3 "$root/scripts/integrators.py" --table-only 2>&1)
+radii=$(printf '%s\n' "$table" | awk -F'|' '/`INTEGRATOR /{gsub(/ /, "", $8); printf "%s ", $8}')
+if [ "$radii" = "0.7784 1.0000 0.9048 0.8000 0.0000 " ]; then
+  echo "PASS integrators_table_limit_radii"
+else
+  echo "FAIL integrators_table_limit_radii: got '$radii' from scripts/integrators.py --table-only"
+  status=1
+fi
 exit $status
