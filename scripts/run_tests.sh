@@ -31,6 +31,11 @@ count "$log/links.log"
 grep '^   ' "$log/links.log" || true
 echo "   $(grep -c '^PASS ' "$log/links.log") pages checked"
 
+echo "== walk-through (scripts/check_walkthrough.py: every line doc/walkthrough.md quotes is in the code, in order)"
+python3 scripts/check_walkthrough.py doc/walkthrough.md > "$log/walkthrough.log" 2>&1
+count "$log/walkthrough.log"
+echo "   $(grep -c '^PASS ' "$log/walkthrough.log") quoted blocks match"
+
 echo "== unit and verification tests (fpm test; one line per test program as it finishes)"
 fpm test --profile release 2>&1 | tee "$log/fpm-test.log" | grep --line-buffered -E '^[a-z_]+: [0-9]+ passed' | sed -u 's/^/   /'
 status=${PIPESTATUS[0]}

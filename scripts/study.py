@@ -28,7 +28,8 @@ assumed). Errors are |f - f*|/|f*| in percent. The elastic case is also
 compared with Hertz (the summary's hertz_* keys, signed deviation).
 
 The integrators (--integrators, default all five of the INTEGRATOR card, on
-the --integrator-cases, default table1_elastic): the same grid again with the
+the --integrator-cases, default table1_elastic, at the --integrator-levels,
+default the study's levels up to 4): the same grid again with the
 deck's WILSON THETA=1.4 card replaced by INTEGRATOR NEWMARK BETA=0.25
 GAMMA=0.5, HHT ALPHA=0.05, GENERALIZED_ALPHA RHO_INF=0.8 or BATHE
 (scripts/deck_variants.py INTEGRATOR_CARDS). The reference stays the
@@ -523,6 +524,9 @@ def main():
                              % ", ".join(INTEGRATOR_CARDS))
     parser.add_argument("--integrator-cases", default="table1_elastic",
                         help="the cases the other integrators run (default table1_elastic)")
+    parser.add_argument("--integrator-levels",
+                        help="comma list of the mesh levels the other integrators run (default: the study's "
+                             "levels up to 4; the level-5 runs would double the study's time)")
     args = parser.parse_args()
     levels = parse_list(args.levels, int) if args.levels else (FAST_LEVELS if args.fast else LEVELS)
     dts_ms = parse_list(args.dts_ms, float) if args.dts_ms else (FAST_DTS_MS if args.fast else DTS_MS)
@@ -550,12 +554,18 @@ def main():
     rows = []
     plan = [(case, DECK_INTEGRATOR) for case in cases] + [(case, name) for case in integrator_cases
                                                           for name in others]
-    total = len(plan) * len(levels) * len(dts_ms)
+    integrator_levels = (parse_list(args.integrator_levels, int) if args.integrator_levels
+                         else [lv for lv in levels if lv <= 4])
+
+    def levels_of(integrator):
+        return sorted(levels) if integrator == DECK_INTEGRATOR else sorted(set(levels) & set(integrator_levels))
+
+    total = sum(len(levels_of(integrator)) for _, integrator in plan) * len(dts_ms)
     count = 0
     for case, integrator in plan:
         with open(os.path.join(ROOT, CASES[case])) as handle:
             source_text = handle.read()
-        for level in sorted(levels):
+        for level in levels_of(integrator):
             for dt in sorted(dts_ms, reverse=True):
                 count += 1
                 name, row, wall, reused = run_one(exe, out, case, level, dt, source_text, args.reuse, integrator)

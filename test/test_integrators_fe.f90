@@ -21,7 +21,7 @@ program test_integrators_fe
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_record, only: record_t
-  use visco2d_driver, only: summary_value
+  use visco2d_expect, only: summary_value
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, read_lines
   use visco2d_dynamic_cards, only: dynamics_t, integrator_newmark, integrator_hht, integrator_bathe
