@@ -1,4 +1,4 @@
-!> What an impact on the plate reports (the summary keys of README.md, Outputs), measured after
+!> What an impact on the plate reports (the summary keys of doc/outputs.md), measured after
 !> every step of a dynamic run with a PLATE: first contact (t = 0 of the
 !> results), alpha = the approach of the centre of mass since then, the plate
 !> force and the pressure at the pole, the contact radius, the centre's
@@ -232,7 +232,9 @@ contains
   !> limit spectral radius (-0.78 per step at theta = 1.4): with nu = 0.4999
   !> (B-bar, level 3, dt = 1e-5 s) -sigma_z at t + dt was 90.7 MPa at the
   !> first step against q = 2.5 MPa, then +-26, +-18, ... MPa; at t + tau it
-  !> is 0.33 MPa there and 2.43 MPa at the peak.
+  !> is 0.33 MPa there and 2.43 MPa at the peak. With another integrator
+  !> (INTEGRATOR card) "t + tau" is its solve point: the end of the (sub-)step,
+  !> where it holds equilibrium (theta = 1).
   subroutine impact_surface_stress(impact, deck, contact, stress, delta_tau, over_tau, memory, state)
     type(impact_t), intent(inout) :: impact
     type(deck_t), intent(in) :: deck
@@ -327,7 +329,7 @@ contains
            impact%accel_centre/g_unit, real(impact%contact_nodes, dp)]
   end function impact_row
 
-  !> The impact keys of the summary (README.md, Outputs), the Hertz reference for
+  !> The impact keys of the summary (doc/outputs.md), the Hertz reference for
   !> `mass` (kg, whole body), the warnings, and the history columns t_ms and
   !> alpha_mm from t_s and uz_cm_m now that first contact is known.
   subroutine impact_summary(impact, deck, contact, record, mass, t_end)

@@ -1,5 +1,5 @@
 !> The element operators of a time-stepping run, computed once: B (or B-bar)
-!> at the four Gauss points of every element (eqs. [4]-[7] through
+!> at the four Gauss points of every element (eq. [4] through
 !> visco2d_element), the integration factors |J| r and the element equation
 !> numbers, stored element after element so the step loop streams through
 !> them. The geometry does not change (small displacements), so B is the same

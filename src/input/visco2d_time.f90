@@ -1,4 +1,4 @@
-!> The time axis of a quasi-static (and later dynamic) run: TIME cards, each a
+!> The time axis of a quasi-static or dynamic run: TIME cards, each a
 !> stage of constant steps that starts where the previous one ended.
 module visco2d_time
   use, intrinsic :: iso_fortran_env, only: int64
