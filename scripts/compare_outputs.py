@@ -44,6 +44,7 @@ Exit status: 0 no difference beyond tolerance, 1 differences, 2 unusable input
 import csv
 import math
 import os
+import signal
 import sys
 
 FILES = ("summary.txt", "history.csv", "pressure.csv", "results.h5")
@@ -470,6 +471,7 @@ def compare(reference, run, rtol=1e-6, shown=SHOWN, out=sys.stdout):
 
 
 def main(argv):
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # quiet when piped into head
     args = list(argv)
     rtol, shown, quiet = 1e-6, SHOWN, False
     try:
