@@ -150,10 +150,10 @@ check_rc "diff: a malformed tolerances.txt is unusable input (exit 2)" 2 $?
 check_grep "diff: ... with its file and line" "tolerances.txt:1: expected" "$tmp/out"
 
 # folders of case folders; a case or a file on one side only is a difference
-mkdir -p "$tmp/refs" && cp -r reference_outputs/table1_elastic reference_outputs/block_cards "$tmp/refs/"
+mkdir -p "$tmp/refs" && cp -r reference_outputs/table1_elastic reference_outputs/block_cards reference_outputs/free_flight "$tmp/refs/"
 $diff_tool "$tmp/refs" "$tmp/run" > "$tmp/out" 2>&1
 check_rc "diff: two folders of case folders that match (exit 0)" 0 $?
-check_grep "diff: ... with one line of totals" "^# 2 of 2 cases match" "$tmp/out"
+check_grep "diff: ... with one line of totals" "^# 3 of 3 cases match" "$tmp/out"
 cp -r reference_outputs/sphere_pressure "$tmp/refs/"
 $diff_tool "$tmp/refs" "$tmp/run" > "$tmp/out" 2>&1
 check_rc "diff: a case in the reference only is a difference (exit 1)" 1 $?
