@@ -465,7 +465,7 @@ def compare(reference, run, rtol=1e-6, shown=SHOWN, out=sys.stdout):
             files += compared
             differing += failed > 0
     print(f"# {len(work) - differing} of {len(work)} case{'s' * (len(work) != 1)} match"
-          f" ({files} files compared, rtol {rtol:g})"
+          f" ({files} files compared, --rtol {rtol:g})"
           + (f"; {differing} differ" if differing else ""), file=out)
     return 1 if differing else 0
 
