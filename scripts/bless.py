@@ -132,6 +132,10 @@ def main(argv):
     missing = [deck for deck in decks if not os.path.isfile(deck)]
     if missing or not decks:
         parser.error(f"no such deck: {' '.join(missing)}" if missing else f"no decks in {args.inputs}/")
+    inputs = os.path.realpath(args.inputs)
+    for deck in decks:
+        if os.path.dirname(os.path.realpath(deck)) != inputs:
+            print(f"note: {deck} is not in {args.inputs}/: make test checks only the decks there")
     try:
         folders = run_decks(args.exe, decks, args.work)
         if folders is None:
