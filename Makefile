@@ -7,7 +7,7 @@
 #   make fuzz     N mutated decks through the release build (scripts/fuzz.py; N=10000: ~4 min)
 #   make checked  every deck under -fcheck=all and the address/undefined-behaviour sanitizers
 # and, on purpose only:
-#   make bless  regenerate reference_outputs/ from the current code (say why in the commit)
+#   make bless  update reference_outputs/ where the current code's outputs differ (say why in the commit)
 
 SHELL := /bin/bash
 PREFIX := build/install
@@ -25,6 +25,7 @@ build: setup
 	@start=$$(date +%s); echo "visco2d: building with fpm (release profile; full log in build/build.log) ..."; \
 	  mkdir -p build; fpm install --profile release --prefix $(PREFIX) > build/build.log 2>&1 \
 	    || { cat build/build.log; exit 1; }; \
+	  install -m 755 scripts/compare_outputs.py $(PREFIX)/bin/visco2d-diff; \
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
 
@@ -56,16 +57,12 @@ check: build
 test: build
 	@VISCO2D=$(EXE) bash scripts/run_tests.sh
 
+# make bless       on purpose only (say why in the commit): DECK=inputs/x.inp archives just that case
+#                  (several: DECK="a.inp b.inp"); without DECK every deck of inputs/, rewriting only the
+#                  references that differ beyond the diff's tolerance and printing why; a deck that fails
+#                  to run is refused, nothing written; FORCE=1 rewrites even within tolerance (scripts/bless.py).
 bless: build
-	@rm -rf build/bless && mkdir -p build/bless
-	@$(EXE) -q -o build/bless $(DECKS)
-	@for deck in $(DECKS); do \
-	  case_name=$$(basename $$deck .inp); \
-	  mkdir -p reference_outputs/$$case_name; \
-	  grep -v '^cpu_s = ' build/bless/$$case_name/summary.txt > reference_outputs/$$case_name/summary.txt; \
-	  cp build/bless/$$case_name/history.csv reference_outputs/$$case_name/history.csv; \
-	done
-	@echo "reference_outputs/ regenerated for $(words $(DECKS)) decks: review 'git diff reference_outputs' and say why in the commit"
+	@python3 scripts/bless.py --exe $(EXE) $(if $(FORCE),--force) $(or $(DECK),--all)
 
 # make study       what accuracy costs in time: the Table 1 and Table 2 impacts over mesh levels 1-5
 #                  and DT 0.04 ... 0.0025 ms into out/study/ (study.csv, study.md, study.png); long: the

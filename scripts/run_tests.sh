@@ -71,7 +71,7 @@ rm -rf build/reference-check && mkdir -p build/reference-check
 for deck in inputs/*.inp; do
   case_name=$(basename "$deck" .inp)
   if [ ! -d "reference_outputs/$case_name" ]; then
-    echo "FAIL $case_name: no archived reference (run 'make bless' on purpose)" | tee -a "$log/reference.log"
+    echo "FAIL $case_name: no archived reference (make bless DECK=$deck, on purpose)" | tee -a "$log/reference.log"
     continue
   fi
   if ! "$exe" -q -o build/reference-check "$deck" >> "$log/reference.log" 2>&1; then
@@ -79,7 +79,15 @@ for deck in inputs/*.inp; do
     continue
   fi
   python3 scripts/compare_outputs.py "reference_outputs/$case_name" "build/reference-check/$case_name" \
-    >> "$log/reference.log" 2>&1
+    > build/reference-check/compare.log 2>&1
+  status=$?
+  cat build/reference-check/compare.log >> "$log/reference.log"
+  if [ $status -eq 1 ]; then  # the worst differences (the FAIL lines follow at the end of the stage)
+    grep '^   ' build/reference-check/compare.log | head -5 | sed "s/^   /   $case_name: /"
+  elif [ $status -ne 0 ]; then
+    echo "FAIL $case_name: the diff could not compare (exit $status): $(cat build/reference-check/compare.log)" \
+      | tee -a "$log/reference.log"
+  fi
 done
 for folder in reference_outputs/*/; do
   [ -d "$folder" ] || continue
@@ -89,6 +97,11 @@ for folder in reference_outputs/*/; do
 done
 count "$log/reference.log"
 echo "   $(grep -c '^PASS ' "$log/reference.log") files match"
+
+echo "== diff and bless (scripts/test_diff.sh: compare_outputs.py and bless.py on scratch copies)"
+bash scripts/test_diff.sh "$exe" > "$log/diff.log" 2>&1
+count "$log/diff.log"
+echo "   $(grep -c '^PASS ' "$log/diff.log") checks passed"
 
 echo "== fuzz (scripts/fuzz.py: mutated decks and the regression decks of test/fuzz/)"
 bash scripts/test_fuzz.sh "$exe" > "$log/fuzz.log" 2>&1

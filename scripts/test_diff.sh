@@ -1,0 +1,256 @@
+#!/usr/bin/env bash
+# Tests of the reference diff (scripts/compare_outputs.py, installed as visco2d-diff) and of
+# blessing (scripts/bless.py, behind `make bless`), on scratch copies in a temporary folder:
+# reference_outputs/ is never written.
+#
+# usage: bash scripts/test_diff.sh [PATH/TO/visco2d]
+# Prints one line per check, `PASS name` or `FAIL name: detail`.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+exe=${1:-build/install/bin/visco2d}
+diff_tool="python3 scripts/compare_outputs.py"
+bless_tool="python3 $PWD/scripts/bless.py"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+pass() { echo "PASS $1"; }
+fail() { echo "FAIL $1: $2"; }
+# check_rc NAME EXPECTED ACTUAL
+check_rc() {
+  if [ "$3" = "$2" ]; then pass "$1"; else fail "$1" "exit status $3, expected $2"; fi
+}
+# check_grep NAME PATTERN FILE: PASS if FILE has a line matching PATTERN
+check_grep() {
+  if grep -qE -- "$2" "$3"; then pass "$1"; else fail "$1" "no line matching '$2' in: $(head -c 600 "$3")"; fi
+}
+# first_difference FILE: the first difference line the diff printed (indented by 3 spaces)
+first_difference() { grep -m1 '^   ' "$1"; }
+# set_key FILE KEY VALUE: set a summary.txt value
+set_key() { sed -i "s/^$2 = .*/$2 = $3/" "$1"; }
+# scale_h5 FILE DATASET INDEX FACTOR: multiply one element of an HDF5 dataset (INDEX: Python, e.g. 10,1)
+scale_h5() {
+  python3 -c "import h5py, numpy
+with h5py.File('$1', 'r+') as f:
+    d = f['$2']; x = numpy.array(d[()]); x[$3] *= $4; d[...] = x"
+}
+tree_sums() { (cd "$1" && find . -type f | LC_ALL=C sort | xargs sha1sum); }
+
+if [ ! -x "$exe" ]; then
+  fail executable "usage: bash scripts/test_diff.sh PATH/TO/visco2d (got '$exe')"
+  exit 1
+fi
+"$exe" -q -o "$tmp/run" inputs/table1_elastic.inp inputs/block_cards.inp inputs/free_flight.inp > "$tmp/run.log" 2>&1 \
+  || fail "runs" "the decks did not run: $(cat "$tmp/run.log")"
+
+# --- the diff ------------------------------------------------------------------------------
+$diff_tool reference_outputs/table1_elastic "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: the archived reference of table1_elastic matches a fresh run (exit 0)" 0 $?
+
+# one summary key changed by 1e-3 relative: exit 1, that key named first, with both values
+cp -r reference_outputs/table1_elastic "$tmp/ref_key"
+alpha=$(sed -n 's/^alpha_max_mm = //p' "$tmp/ref_key/summary.txt")
+set_key "$tmp/ref_key/summary.txt" alpha_max_mm "$(python3 -c "print(repr($alpha * 1.001))")"
+$diff_tool "$tmp/ref_key" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: alpha_max_mm changed by 1e-3 relative fails (exit 1)" 1 $?
+check_grep "diff: alpha_max_mm is named first, with both values and its relative error" \
+  "^   alpha_max_mm: [-0-9.e]+ vs reference [-0-9.e]+ \(rel 9\.99e-04" <(first_difference "$tmp/out")
+check_grep "diff: the FAIL line of the perturbed file counts one difference" \
+  "^FAIL ref_key/summary.txt: 1 difference beyond" "$tmp/out"
+check_grep "diff: the unperturbed history passes" "^PASS ref_key/history.csv" "$tmp/out"
+
+# round-off in zero-valued stresses (block_cards: a hydrostatic state in r and theta, the issue's
+# -8.7e-11 Pa vs -1.2e-10 Pa): passes; a 1 Pa change of the same key fails (the floor is 1e-6 Pa)
+cp -r reference_outputs/block_cards "$tmp/ref_roundoff"
+set_key "$tmp/ref_roundoff/summary.txt" sigma_r_min_Pa -1.2e-10
+set_key "$tmp/ref_roundoff/summary.txt" sigma_theta_min_Pa -1.2e-10
+set_key "$tmp/ref_roundoff/summary.txt" tau_rz_max_abs_Pa 1.1e-10
+python3 - "$tmp/ref_roundoff/history.csv" <<'EOF'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+columns = [rows[0].index("top_outside_" + name + "_Pa") for name in ("sr", "st", "trz")]
+for row in rows[1:]:
+    for j in columns:
+        row[j] = repr(float(row[j]) * 1.5 + 3e-11)  # values of ~1e-11 Pa: round-off
+csv.writer(open(sys.argv[1], "w", newline=""), lineterminator="\n").writerows(rows)
+EOF
+$diff_tool "$tmp/ref_roundoff" "$tmp/run/block_cards" > "$tmp/out" 2>&1
+check_rc "diff: round-off changes of zero-valued stresses (summary and history) pass (exit 0)" 0 $?
+set_key "$tmp/ref_roundoff/summary.txt" sigma_r_min_Pa -1.0
+$diff_tool "$tmp/ref_roundoff" "$tmp/run/block_cards" > "$tmp/out" 2>&1
+check_rc "diff: a 1 Pa change of that zero stress fails (exit 1)" 1 $?
+check_grep "diff: ... and names it" "^   sigma_r_min_Pa: " <(first_difference "$tmp/out")
+
+# free_flight's stresses are round-off (~1e-9 Pa, gravity-free flight): they differ by up to 100 %
+# between machines (BLAS, compiler); only the unit's floor (1e-6 Pa) makes the reference portable
+$diff_tool reference_outputs/free_flight "$tmp/run/free_flight" > "$tmp/out" 2>&1
+check_rc "diff: free_flight's round-off stresses of ~1e-9 Pa pass against the archived reference (exit 0)" 0 $?
+
+# HDF5 fields: one stress perturbed by 1e-3 relative fails and is named with its index;
+# round-off (1e-10 Pa) added to every stress passes
+cp -r "$tmp/run/table1_elastic" "$tmp/run_h5"
+scale_h5 "$tmp/run_h5/results.h5" fields/step_000145/stress "10, 1" 1.001
+$diff_tool "$tmp/run/table1_elastic" "$tmp/run_h5" > "$tmp/out" 2>&1
+check_rc "diff: an HDF5 field value changed by 1e-3 relative fails (exit 1)" 1 $?
+check_grep "diff: the HDF5 dataset and element are named" \
+  "^   /fields/step_000145/stress\[10,1\]: .*\(rel 1\.00e-03" <(first_difference "$tmp/out")
+check_grep "diff: summary, history and pressure of the same run pass" "^PASS table1_elastic/pressure.csv" "$tmp/out"
+cp -r "$tmp/run/table1_elastic" "$tmp/run_h5_roundoff"
+python3 -c "import h5py
+with h5py.File('$tmp/run_h5_roundoff/results.h5', 'r+') as f:
+    d = f['fields/step_000000/stress']; d[...] = d[()] + 1e-10"
+$diff_tool "$tmp/run/table1_elastic" "$tmp/run_h5_roundoff" > "$tmp/out" 2>&1
+check_rc "diff: HDF5 stresses changed by 1e-10 Pa pass (exit 0)" 0 $?
+cp -r "$tmp/run/table1_elastic" "$tmp/run_h5_summary"
+scale_h5 "$tmp/run_h5_summary/results.h5" summary/force_max_N "()" 1.0001
+$diff_tool "$tmp/run/table1_elastic" "$tmp/run_h5_summary" > "$tmp/out" 2>&1
+check_grep "diff: the HDF5 /summary group is compared" "^   /summary/force_max_N: " <(first_difference "$tmp/out")
+
+# worst first, and how many are shown: every force_N changed by 1e-4, one row by 1e-2
+cp -r reference_outputs/table1_elastic "$tmp/ref_many"
+python3 - "$tmp/ref_many/history.csv" <<'EOF'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+j, step = rows[0].index("force_N"), rows[0].index("step")
+for row in rows[1:]:
+    row[j] = repr(float(row[j]) * (1.01 if float(row[step]) == 100 else 1.0001))
+csv.writer(open(sys.argv[1], "w", newline=""), lineterminator="\n").writerows(rows)
+EOF
+$diff_tool "$tmp/ref_many" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: force_N changed in every row fails (exit 1)" 1 $?
+check_grep "diff: the worst row (1e-2) comes first, named by line, step, time and column" \
+  "^   line 102 step 100 t 0.001 s force_N: " <(first_difference "$tmp/out")
+shown=$(grep -c '^   line ' "$tmp/out")
+if [ "$shown" -eq 20 ] && grep -qE '^   \.\.\. and [0-9]+ more' "$tmp/out"; then
+  pass "diff: the worst 20 are shown, then a count of the others"
+else
+  fail "diff: the worst 20 are shown, then a count of the others" "$shown shown"
+fi
+$diff_tool "$tmp/ref_many" "$tmp/run/table1_elastic" --all > "$tmp/out" 2>&1
+total=$(sed -n 's/^FAIL ref_many\/history.csv: \([0-9]*\) differences.*/\1/p' "$tmp/out")
+shown=$(grep -c '^   line ' "$tmp/out")
+if [ -n "$total" ] && [ "$total" -gt 20 ] && [ "$shown" -eq "$total" ]; then
+  pass "diff --all lists all $total differences"
+else
+  fail "diff --all lists all differences" "$shown shown of '$total'"
+fi
+
+# tolerances.txt of the reference case
+printf '# table1_elastic: alpha_max_mm known to 2e-3 (test)\nalpha_max_mm = 2e-3\n' > "$tmp/ref_key/tolerances.txt"
+$diff_tool "$tmp/ref_key" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: tolerances.txt 'alpha_max_mm = 2e-3' accepts the 1e-3 change (exit 0)" 0 $?
+printf 'default = 1e-2\n' > "$tmp/ref_key/tolerances.txt"
+$diff_tool "$tmp/ref_key" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: tolerances.txt 'default = 1e-2' accepts it too (exit 0)" 0 $?
+printf 'alpha_max_mm = 1e-9 1e-12\n' > "$tmp/ref_key/tolerances.txt"
+$diff_tool "$tmp/ref_key" "$tmp/run/table1_elastic" --rtol 1e-2 > "$tmp/out" 2>&1
+check_rc "diff: a tolerances.txt entry wins over --rtol (exit 1)" 1 $?
+printf 'alpha_max_mm = loose\n' > "$tmp/ref_key/tolerances.txt"
+$diff_tool "$tmp/ref_key" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: a malformed tolerances.txt is unusable input (exit 2)" 2 $?
+check_grep "diff: ... with its file and line" "tolerances.txt:1: expected" "$tmp/out"
+
+# folders of case folders; a case or a file on one side only is a difference
+mkdir -p "$tmp/refs" && cp -r reference_outputs/table1_elastic reference_outputs/block_cards reference_outputs/free_flight "$tmp/refs/"
+$diff_tool "$tmp/refs" "$tmp/run" > "$tmp/out" 2>&1
+check_rc "diff: two folders of case folders that match (exit 0)" 0 $?
+check_grep "diff: ... with one line of totals" "^# 3 of 3 cases match" "$tmp/out"
+cp -r reference_outputs/sphere_pressure "$tmp/refs/"
+$diff_tool "$tmp/refs" "$tmp/run" > "$tmp/out" 2>&1
+check_rc "diff: a case in the reference only is a difference (exit 1)" 1 $?
+check_grep "diff: ... named" "^FAIL sphere_pressure: in the reference, not in the run" "$tmp/out"
+cp -r "$tmp/run/table1_elastic" "$tmp/run_nohistory" && rm "$tmp/run_nohistory/history.csv"
+$diff_tool reference_outputs/table1_elastic "$tmp/run_nohistory" > "$tmp/out" 2>&1
+check_rc "diff: a file missing from the run is a difference (exit 1)" 1 $?
+
+# unusable input: exit 2
+$diff_tool reference_outputs/table1_elastic "$tmp/no_such_folder" > "$tmp/out" 2>&1
+check_rc "diff: a missing folder is unusable input (exit 2)" 2 $?
+cp -r "$tmp/run/table1_elastic" "$tmp/run_corrupt_csv"
+echo "1,2,three" >> "$tmp/run_corrupt_csv/history.csv"
+$diff_tool reference_outputs/table1_elastic "$tmp/run_corrupt_csv" > "$tmp/out" 2>&1
+check_rc "diff: a corrupt history.csv is unusable input (exit 2)" 2 $?
+check_grep "diff: ... named with its line" "history.csv:[0-9]+: expected [0-9]+ numbers" "$tmp/out"
+cp -r "$tmp/run/table1_elastic" "$tmp/run_corrupt_h5"
+head -c 4096 "$tmp/run/table1_elastic/results.h5" > "$tmp/run_corrupt_h5/results.h5"
+$diff_tool "$tmp/run/table1_elastic" "$tmp/run_corrupt_h5" > "$tmp/out" 2>&1
+check_rc "diff: a truncated results.h5 is unusable input (exit 2)" 2 $?
+$diff_tool reference_outputs/table1_elastic > "$tmp/out" 2>&1
+check_rc "diff: a missing argument is a usage error (exit 2)" 2 $?
+
+installed="$(dirname "$exe")/visco2d-diff"
+if [ -x "$installed" ] && "$installed" reference_outputs/table1_elastic "$tmp/run" > "$tmp/out" 2>&1; then
+  pass "visco2d-diff is installed beside visco2d and runs"
+else
+  fail "visco2d-diff is installed beside visco2d and runs" "$installed: $(head -c 300 "$tmp/out" 2>/dev/null)"
+fi
+
+# --- blessing, on a scratch copy of inputs/ and reference_outputs/ ---------------------------
+repo="$tmp/repo"
+mkdir -p "$repo" && cp -r inputs reference_outputs "$repo/"
+exe_path="$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"
+bless() { (cd "$repo" && $bless_tool --exe "$exe_path" --work "$tmp/bless-work" "$@"); }
+# the issue's case: a reference blessed on a machine whose round-off gave another hydrostatic zero
+set_key "$repo/reference_outputs/block_cards/summary.txt" sigma_r_min_Pa -8.7e-11
+tree_sums "$repo/reference_outputs" > "$tmp/sums_before"
+bless --all > "$tmp/out" 2>&1
+check_rc "bless --all on an unchanged tree runs (exit 0)" 0 $?
+tree_sums "$repo/reference_outputs" > "$tmp/sums_after"
+if cmp -s "$tmp/sums_before" "$tmp/sums_after" && grep -q '^bless: 0 files of 0 cases rewritten' "$tmp/out"; then
+  pass "bless --all on an unchanged tree (round-off zeros included) rewrites nothing"
+else
+  fail "bless --all on an unchanged tree rewrites nothing" "$(cat "$tmp/out")"
+fi
+
+cp "$repo/inputs/sphere_pressure.inp" "$repo/inputs/new_deck.inp"
+bless inputs/new_deck.inp > "$tmp/out" 2>&1
+check_rc "bless one new deck (exit 0)" 0 $?
+tree_sums "$repo/reference_outputs" | grep -v '\./new_deck/' > "$tmp/sums_after"
+if cmp -s "$tmp/sums_before" "$tmp/sums_after"; then
+  pass "blessing one new deck leaves every other reference file byte-identical"
+else
+  fail "blessing one new deck leaves every other reference file byte-identical" "$(diff "$tmp/sums_before" "$tmp/sums_after" | head -5)"
+fi
+if [ -f "$repo/reference_outputs/new_deck/summary.txt" ] && [ -f "$repo/reference_outputs/new_deck/history.csv" ] \
+   && ! grep -q '^cpu_s = ' "$repo/reference_outputs/new_deck/summary.txt" \
+   && python3 scripts/compare_outputs.py "$repo/reference_outputs/new_deck" "$tmp/bless-work/new_deck" > /dev/null; then
+  pass "the new deck's reference: summary.txt without cpu_s and history.csv, matching its run"
+else
+  fail "the new deck's reference" "$(ls "$repo/reference_outputs/new_deck" 2>&1)"
+fi
+
+tree_sums "$repo/reference_outputs" > "$tmp/sums_before"
+alpha=$(sed -n 's/^alpha_max_mm = //p' "$repo/reference_outputs/table1_elastic/summary.txt")
+set_key "$repo/reference_outputs/table1_elastic/summary.txt" alpha_max_mm "$(python3 -c "print(repr($alpha * 1.001))")"
+bless --all > "$tmp/out" 2>&1
+check_rc "bless --all with one reference off by 1e-3 (exit 0)" 0 $?
+check_grep "bless --all says which file changed and why" "^blessed table1_elastic/summary.txt: alpha_max_mm: " "$tmp/out"
+tree_sums "$repo/reference_outputs" | grep -v '\./table1_elastic/summary.txt' > "$tmp/sums_after"
+grep -v '\./table1_elastic/summary.txt' "$tmp/sums_before" > "$tmp/sums_others"
+if cmp -s "$tmp/sums_others" "$tmp/sums_after" && grep -q '^bless: 1 file of 1 case rewritten (table1_elastic)' "$tmp/out" \
+   && python3 scripts/compare_outputs.py "$repo/reference_outputs/table1_elastic" "$tmp/bless-work/table1_elastic" > /dev/null; then
+  pass "bless --all rewrote only that file, back to the code's value"
+else
+  fail "bless --all rewrote only that file" "$(diff "$tmp/sums_others" "$tmp/sums_after" | head -3; tail -1 "$tmp/out")"
+fi
+
+tree_sums "$repo/reference_outputs" > "$tmp/sums_before"
+bless inputs/table1_elastic.inp > "$tmp/out" 2>&1
+tree_sums "$repo/reference_outputs" > "$tmp/sums_after"
+if cmp -s "$tmp/sums_before" "$tmp/sums_after" && grep -q '^bless: 0 files' "$tmp/out"; then
+  pass "bless DECK within tolerance rewrites nothing"
+else
+  fail "bless DECK within tolerance rewrites nothing" "$(tail -1 "$tmp/out")"
+fi
+bless --force inputs/table1_elastic.inp > "$tmp/out" 2>&1
+check_grep "bless --force DECK rewrites it" "^bless: 2 files of 1 case rewritten \(table1_elastic\)" "$tmp/out"
+
+tree_sums "$repo/reference_outputs" > "$tmp/sums_before"
+printf 'TITLE a deck that does not run\nNO SUCH CARD\n' > "$repo/inputs/broken.inp"
+bless --all > "$tmp/out" 2>&1
+check_rc "bless refuses a deck that fails to run (exit 1)" 1 $?
+tree_sums "$repo/reference_outputs" > "$tmp/sums_after"
+if cmp -s "$tmp/sums_before" "$tmp/sums_after" && grep -q 'refused: inputs/broken.inp failed to run' "$tmp/out"; then
+  pass "... names it and writes nothing"
+else
+  fail "... names it and writes nothing" "$(tail -2 "$tmp/out")"
+fi
