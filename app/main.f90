@@ -6,9 +6,8 @@
 program visco2d
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
-  use visco2d_record, only: record_t
-  use visco2d_driver, only: run_deck, check_deck
-  use visco2d_expect, only: run_line, expect_tally_t
+  use visco2d_driver, only: check_deck
+  use visco2d_batch, only: duplicate_case_message, run_batch_deck
   use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
   use visco2d_cards, only: parse_real
@@ -90,7 +89,11 @@ program visco2d
     i = i + 1
   end do
   if (count == 0) call usage_error('no deck given')
-  if (.not. checking) call prepare_output(out_root)
+  if (.not. checking) then
+    message = duplicate_case_message(decks(1:count), out_root)    ! no silent overwrite of a case folder
+    if (len(message) > 0) call usage_error(message)
+    call prepare_output(out_root)
+  end if
   call configure_progress()
 
   failed = 0
@@ -116,14 +119,13 @@ program visco2d
 
 contains
 
-  !> Run a deck; print its one-line result unless quiet (the record is freed on return).
+  !> Run a deck; print its one-line result unless quiet.
   subroutine run_one(path, error)
     character(*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: error
-    type(record_t) :: record
-    type(expect_tally_t) :: tally
-    call run_deck(path, out_root, record, error, tally)
-    if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
+    character(:), allocatable :: line
+    call run_batch_deck(path, out_root, line, error)
+    if (.not. allocated(error) .and. .not. quiet) print '(a)', line
   end subroutine run_one
 
   !> Before any deck runs: the output root must be named and writable (exit
