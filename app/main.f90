@@ -6,8 +6,10 @@
 program visco2d
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
-  use visco2d_driver, only: check_deck
-  use visco2d_batch, only: duplicate_case_message, run_batch_deck
+  use visco2d_record, only: record_t
+  use visco2d_driver, only: run_deck, check_deck
+  use visco2d_expect, only: run_line, expect_tally_t
+  use visco2d_batch, only: duplicate_case_message
   use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
   use visco2d_cards, only: parse_real
@@ -115,17 +117,19 @@ program visco2d
   flush(0)
   deallocate(decks, out_root)                 ! everything freed before exit (valgrind: nothing lost)
   if (allocated(argument)) deallocate(argument)
+  if (allocated(message)) deallocate(message)
   if (failed > 0) call c_exit(1_c_int)
 
 contains
 
-  !> Run a deck; print its one-line result unless quiet.
+  !> Run a deck; print its one-line result unless quiet (the record is freed on return).
   subroutine run_one(path, error)
     character(*), intent(in) :: path
     type(error_t), allocatable, intent(out) :: error
-    character(:), allocatable :: line
-    call run_batch_deck(path, out_root, line, error)
-    if (.not. allocated(error) .and. .not. quiet) print '(a)', line
+    type(record_t) :: record
+    type(expect_tally_t) :: tally
+    call run_deck(path, out_root, record, error, tally)
+    if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
   end subroutine run_one
 
   !> Before any deck runs: the output root must be named and writable (exit
@@ -316,6 +320,8 @@ contains
     print '(a)', 'run goes on with the next deck; the exit status is 1 if any deck failed, 2 for'
     print '(a)', 'usage errors and an output folder that is empty or cannot be written (checked'
     print '(a)', 'before any deck runs). Folders left by runs that no longer exist are removed.'
+    print '(a)', 'Two decks of a batch with the same case name (the file name without its'
+    print '(a)', 'extension) would write one folder: the batch is refused (exit status 2).'
     print '(a)', 'Errors read  file:line:column: CARD: message.  The cards: doc/cards.md.'
   end subroutine print_help
 end program visco2d

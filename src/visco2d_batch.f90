@@ -1,7 +1,8 @@
-!> What a batch of decks shares between the two programs that run one, visco2d
-!> (serially) and visco2d-farm (over MPI ranks): the rule that no two decks
-!> of a batch have the same case name, and the run of one deck with the line
-!> and the error text the programs print for it.
+!> The batch of decks of the two programs that run one, visco2d (serially)
+!> and visco2d-farm (over MPI ranks): the rule, checked by both, that no two
+!> decks of a batch have the same case name, and the run of one deck that
+!> returns the line or the error text to print for it (the farm's ranks send
+!> it to rank 0, which prints in deck order).
 module visco2d_batch
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
