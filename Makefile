@@ -6,6 +6,7 @@
 #   make report   one picture per case of out/: out/<case>/report.png (scripts/report.py)
 #   make fuzz     N mutated decks through the release build (scripts/fuzz.py; N=10000: ~4 min)
 #   make checked  every deck under -fcheck=all and the address/undefined-behaviour sanitizers
+#   make mpi      the MPI task farm build/mpi/bin/visco2d-farm (installs OpenMPI if missing)
 # and, on purpose only:
 #   make bless  update reference_outputs/ where the current code's outputs differ (say why in the commit)
 
@@ -99,6 +100,20 @@ fuzz: build
 CHECKED_N ?= 0
 checked: setup
 	@mkdir -p build && bash scripts/test_checked.sh $(CHECKED_N) | tee build/checked.log; ! grep -q "^FAIL " build/checked.log
+
+# make mpi         the MPI task farm: build/mpi/bin/visco2d-farm from the same sources, compiled with
+#                  the mpif90 wrapper and -DVISCO2D_MPI (app/farm.F90) in fpm's own build folder for that
+#                  compiler and flags, so it never rebuilds the default build; OpenMPI (Debian's) is
+#                  installed by scripts/setup.sh mpi if missing. Run it with
+#                  mpirun -np N build/mpi/bin/visco2d-farm [-q] [-o OUT] DECK...   (doc/command_line.md)
+.PHONY: mpi
+MPI_PREFIX := build/mpi
+mpi: setup
+	@bash scripts/setup.sh mpi
+	@start=$$(date +%s); echo "visco2d: building the MPI task farm (mpif90 -DVISCO2D_MPI; log in build/mpi-build.log) ..."; \
+	  mkdir -p build; fpm install --profile release --compiler mpif90 --flag "-DVISCO2D_MPI" --prefix $(MPI_PREFIX) \
+	    > build/mpi-build.log 2>&1 || { cat build/mpi-build.log; exit 1; }; \
+	  echo "visco2d: built $(MPI_PREFIX)/bin/visco2d-farm ($$(( $$(date +%s) - start )) s)"
 
 clean:
 	rm -rf build out

@@ -9,6 +9,7 @@ program visco2d
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, check_deck
   use visco2d_expect, only: run_line, expect_tally_t
+  use visco2d_batch, only: duplicate_case_message
   use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
   use visco2d_cards, only: parse_real
@@ -90,7 +91,11 @@ program visco2d
     i = i + 1
   end do
   if (count == 0) call usage_error('no deck given')
-  if (.not. checking) call prepare_output(out_root)
+  if (.not. checking) then
+    message = duplicate_case_message(decks(1:count), out_root)    ! no silent overwrite of a case folder
+    if (len(message) > 0) call usage_error(message)
+    call prepare_output(out_root)
+  end if
   call configure_progress()
 
   failed = 0
@@ -112,6 +117,7 @@ program visco2d
   flush(0)
   deallocate(decks, out_root)                 ! everything freed before exit (valgrind: nothing lost)
   if (allocated(argument)) deallocate(argument)
+  if (allocated(message)) deallocate(message)
   if (failed > 0) call c_exit(1_c_int)
 
 contains
@@ -314,6 +320,8 @@ contains
     print '(a)', 'run goes on with the next deck; the exit status is 1 if any deck failed, 2 for'
     print '(a)', 'usage errors and an output folder that is empty or cannot be written (checked'
     print '(a)', 'before any deck runs). Folders left by runs that no longer exist are removed.'
+    print '(a)', 'Two decks of a batch with the same case name (the file name without its'
+    print '(a)', 'extension) would write one folder: the batch is refused (exit status 2).'
     print '(a)', 'Errors read  file:line:column: CARD: message.  The cards: doc/cards.md.'
   end subroutine print_help
 end program visco2d

@@ -66,6 +66,11 @@ bash scripts/test_report.sh "$exe" > "$log/report.log" 2>&1
 count "$log/report.log"
 echo "   $(grep -c '^PASS ' "$log/report.log") checks passed"
 
+echo "== MPI task farm (2 ranks)"
+bash scripts/test_mpi.sh "$exe" > "$log/mpi.log" 2>&1
+count "$log/mpi.log"
+echo "   $(grep -c '^PASS ' "$log/mpi.log") checks passed; $(grep '^# ' "$log/mpi.log" | tr '\n' ' ')"
+
 echo "== reference outputs (rtol 1e-6)"
 rm -rf build/reference-check && mkdir -p build/reference-check
 for deck in inputs/*.inp; do

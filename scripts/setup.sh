@@ -3,9 +3,14 @@
 # (reference and OpenBLAS serial),
 # HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm,
 # h5py, matplotlib and meshio (PyPI). Safe to run again; quiet when everything is present.
+#   bash scripts/setup.sh mpi   also OpenMPI (openmpi-bin libopenmpi-dev: mpif90, mpirun) for the
+#                               MPI task farm (make mpi, the MPI stage of make test; ~25 s to install)
 set -euo pipefail
 
 packages=()
+if [ "${1:-}" = "mpi" ]; then
+  { command -v mpif90 && command -v mpirun; } >/dev/null 2>&1 || packages+=(openmpi-bin libopenmpi-dev)
+fi
 command -v gfortran >/dev/null 2>&1 || packages+=(gfortran)
 command -v pkg-config >/dev/null 2>&1 || packages+=(pkg-config)
 command -v numdiff >/dev/null 2>&1 || packages+=(numdiff)

@@ -1258,4 +1258,20 @@ check bruise_no_keys_without_card "summary of a deck without BRUISE has bruise k
   sh -c '! grep -q "^bruise_\|^envelope_" out/plain/summary.txt'
 cd "$work" || exit 0
 
+# Two decks of one batch with the same case name would write the same folder:
+# refused before anything runs (exit 2, both paths named), nothing written.
+mkdir -p twin_a twin_b
+cp decks/first.inp twin_a/twin.inp
+cp decks/last.inp twin_b/twin.inp
+"$exe" -o twin_out twin_a/twin.inp twin_b/twin.inp > twin.out 2> twin.err
+check_rc duplicate_case_exit_2 2 $?
+check duplicate_case_names_both "stderr: $(first_lines twin.err)" \
+  sh -c 'grep -q "twin_a/twin.inp and twin_b/twin.inp have the same case name \"twin\"" twin.err && grep -q "separate -o folders" twin.err'
+check duplicate_case_nothing_written "twin_out exists: $(ls -A twin_out 2>&1 | tr '\n' ' ')" test ! -e twin_out
+"$exe" -o twin_out twin_a/twin.inp decks/first.inp twin_a/twin.inp > twin2.out 2> twin2.err
+check_rc duplicate_same_deck_exit_2 2 $?
+check duplicate_same_deck_named "stderr: $(first_lines twin2.err)" grep -q "twin_a/twin.inp is given twice" twin2.err
+"$exe" check twin_a/twin.inp twin_b/twin.inp > twin3.out 2> twin3.err
+check_rc duplicate_case_check_allowed 0 $?
+
 exit 0

@@ -1,0 +1,105 @@
+!> The batch of decks of the two programs that run one, visco2d (serially)
+!> and visco2d-farm (over MPI ranks): the rule, checked by both, that no two
+!> decks of a batch have the same case name, and the run of one deck that
+!> returns the line or the error text to print for it (the farm's ranks send
+!> it to rank 0, which prints in deck order).
+module visco2d_batch
+  use visco2d_error, only: error_t, error_text
+  use visco2d_record, only: record_t
+  use visco2d_driver, only: run_deck, case_name_of
+  use visco2d_expect, only: run_line, expect_tally_t
+  implicit none
+  private
+
+  public :: duplicate_case_message, run_batch_deck
+
+contains
+
+  !> Empty if every deck of the batch has its own case name (the deck's file
+  !> name without its extension: the folder OUT/<case>/ it writes); otherwise
+  !> why the batch is refused, naming two decks that share a name: the second
+  !> would silently replace the first one's folder. The names are sorted
+  !> (stable merge sort), so a batch of many thousands of decks is checked at once.
+  function duplicate_case_message(decks, out_root) result(message)
+    character(*), intent(in) :: decks(:)     !< the deck paths (blank-padded)
+    character(*), intent(in) :: out_root     !< the output root (for the message)
+    character(:), allocatable :: message
+    character(len=:), allocatable :: names(:)
+    integer, allocatable :: order(:)
+    integer :: i, k, longest, first, second
+    longest = 1
+    do i = 1, size(decks)
+      longest = max(longest, len(case_name_of(trim(decks(i)))))
+    end do
+    allocate(character(len=longest) :: names(size(decks)))
+    do i = 1, size(decks)
+      names(i) = case_name_of(trim(decks(i)))
+    end do
+    order = [(i, i = 1, size(decks))]
+    call sort_by_name(names, order)
+    message = ''
+    do k = 2, size(order)
+      first = order(k - 1)
+      second = order(k)
+      if (names(first) /= names(second)) cycle
+      if (decks(first) == decks(second)) then
+        message = 'the deck '//trim(decks(second))//' is given twice: its second run would replace the folder '// &
+          out_root//'/'//trim(names(second))//'/ of the first; give it once'
+      else
+        message = 'the decks '//trim(decks(first))//' and '//trim(decks(second))//' have the same case name "'// &
+          trim(names(second))//'": both would write the folder '//out_root//'/'//trim(names(second))// &
+          '/; rename one of them or run them with separate -o folders'
+      end if
+      return
+    end do
+  end function duplicate_case_message
+
+  !> Sort the indices order(:) by names(order(:)), keeping equal names in
+  !> their order (merge sort: n log n comparisons).
+  recursive subroutine sort_by_name(names, order)
+    character(*), intent(in) :: names(:)
+    integer, intent(inout) :: order(:)
+    integer, allocatable :: left(:), right(:)
+    integer :: middle, i, j, k
+    if (size(order) < 2) return
+    middle = size(order) / 2
+    left = order(:middle)
+    right = order(middle + 1:)
+    call sort_by_name(names, left)
+    call sort_by_name(names, right)
+    i = 1
+    j = 1
+    do k = 1, size(order)
+      if (j > size(right)) then
+        order(k) = left(i)
+        i = i + 1
+      else if (i > size(left)) then
+        order(k) = right(j)
+        j = j + 1
+      else if (names(right(j)) < names(left(i))) then
+        order(k) = right(j)
+        j = j + 1
+      else
+        order(k) = left(i)
+        i = i + 1
+      end if
+    end do
+  end subroutine sort_by_name
+
+  !> Run one deck of a batch into out_root/<case>/ (run_deck): on success, line
+  !> is its one-line result (run_line); on failure, error is set and line is
+  !> the error's text as the programs print it after "visco2d: error: ".
+  subroutine run_batch_deck(path, out_root, line, error)
+    character(*), intent(in) :: path, out_root
+    character(:), allocatable, intent(out) :: line
+    type(error_t), allocatable, intent(out) :: error
+    type(record_t) :: record
+    type(expect_tally_t) :: tally
+    call run_deck(path, out_root, record, error, tally)
+    if (allocated(error)) then
+      line = error_text(error)
+    else
+      line = run_line(record, tally)
+    end if
+  end subroutine run_batch_deck
+end module visco2d_batch
