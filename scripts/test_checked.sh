@@ -41,7 +41,7 @@ exe=$prefix/bin/visco2d
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:exitcode=86:max_allocation_size_mb=4096}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1:exitcode=87}
-bound=${CHECKED_BOUND:-60}
+bound=${CHECKED_BOUND:-150}   # a hang bound, in wall seconds: the slowest deck takes ~21 s of CPU under the sanitizers, 50-70 s wall on a loaded machine
 
 python3 scripts/fuzz.py --exe "$exe" --bound "$bound" --decks inputs/*.inp --expect-exit 0 \
   --out "$log/inputs" -v -q --label checked_inputs/ | grep -E '^(PASS|FAIL) '
