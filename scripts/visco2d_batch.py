@@ -432,14 +432,14 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
 
 
 def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
-    """All cases in one `mpirun -np N visco2d-farm -q -o OUT DECK...`; its log in OUT/decks/mpi.log."""
+    """All cases in one `mpirun -np N visco2d-farm -o OUT DECK...`; its log in OUT/decks/mpi.log."""
     mpirun = shutil.which('mpirun')
     if mpirun is None:
         raise UsageError('--mpi: no mpirun on PATH (install OpenMPI: bash scripts/setup.sh, or load its module)')
     command = [mpirun, '-np', str(ranks)]
     if ranks > (os.cpu_count() or 1):
         command.append('--oversubscribe')
-    command += shlex.split(mpirun_args or '') + [farm, '-q', '-o', out] + [case.deck for case in cases]
+    command += shlex.split(mpirun_args or '') + [farm, '-o', out] + [case.deck for case in cases]
     environment = dict(os.environ)
     if hasattr(os, 'geteuid') and os.geteuid() == 0:
         environment.setdefault('OMPI_ALLOW_RUN_AS_ROOT', '1')
@@ -456,7 +456,8 @@ def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
             case.error = located_error(done.stderr, case.deck) if case.deck in done.stderr else (
                 f'no results (mpirun exit status {done.returncode}; see {out}/{DECKS_DIR}/mpi.log)')
         finish_case(case, out)
-        progress.update(case, result_message(case, ''))
+        lines = [line for line in done.stdout.splitlines() if line.startswith(case.name + ':')]
+        progress.update(case, result_message(case, lines[-1] if lines else ''))
     if done.returncode not in (0, 1):
         print(f'{PROGRAM}: mpirun exited with status {done.returncode}: see {out}/{DECKS_DIR}/mpi.log',
               file=sys.stderr)
