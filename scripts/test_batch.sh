@@ -250,3 +250,9 @@ SBATCH
 else
   echo "NOTE scripts/slurm_sweep.sh run not tested: it calls build/install/bin/visco2d-batch, not installed beside $exe"
 fi
+
+# 10. The example template of the README (the Table 3 apple) expands into a deck visco2d accepts.
+batch expand "$root/inputs/examples/apple_drop.inp" --param height=0.5 -o example > example.log 2>&1
+check_ok example_template_expands $? example.log
+"$exe" check example/decks/apple_drop__height=0.5.inp > example_check.log 2>&1
+check_ok example_deck_checks $? example_check.log
