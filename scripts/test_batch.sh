@@ -197,7 +197,7 @@ check_rc threshold_no_onset_status 1 $?
 check threshold_no_onset_message "$(head -c 300 nobracket.log)" grep -q 'no onset in the bracket' nobracket.log
 
 # 8. The MPI task farm on 2 ranks, when it is built.
-farm="$root/build/mpi/bin/visco2d-farm"
+farm="${VISCO2D_FARM:-$root/build/mpi/bin/visco2d-farm}"   # VISCO2D_FARM: another build of it
 if [ -x "$farm" ] && command -v mpirun > /dev/null; then
   batch run peach.inp --param height=0.05,0.1,0.2 --param radius=0.03:0.04:2 --mpi 2 --farm "$farm" -q \
     -o mpi > mpi.log 2>&1

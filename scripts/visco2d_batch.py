@@ -316,7 +316,11 @@ def repository_root():
 
 def find_program(explicit, variable, name, relative):
     """An executable: the option, the environment variable, beside this tool, in the repository, on PATH."""
-    candidates = [explicit, os.environ.get(variable),
+    if explicit:
+        if os.path.isfile(explicit) and os.access(explicit, os.X_OK):
+            return os.path.abspath(explicit)
+        raise UsageError(f'{explicit}: not an executable')
+    candidates = [os.environ.get(variable),
                   os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), name)]
     root = repository_root()
     if root:
@@ -325,8 +329,6 @@ def find_program(explicit, variable, name, relative):
     for candidate in candidates:
         if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
             return os.path.abspath(candidate)
-    if explicit:
-        raise UsageError(f'{explicit}: not an executable')
     return None
 
 
