@@ -353,6 +353,9 @@ class Progress:
         self.shown = not quiet and sys.stderr.isatty()
         self.quiet = quiet
         self.lock = threading.Lock()
+        if self.shown:
+            sys.stderr.write(self.line())
+            sys.stderr.flush()
 
     def line(self):
         elapsed = time.monotonic() - self.start
