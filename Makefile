@@ -29,6 +29,7 @@ build: setup
 	  install -m 755 scripts/compare_outputs.py $(PREFIX)/bin/visco2d-diff; \
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
+	@install -m 755 scripts/visco2d_batch.py $(PREFIX)/bin/visco2d-batch   # sweeps, all cores, the cluster: doc/batch.md
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"

@@ -51,6 +51,12 @@ bash scripts/test_cli.sh "$exe" > "$log/cli.log" 2>&1
 count "$log/cli.log"
 echo "   $(grep -c '^PASS ' "$log/cli.log") checks passed"
 
+echo "== batch runs and sweeps (scripts/test_batch.sh: visco2d-batch sweeps, -j, shards, collect, threshold, MPI)"
+bash scripts/test_batch.sh "$exe" > "$log/batch.log" 2>&1
+count "$log/batch.log"
+grep -E '^(NOTE|# )' "$log/batch.log" | sed 's/^/   /' || true
+echo "   $(grep -c '^PASS ' "$log/batch.log") checks passed"
+
 echo "== study (make study-fast)"
 bash scripts/test_study.sh "$exe" > "$log/study.log" 2>&1
 count "$log/study.log"
