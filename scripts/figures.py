@@ -3,10 +3,13 @@
 
 Reads out/<case>/results.h5 of the paper's impact decks (running the deck into
 OUT first when the file is missing), runs the Table 1 deck once more on a fine
-mesh (MESH SPHERE LEVEL=4 by default) into OUT/figures/runs/, and writes
+mesh (MESH SPHERE LEVEL=4 by default) and the Fig. 2 deck on the same mesh at
+DT 5e-6 s into OUT/figures/runs/, and writes
 OUT/figures/*.png:
 
-  fig2_center_acceleration.png  Fig. 2: centre acceleration of the apple (25.4 mm drop)
+  fig2_center_acceleration.png  Fig. 2: centre acceleration of the apple (25.4 mm drop): the 10 mm
+                               accelerometer, the centre node and the centre of mass; the paper's grid
+                               and step, and level --level at 5e-6 s
   fig3_deformation.png          Fig. 3: Table 1 elastic impact, alpha(t): FE, exact Hertz, Goldsmith [46]
   fig4_pressure.png             Fig. 4: the same, maximum surface pressure q(t)
   fig5_apple_0.7.png            apple at 0.7 m/s (Table 3): alpha(t) and q(t)
@@ -36,6 +39,7 @@ import matplotlib.tri as mtri  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 STANDARD_GRAVITY = 9.80665          # m/s^2, the unit "g" of accel_center_g
+FINE_ACCEL_DT_S = 5e-6              # s, the step of the fine Fig. 2 run
 PAPER_TABLE1 = {                    # the paper's Table 1: (t_m ms, alpha_m mm, q_m MPa)
     "dynamic finite element": (1.51, 1.096, 1.99),
     "Timoshenko & Goodier": (1.62, 1.097, 2.10),
@@ -91,27 +95,42 @@ def file_digest(path):
 
 
 def fine_table1_results(args, plate="STICK"):
-    """Results of the Table 1 deck on MESH SPHERE LEVEL=args.level with PLATE ... `plate` (STICK or SLIP).
+    """Results of the Table 1 deck on MESH SPHERE LEVEL=args.level with PLATE ... `plate` (STICK or SLIP)."""
+    def change(text):
+        text = set_card_value(text, r"MESH\s+SPHERE", "LEVEL", args.level)
+        return set_card_word(text, "PLATE", "STICK", plate)
+    case = f"table1_elastic_level{args.level}" + ("" if plate == "STICK" else "_" + plate.lower())
+    return variant_results(args, "table1_elastic", case, change, f"MESH SPHERE LEVEL={args.level}, PLATE {plate}")
 
-    The deck is made by text substitution of inputs/table1_elastic.inp into
-    OUT/figures/decks/ and run into OUT/figures/runs/<case>/, unless that run
-    was made from the same deck text by the same executable (a stamp file
-    holds both digests: `make build` touches the executable on every call).
+
+def fine_accel_results(args):
+    """Results of the Fig. 2 deck on MESH SPHERE LEVEL=args.level at TIME DT = FINE_ACCEL_DT_S (the sensor's
+    peak is converged in the step there: doc/verification.md)."""
+    def change(text):
+        text = set_card_value(text, r"MESH\s+SPHERE", "LEVEL", args.level)
+        return set_card_value(text, "TIME", "DT", f"{FINE_ACCEL_DT_S:g}")
+    return variant_results(args, "apple_center_accel", f"apple_center_accel_level{args.level}", change,
+                           f"MESH SPHERE LEVEL={args.level}, DT {FINE_ACCEL_DT_S:g} s")
+
+
+def variant_results(args, source_case, case, change, label):
+    """Results of a variant of inputs/<source_case>.inp made by `change` (text -> text).
+
+    The deck is written to OUT/figures/decks/<case>.inp and run into
+    OUT/figures/runs/<case>/, unless that run was made from the same deck
+    text by the same executable (a stamp file holds both digests: `make
+    build` touches the executable on every call).
     """
-    source = os.path.join(args.inputs, "table1_elastic.inp")
+    source = os.path.join(args.inputs, source_case + ".inp")
     if not os.path.isfile(source):
         fail(f"deck {source} not found")
     with open(source) as handle:
         text = handle.read()
     try:
-        text = set_card_value(text, r"MESH\s+SPHERE", "LEVEL", args.level)
-        text = set_card_word(text, "PLATE", "STICK", plate)
+        text = change(text)
     except ValueError as problem:
         fail(f"{source}: {problem}")
-    text = re.sub(r"(?im)^(\s*TITLE\s.*)$",
-                  lambda m: m.group(1) + f" [figures.py: MESH SPHERE LEVEL={args.level}, PLATE {plate}]",
-                  text, count=1)
-    case = f"table1_elastic_level{args.level}" + ("" if plate == "STICK" else "_" + plate.lower())
+    text = re.sub(r"(?im)^(\s*TITLE\s.*)$", lambda m: m.group(1) + f" [figures.py: {label}]", text, count=1)
     deck_dir = os.path.join(args.out, "figures", "decks")
     run_dir = os.path.join(args.out, "figures", "runs")
     os.makedirs(deck_dir, exist_ok=True)
@@ -320,34 +339,51 @@ def mark_peak(ax, t_peak, peak, text, colour, offset=(-10, 10), ha="right"):
                 fontsize=10, bbox=dict(boxstyle="round,pad=0.2", fc="w", ec="none", alpha=0.85), zorder=6)
 
 
-def figure2(accel, accel_sep, path, written):
-    """Fig. 2: a_z of the node nearest the centre and of the centre of mass (g) against time since contact."""
-    fig, ax = plt.subplots(figsize=(9, 6.4))
+def figure2(accel, accel_sep, fine, path, written):
+    """Fig. 2: upward acceleration (g) against time since contact. Top: the decks as run (the paper's grid and
+    step), the accelerometer (the sensor of PROBE accelerometer ... RADIUS=, a mass-weighted mean over a 10 mm
+    ball), the node nearest the centre and the centre of mass. Bottom: the same on the fine grid at a step
+    where the sensor is converged: the node rings, the sensor does not."""
+    sensor = "accelerometer_sensor_az_m_s2"
+    key = "probe_accelerometer_sensor_accel_max_g"
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(9, 10), sharex=True)
     runs = []
     if accel_sep is not None:
-        runs.append((accel_sep, "C1", "SLIP + release, to separation ({}.inp)"))
-    runs.append((accel, "C0", "STICK, to maximum deformation ({}.inp, the paper's procedure)"))
+        runs.append((accel_sep, "C1", "SLIP + release, to separation"))
+    runs.append((accel, "C0", "STICK, to maximum deformation"))
     for run, colour, what in runs:
-        t, node, cm = after_contact(run, "accel_center_g", "az_cm_m_s2")
-        what = what.format(run["case"])
-        ax.plot(t, node, "-", color=colour, lw=1.8, label=f"node nearest the centre, {what}")
-        ax.plot(t, cm / STANDARD_GRAVITY, "--", color=colour, lw=2.0, label=f"centre of mass, {what}")
-    peak = summary_float(accel, "accel_center_max_g")
-    t_peak = summary_float(accel, "t_accel_center_max_ms")
-    mark_peak(ax, t_peak, peak, f"centre node: {peak:.0f} g at {t_peak:.2f} ms", "C0", offset=(10, 6), ha="left")
-    cm_peak = summary_float(accel, "accel_cm_max_g")
-    ax.axhline(0.0, color="k", lw=0.6)
-    ax.set_xlim(left=0.0)
-    ax.set_xlabel("time since first contact t (ms)")
-    ax.set_ylabel("upward acceleration a_z (g = 9.80665 m/s²)")
-    ax.set_title(f"Fig. 2: acceleration at the centre of a Golden Delicious apple, 25.4 mm drop "
-                 f"(V = {summary_float(accel, 'impact_velocity_m_s'):.4f} m/s)\n"
-                 f"{mesh_label(accel)}, Δt {summary_float(accel, 'dt_s') * 1e3:g} ms, Table 3 (0.7 m/s) "
-                 f"viscoelastic constants; centre of mass peaks at {cm_peak:.1f} g")
-    fig.legend(*ax.get_legend_handles_labels(), loc="lower center", ncol=1, frameon=False,
-               title="solid: a_z of the node nearest the centre (the accelerometer);  "
-                     "dashed: a_z of the centre of mass (mass-weighted mean)", title_fontsize=9)
-    fig.tight_layout(rect=(0, 0.2, 1, 1))
+        t, node, probe, cm = after_contact(run, "accel_center_g", sensor, "az_cm_m_s2")
+        top.plot(t, node, "-", color=colour, lw=0.7, alpha=0.45, label=f"node nearest the centre, {what}")
+        top.plot(t, probe / STANDARD_GRAVITY, "-", color=colour, lw=2.0, label=f"accelerometer (10 mm), {what}")
+        top.plot(t, cm / STANDARD_GRAVITY, "--", color=colour, lw=1.6, label=f"centre of mass, {what}")
+    peak, t_peak = summary_float(accel, key), summary_float(accel, "t_" + key[:-1] + "ms")
+    mark_peak(top, t_peak, peak, f"accelerometer: {peak:.0f} g at {t_peak:.2f} ms", "C0", offset=(10, 6), ha="left")
+    top.set_title(f"the decks as given (the paper's grid and step): {mesh_label(accel)}, Δt {summary_float(accel, 'dt_s') * 1e3:g} ms "
+                  "", fontsize=10)
+    t, node, probe, cm = after_contact(fine, "accel_center_g", sensor, "az_cm_m_s2")
+    bottom.plot(t, node, "-", color="0.6", lw=0.6, label="node nearest the centre")
+    bottom.plot(t, probe / STANDARD_GRAVITY, "-", color="C0", lw=2.0, label="accelerometer (10 mm)")
+    bottom.plot(t, cm / STANDARD_GRAVITY, "--", color="k", lw=1.6, label="centre of mass")
+    peak, t_peak = summary_float(fine, key), summary_float(fine, "t_" + key[:-1] + "ms")
+    mark_peak(bottom, t_peak, peak, f"accelerometer: {peak:.0f} g", "C0", offset=(10, 6), ha="left")
+    node_peak = summary_float(fine, "accel_center_max_g")
+    bottom.set_title(f"STICK, {mesh_label(fine)}, Δt {summary_float(fine, 'dt_s') * 1e3:g} ms: the node peaks "
+                     f"at {node_peak:.0f} g (off the scale: it rings), the centre of mass at "
+                     f"{summary_float(fine, 'accel_cm_max_g'):.1f} g", fontsize=10)
+    limit = 2.0 * max(peak, summary_float(accel, key))
+    for ax in (top, bottom):
+        ax.axhline(0.0, color="k", lw=0.6)
+        ax.set_xlim(left=0.0)
+        ax.set_ylim(-0.5 * limit, limit)
+        ax.set_ylabel("upward acceleration a_z (g)")
+        ax.grid(lw=0.3)
+        ax.legend(fontsize=8, loc="upper left", ncol=1 if ax is bottom else 2, framealpha=0.9)
+    bottom.set_xlabel("time since first contact t (ms)")
+    fig.suptitle(f"Fig. 2: acceleration at the centre of a Golden Delicious apple, 25.4 mm drop\n"
+                 f"(V = {summary_float(accel, 'impact_velocity_m_s'):.4f} m/s, Table 3 constants at 0.7 m/s); "
+                 "accelerometer: mean a_z of the nodes within 5 mm\nof the centre (PROBE ... RADIUS=0.005, "
+                 "a sensor 10 mm across); g = 9.80665 m/s²", fontsize=11)
+    fig.tight_layout()
     save(fig, path, written)
 
 
@@ -577,7 +613,8 @@ def main():
     slip = load_run(fine_table1_results(args, "SLIP"))
 
     written = []
-    figure2(accel, accel_sep, os.path.join(figures, "fig2_center_acceleration.png"), written)
+    figure2(accel, accel_sep, load_run(fine_accel_results(args)), os.path.join(figures, "fig2_center_acceleration.png"),
+            written)
     hertz_peak = table1_figure(coarse, fine, slip, "alpha", os.path.join(figures, "fig3_deformation.png"), written)
     table1_figure(coarse, fine, slip, "q", os.path.join(figures, "fig4_pressure.png"), written)
     apple_figure(slow, "Figs. 5-6 at 0.7 m/s", os.path.join(figures, "fig5_apple_0.7.png"), written)

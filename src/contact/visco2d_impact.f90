@@ -2,11 +2,12 @@
 !> every step of a dynamic run with a PLATE: first contact (t = 0 of the
 !> results), alpha = the approach of the centre of mass since then, the plate
 !> force and the pressure at the pole, the contact radius, the centre's
-!> acceleration, their maxima, and the stop criteria of the STOP card.
+!> acceleration and the sensors' (PROBE ... RADIUS=), their maxima, and the
+!> stop criteria of the STOP card.
 module visco2d_impact
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_strings, only: short_real
-  use visco2d_deck, only: deck_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
+  use visco2d_deck, only: deck_t, probe_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
   use visco2d_assembly, only: node_dof, nodal_field
   use visco2d_static, only: node_corners, corner_stress
   use visco2d_element, only: element_strains, gauss_count
@@ -21,6 +22,7 @@ module visco2d_impact
   private
 
   public :: impact_t, impact_start, impact_measure, impact_summary, impact_columns, impact_row, impact_surface_stress
+  public :: sensor_acceleration
 
   !> One g, m/s^2, the unit of accel_center_g (the standard acceleration of gravity).
   real(dp), parameter :: g_unit = 9.80665_dp
@@ -51,6 +53,9 @@ module visco2d_impact
     real(dp) :: radius = 0.0_dp, radius_max = 0.0_dp
     real(dp) :: accel_centre = 0.0_dp, accel_max = -huge(1.0_dp), t_accel_max = 0.0_dp
     real(dp) :: accel_cm_max = -huge(1.0_dp)
+    real(dp), allocatable :: mass_z(:)        !< (nnode, node order) lumped mass of each node's z equation (sensor weights)
+    !> (probe) the sensor's a_z now and its largest value since contact, and when (PROBE ... RADIUS=)
+    real(dp), allocatable :: sensor(:), sensor_max(:), t_sensor_max(:)
     real(dp), allocatable :: pressure(:)      !< (nnode) recovered contact pressure, Pa
     logical, allocatable :: ever_active(:)    !< (nnode) on the plate at some step
     !> (nnode) contact pressure (Pa) and deformed r (m) at the largest plate force and at the largest sampled alpha
@@ -93,7 +98,53 @@ contains
     impact%r_at_alpha_max = deck%mesh%xy(1, :)
     impact%stop_reason = 'end of time'
     impact%accel_centre = a(node_dof(deck%mesh, impact%centre_node, 2))
+    associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
+    impact%mass_z = nodal_mass(2, :)
+    end associate
+    allocate(impact%sensor(size(deck%probes)), impact%t_sensor_max(size(deck%probes)))
+    impact%sensor = 0.0_dp
+    impact%t_sensor_max = 0.0_dp
+    impact%sensor_max = spread(-huge(1.0_dp), 1, size(deck%probes))
+    call measure_sensors(impact, deck, a)
   end subroutine impact_start
+
+  !> The rigid-body acceleration (a_r, a_z) of a sensor's region: the
+  !> mass-weighted mean sum m_i a_i / sum m_i over its nodes, m the lumped
+  !> masses (per radian in axisymmetry, as the region's rings), a in band
+  !> order. It is what an accelerometer of that size reads: the rate of
+  !> change of the region's momentum over its mass. A rigid translation
+  !> gives its acceleration exactly; the mesh-scale ringing of single nodes
+  !> averages out over a region many elements wide.
+  pure function sensor_acceleration(deck, probe, mass_z, a) result(mean)
+    type(deck_t), intent(in) :: deck
+    type(probe_t), intent(in) :: probe
+    real(dp), intent(in) :: mass_z(:), a(:)
+    real(dp) :: mean(2)
+    real(dp) :: weight
+    integer :: i, node
+    mean = 0.0_dp
+    weight = 0.0_dp
+    do i = 1, size(probe%region)
+      node = probe%region(i)
+      mean = mean + mass_z(node)*[a(node_dof(deck%mesh, node, 1)), a(node_dof(deck%mesh, node, 2))]
+      weight = weight + mass_z(node)
+    end do
+    if (weight > 0.0_dp) mean = mean/weight
+  end function sensor_acceleration
+
+  !> a_z of every sensor now (0 for a probe without RADIUS=).
+  pure subroutine measure_sensors(impact, deck, a)
+    type(impact_t), intent(inout) :: impact
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: a(:)
+    real(dp) :: mean(2)
+    integer :: k
+    do k = 1, size(deck%probes)
+      if (deck%probes(k)%radius <= 0.0_dp) cycle
+      mean = sensor_acceleration(deck, deck%probes(k), impact%mass_z, a)
+      impact%sensor(k) = mean(2)
+    end do
+  end subroutine measure_sensors
 
   !> After the step from t - dt to t: first contact (interpolated within the
   !> step at `touch_fraction`, linear in time), force and pressure from the
@@ -109,7 +160,7 @@ contains
     real(dp), intent(in) :: reaction(:), u(:), v(:), a(:), stress(:, :, :)
     logical, intent(out) :: new_alpha_max, new_q_max
     real(dp) :: s(4), since
-    integer :: nearest
+    integer :: nearest, k
     new_alpha_max = .false.
     new_q_max = .false.
     associate (m => impact)
@@ -134,6 +185,7 @@ contains
     m%have_surface_tau = .false.
     m%radius = contact_radius(deck, contact)
     m%accel_centre = a(node_dof(deck%mesh, m%centre_node, 2))
+    call measure_sensors(m, deck, a)
     if (m%t_contact < 0.0_dp) return
     since = t - m%t_contact
     m%contact_nodes_max = max(m%contact_nodes_max, m%contact_nodes)
@@ -167,6 +219,9 @@ contains
     call keep_max(m%q_surface, m%q_surface_max, m%t_q_surface_max)
     call keep_max(m%force, m%force_max, m%t_force_max)
     call keep_max(m%accel_centre, m%accel_max, m%t_accel_max)
+    do k = 1, size(m%sensor)
+      if (deck%probes(k)%radius > 0.0_dp) call keep_max(m%sensor(k), m%sensor_max(k), m%t_sensor_max(k))
+    end do
     m%radius_max = max(m%radius_max, m%radius)
     m%accel_cm_max = max(m%accel_cm_max, cm(3))
     ! The paper's criterion: the free node nearest the plate moves up.
@@ -338,7 +393,7 @@ contains
     type(contact_t), intent(in) :: contact
     type(record_t), intent(inout) :: record
     real(dp), intent(in) :: mass, t_end
-    integer :: row, t_column, uz_column, t_ms_column, alpha_column
+    integer :: row, t_column, uz_column, t_ms_column, alpha_column, k
     real(dp) :: alpha_peak, t_peak
     associate (m => impact)
     call record_put_real(record, 'plate_z_m', deck%plate%z)
@@ -379,6 +434,12 @@ contains
       call record_put_real(record, 'accel_center_max_g', m%accel_max/g_unit)
       call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*m%t_accel_max)
       call record_put_real(record, 'accel_cm_max_g', m%accel_cm_max/g_unit)
+      do k = 1, size(deck%probes)
+        if (deck%probes(k)%radius <= 0.0_dp) cycle
+        call record_put_real(record, 'probe_'//deck%probes(k)%name//'_sensor_accel_max_g', m%sensor_max(k)/g_unit)
+        call record_put_real(record, 't_probe_'//deck%probes(k)%name//'_sensor_accel_max_ms', &
+                             1.0e3_dp*m%t_sensor_max(k))
+      end do
       if (m%t_separation >= 0.0_dp) then
         call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*m%t_separation)
         call record_put_real(record, 'rebound_velocity_m_s', m%v_separation)

@@ -12,7 +12,7 @@ module visco2d_dynamic_record
   use visco2d_static, only: node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot, record_insert_snapshot
-  use visco2d_impact, only: impact_t, impact_columns, impact_row
+  use visco2d_impact, only: impact_t, impact_columns, impact_row, sensor_acceleration
   use visco2d_operators, only: operators_t
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_energy_book, only: energy_book_t
@@ -45,6 +45,7 @@ module visco2d_dynamic_record
     integer :: next_field = 1
     logical :: contact_on = .false.
     real(dp), allocatable :: mass_z(:)    !< lumped masses of the z equations
+    real(dp), allocatable :: node_mass(:) !< (nnode, node order) the same, the weights of a sensor (PROBE ... RADIUS=)
     real(dp) :: body_mass = 0.0_dp        !< per radian in axisymmetry
     real(dp) :: basis_factor = 1.0_dp     !< whole_body_factor: solver integrals to the reported energy_basis
   end type dynamic_log_t
@@ -64,6 +65,9 @@ contains
       'ar_m_s2 ', 'az_m_s2 ', 'sr_Pa   ', 'sz_Pa   ', 'st_Pa   ', 'trz_Pa  ']
     log%contact_on = contact_on
     log%mass_z = mass(2::2)
+    associate (nodal_mass => nodal_field(deck%mesh, mass))
+    log%node_mass = nodal_mass(2, :)
+    end associate
     log%body_mass = sum(mass(2::2))
     log%basis_factor = whole_body_factor(deck%geometry)
     log%width = max(6, len(itoa(total_steps(deck))))
@@ -79,6 +83,8 @@ contains
       do k = 1, size(probe_columns)
         columns = [character(len=48) :: columns, deck%probes(p)%name//'_'//trim(probe_columns(k))]
       end do
+      if (deck%probes(p)%radius > 0.0_dp) columns = [character(len=48) :: columns, &
+        deck%probes(p)%name//'_sensor_ar_m_s2', deck%probes(p)%name//'_sensor_az_m_s2']
     end do
     call history_define(record, columns, total_steps(deck)/deck%output%every + 2)
     allocate(log%row(size(columns)))
@@ -127,6 +133,9 @@ contains
                               corner_stress(state%stress, log%probe_corners(p)%pairs)]
       end associate
       first = first + 10
+      if (deck%probes(p)%radius <= 0.0_dp) cycle
+      row(first:first + 1) = sensor_acceleration(deck, deck%probes(p), log%node_mass, state%a)
+      first = first + 2
     end do
     call history_append(record, row)
     end associate
@@ -284,9 +293,28 @@ contains
     call record_put_real(record, 'gravity_work_J', f*book%gravity_work)
     call record_put_real(record, 'initial_kinetic_J', f*book%kinetic0)
     if (log%contact_on) call record_put_real(record, 'contact_loss_J', f*book%contact_loss)
+    call put_sensor_summary(log, deck, record)
     call record_put_real(record, 'balance_error_J', f*book%balance)
     call record_put_real(record, 'balance_error_max_J', f*book%balance_max)
     call record_put_real(record, 'balance_error_max_rel', book%balance_max/max(book%input_max, tiny(1.0_dp)))
     end associate
   end subroutine put_end_summary
+
+  !> What each sensor (PROBE ... RADIUS=) covers: its radius, its number of
+  !> nodes and their mass (on the energy_basis: whole body in axisymmetry).
+  subroutine put_sensor_summary(log, deck, record)
+    type(dynamic_log_t), intent(in) :: log
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    integer :: p
+    do p = 1, size(deck%probes)
+      associate (probe => deck%probes(p))
+      if (probe%radius <= 0.0_dp) cycle
+      call record_put_real(record, 'probe_'//probe%name//'_sensor_radius_m', probe%radius)
+      call record_put_integer(record, 'probe_'//probe%name//'_sensor_nodes', size(probe%region))
+      call record_put_real(record, 'probe_'//probe%name//'_sensor_mass_kg', &
+                           log%basis_factor*sum(log%node_mass(probe%region)))
+      end associate
+    end do
+  end subroutine put_sensor_summary
 end module visco2d_dynamic_record

@@ -11,7 +11,7 @@ module visco2d_deck_targets
                            named_word, positional_word, positional_real, &
                            check_fields_used, has_field, field_column
   use visco2d_mesh, only: node_set, node_index, edge_set_code, edge_set_none, edge_set_axis
-  use visco2d_deck_types, only: deck_t, pressure_t, expect_t, analysis_static, line_error
+  use visco2d_deck_types, only: deck_t, pressure_t, expect_t, analysis_static, analysis_dynamic, line_error, add_warning
   implicit none
   private
 
@@ -25,6 +25,7 @@ module visco2d_deck_targets
     character(:), allocatable :: target
     character(:), allocatable :: components
     real(dp) :: values(2) = 0.0_dp
+    real(dp) :: radius = 0.0_dp         !< PROBE RADIUS= (m), 0 if none
     character(:), allocatable :: curve  !< CURVE= name, '' if none
   end type pending_t
 
@@ -115,7 +116,9 @@ contains
     forces = [forces, force]
   end subroutine read_force
 
-  !> PROBE name NODE=n   or   PROBE name R=.. Z=..  (the nearest node)
+  !> PROBE name NODE=n   or   PROBE name R=.. Z=..  (the nearest node), [RADIUS=..]:
+  !> with a radius (m, > 0) the probe is also a sensor, the mass-weighted mean
+  !> acceleration of the nodes within RADIUS of the probe point (DYNAMIC only).
   subroutine read_probe(cards, card, index, probes, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -145,7 +148,15 @@ contains
       call named_real(cards, card, 'Z', probe%values(2), error, range=length_range); if (allocated(error)) return
       probe%target = ''
     end if
-    call check_fields_used(cards, card, error, 'PROBE name NODE=n | R=.. Z=..'); if (allocated(error)) return
+    if (has_field(card, 'RADIUS')) then
+      call named_real(cards, card, 'RADIUS', probe%radius, error, range=length_range); if (allocated(error)) return
+      if (.not. probe%radius > 0.0_dp) then
+        call card_error(error, cards, card, 'RADIUS= is the sensor radius and must be positive, got '// &
+                        short_real(probe%radius), field_column(card, 'RADIUS')); return
+      end if
+    end if
+    call check_fields_used(cards, card, error, 'PROBE name NODE=n | R=.. Z=.. [RADIUS=..]')
+    if (allocated(error)) return
     probes = [probes, probe]
   end subroutine read_probe
 
@@ -323,23 +334,41 @@ contains
 
   !> TIME belongs to QUASISTATIC and DYNAMIC (required there), not to STATIC.
 
-  !> PROBE targets to nodes (NODE=, or the node nearest R=, Z=).
+  !> PROBE targets to nodes (NODE=, or the node nearest R=, Z=), and a
+  !> sensor's region: the nodes within RADIUS of the probe point (R=, Z=, or
+  !> the node of NODE=), the probe's node always among them.
   subroutine resolve_probes(deck, pending, error)
     type(deck_t), intent(inout) :: deck
     type(pending_t), intent(in) :: pending(:)
     type(error_t), allocatable, intent(inout) :: error
-    integer :: k
+    integer :: k, i
+    real(dp) :: point(2)
     real(dp), allocatable :: distance(:)
     allocate(deck%probes(size(pending)))
     do k = 1, size(pending)
-      deck%probes(k)%name = to_lower(pending(k)%components)
+      associate (probe => deck%probes(k), card => deck%cards%cards(pending(k)%card))
+      probe%name = to_lower(pending(k)%components)
       if (len(pending(k)%target) > 0) then
-        deck%probes(k)%node = target_node(deck, pending(k), error)
+        probe%node = target_node(deck, pending(k), error)
         if (allocated(error)) return
+        point = deck%mesh%xy(:, probe%node)
       else
-        distance = (deck%mesh%xy(1, :) - pending(k)%values(1))**2 + (deck%mesh%xy(2, :) - pending(k)%values(2))**2
-        deck%probes(k)%node = minloc(distance, dim=1)
+        point = pending(k)%values
       end if
+      distance = hypot(deck%mesh%xy(1, :) - point(1), deck%mesh%xy(2, :) - point(2))
+      if (len(pending(k)%target) == 0) probe%node = minloc(distance, dim=1)
+      probe%radius = pending(k)%radius
+      if (probe%radius <= 0.0_dp) cycle
+      if (deck%analysis /= analysis_dynamic) then
+        call card_error(error, deck%cards, card, 'RADIUS= makes the probe a sensor (a mean acceleration), '// &
+                        'which needs ANALYSIS DYNAMIC', field_column(card, 'RADIUS')); return
+      end if
+      distance(probe%node) = 0.0_dp
+      probe%region = pack([(i, i = 1, deck%mesh%nnode)], distance <= probe%radius*(1.0_dp + 1.0e-9_dp))
+      if (size(probe%region) == 1) call add_warning(deck, card%line, 'PROBE', 'sensor '//probe%name// &
+        ' holds one node: RADIUS='//short_real(probe%radius)//' m is below the mesh spacing there, so it reads '// &
+        'that node''s acceleration (a larger radius or a finer mesh averages)')
+      end associate
     end do
   end subroutine resolve_probes
 end module visco2d_deck_targets

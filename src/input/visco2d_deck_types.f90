@@ -60,10 +60,14 @@ module visco2d_deck_types
     integer :: line = 0
   end type force_t
 
-  !> A node whose displacement and stress are reported in the summary and history.
+  !> A node whose displacement and stress are reported in the summary and history;
+  !> with RADIUS= also a sensor: the mass-weighted mean acceleration of the
+  !> nodes within the radius (the rigid-body acceleration of that region).
   type :: probe_t
     character(:), allocatable :: name
     integer :: node = 0
+    real(dp) :: radius = 0.0_dp           !< m, RADIUS=; 0: no sensor
+    integer, allocatable :: region(:)     !< the sensor's nodes (radius > 0): within radius of the probe point
   end type probe_t
 
   !> An expected value of a summary key (an analytic answer the deck documents).

@@ -1,0 +1,162 @@
+!> The sensor of PROBE ... RADIUS= (visco2d_impact's sensor_acceleration,
+!> the history columns <name>_sensor_ar_m_s2 / _sensor_az_m_s2 and the
+!> summary keys probe_<name>_sensor_*): the mass-weighted mean acceleration
+!> of the nodes within the radius.
+!>
+!>  1. Free flight under gravity (a block, no plate): every node falls with
+!>     a = -g, so a sensor reads a_z = -g and a_r = 0 at every row, to the
+!>     round-off of the solve (each node's a_z is -g to ~1e-11 relative;
+!>     checked at 1e-9, as inputs/free_flight.inp's EXPECT cards); its region is the
+!>     nodes within the radius (counted here from the grid); a sensor that
+!>     covers the whole body has the body's mass.
+!>  2. An impact (the Fig. 2 apple, a 10 mm accelerometer: RADIUS = 5 mm):
+!>     a sensor covering the whole body reads the centre-of-mass
+!>     acceleration az_cm_m_s2 at every row (the same mass-weighted mean,
+!>     1e-9 relative to its peak); on levels 1 and 2 (dt 5e-6 s) the
+!>     sensor's peak changes by less than the raw centre node's, and lies
+!>     closer to the centre-of-mass peak (the node's ringing averages out).
+!>  3. A bad RADIUS= (zero, negative) and RADIUS= outside DYNAMIC are refused
+!>     at the card with the column of RADIUS=.
+program test_sensor
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, error_text
+  use visco2d_deck, only: deck_t, read_deck
+  use visco2d_dynamic, only: solve_dynamic
+  use visco2d_record, only: record_t
+  use visco2d_strings, only: itoa
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
+                             history_column, summary_real
+  implicit none
+
+  character(*), parameter :: folder = 'build/test-tmp/test_sensor'
+  integer, parameter :: line_length = 100
+  real(dp), parameter :: g_unit = 9.80665_dp
+
+  call execute_command_line('mkdir -p '//folder)
+  call test_free_flight()
+  call test_impact()
+  call test_refused()
+  call test_summary('test_sensor')
+
+contains
+
+  !> Write TITLE + body + END, read and run it; .false. (and a failed check) if it does not run.
+  logical function run_deck(name, body, record) result(ok)
+    character(*), intent(in) :: name
+    character(len=line_length), intent(in) :: body(:)
+    type(record_t), intent(out) :: record
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(len=line_length), allocatable :: lines(:)
+    allocate(lines(size(body) + 2))
+    lines(1) = 'TITLE '//name
+    lines(2:size(body) + 1) = body
+    lines(size(body) + 2) = 'END'
+    call write_deck(folder//'/'//name//'.inp', lines)
+    call read_deck(folder//'/'//name//'.inp', deck, error)
+    if (.not. allocated(error)) call solve_dynamic(deck, record, error)
+    ok = .not. allocated(error)
+    if (.not. ok) call check('run_'//name, .false., error_text(error))
+  end function run_deck
+
+  !> 1. Free flight: a = -g exactly, at every row, for a small and a whole-body sensor.
+  subroutine test_free_flight()
+    type(record_t) :: record
+    real(dp), allocatable :: az(:), ar(:), whole(:)
+    print '(a)', '## 1. Free flight under gravity (MESH RECT 2 x 2, 10 mm, G = 9.8)'
+    if (.not. run_deck('free_flight', [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
+        'MATERIAL flesh ELASTIC E=1e6 NU=0.3 RHO=800', 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', &
+        'INITIAL VZ=-1', 'GRAVITY G=9.8', 'TIME DT=1e-5 TEND=1e-3', 'OUTPUT EVERY=10', &
+        'PROBE middle R=0 Z=0.005 RADIUS=0.005', 'PROBE whole R=0 Z=0.005 RADIUS=1'], record)) return
+    az = history_column(record, 'middle_sensor_az_m_s2')
+    ar = history_column(record, 'middle_sensor_ar_m_s2')
+    whole = history_column(record, 'whole_sensor_az_m_s2')
+    call check('free flight: rows', size(az) > 10, itoa(size(az))//' rows')
+    call check('free flight: sensor a_z = -g at every row (1e-9 relative)', &
+               all(abs(az + 9.8_dp) <= 1.0e-9_dp*9.8_dp), 'worst '//real_text(maxval(abs(az + 9.8_dp))))
+    call check('free flight: sensor a_r = 0 at every row', all(abs(ar) <= 1.0e-9_dp*9.8_dp), &
+               'worst '//real_text(maxval(abs(ar))))
+    call check('free flight: whole-body sensor a_z = -g', all(abs(whole + 9.8_dp) <= 1.0e-9_dp*9.8_dp))
+    ! Nodes of the 2 x 2 grid (spacing 5 mm) within 5 mm of (0, 5 mm): (0, 0), (0, 5), (0, 10), (5, 5) mm.
+    call check_close('free flight: the sensor holds the 4 nodes within 5 mm', &
+                     summary_real(record, 'probe_middle_sensor_nodes'), 4.0_dp, 0.0_dp)
+    call check_close('free flight: the sensor holds all 9 nodes at RADIUS=1', &
+                     summary_real(record, 'probe_whole_sensor_nodes'), 9.0_dp, 0.0_dp)
+    call check_close('free flight: the whole-body sensor has the body mass', &
+                     summary_real(record, 'probe_whole_sensor_mass_kg'), summary_real(record, 'mass_kg'), 1.0e-12_dp)
+  end subroutine test_free_flight
+
+  !> 2. The Fig. 2 apple: the whole-body sensor is the centre of mass; the 10 mm sensor converges where the node rings.
+  subroutine test_impact()
+    type(record_t) :: record
+    real(dp) :: node(2), sensor(2), cm(2), change_node, change_sensor
+    real(dp), allocatable :: whole(:), az_cm(:)
+    integer :: level
+    print '(a)', '## 2. The Fig. 2 apple (25.4 mm drop, STICK, dt 5e-6 s): centre node, 10 mm sensor, centre of mass'
+    print '(a)', '| level | centre node peak (g) | sensor peak, RADIUS 5 mm (g) | sensor nodes | centre of mass peak (g) |'
+    print '(a)', '|---|---|---|---|---|'
+    do level = 1, 2
+      if (.not. run_deck('apple_L'//itoa(level), [character(len=line_length) :: 'ANALYSIS DYNAMIC', &
+          'GEOMETRY AXISYMMETRIC', 'MATERIAL golden VISCOELASTIC K=1.756e6 RHO=790', 'PRONY G=0.636e6 BETA=0.000347', &
+          'PRONY G=0.111e6 BETA=0.0409', 'PRONY G=0.208e6 BETA=1.121', 'PRONY G=0.099e6 BETA=35.26', &
+          'MESH SPHERE R=0.035 LEVEL='//itoa(level), 'DROP HEIGHT=0.0254', 'GRAVITY G=9.8', &
+          'TIME DT=5e-6 TEND=8e-3', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION', &
+          'PROBE accelerometer R=0 Z=0.035 RADIUS=0.005', 'PROBE whole R=0 Z=0.035 RADIUS=1'], record)) return
+      node(level) = summary_real(record, 'accel_center_max_g')
+      sensor(level) = summary_real(record, 'probe_accelerometer_sensor_accel_max_g')
+      cm(level) = summary_real(record, 'accel_cm_max_g')
+      print '(a, i0, 2(a, f0.2), a, i0, a, f0.2, a)', '| ', level, ' | ', node(level), ' | ', sensor(level), ' | ', &
+        nint(summary_real(record, 'probe_accelerometer_sensor_nodes')), ' | ', cm(level), ' |'
+      whole = history_column(record, 'whole_sensor_az_m_s2')
+      az_cm = history_column(record, 'az_cm_m_s2')
+      if (size(whole) /= size(az_cm) .or. size(whole) == 0) cycle
+      call check('impact level '//itoa(level)//': whole-body sensor = centre of mass at every row (1e-9 of its peak)', &
+                 all(abs(whole - az_cm) <= 1.0e-9_dp*maxval(abs(az_cm))), &
+                 'worst '//real_text(maxval(abs(whole - az_cm))))
+      call check('impact level '//itoa(level)//': the sensor is nearer the centre of mass than the node', &
+                 abs(sensor(level) - cm(level)) < abs(node(level) - cm(level)))
+    end do
+    change_node = abs(node(2) - node(1))/node(2)
+    change_sensor = abs(sensor(2) - sensor(1))/sensor(2)
+    call check('impact: levels 1 -> 2 change the sensor peak less than the centre node peak', &
+               change_sensor < change_node, 'sensor '//real_text(change_sensor)//', node '//real_text(change_node))
+  end subroutine test_impact
+
+  !> 3. Refused RADIUS= values.
+  subroutine test_refused()
+    print '(a)', '## 3. Refused RADIUS='
+    call expect_refused('radius_zero', 'ANALYSIS DYNAMIC', 'PROBE s R=0 Z=0 RADIUS=0', 'must be positive')
+    call expect_refused('radius_negative', 'ANALYSIS DYNAMIC', 'PROBE s R=0 Z=0 RADIUS=-0.001', 'must be positive')
+    call expect_refused('radius_static', 'ANALYSIS STATIC', 'PROBE s R=0 Z=0 RADIUS=0.001', 'needs ANALYSIS DYNAMIC')
+  end subroutine test_refused
+
+  subroutine expect_refused(name, analysis, probe, fragment)
+    character(*), intent(in) :: name, analysis, probe, fragment
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    character(:), allocatable :: text
+    character(len=line_length), allocatable :: lines(:)
+    lines = [character(len=line_length) :: 'TITLE '//name, analysis, 'GEOMETRY AXISYMMETRIC', &
+      'MATERIAL flesh ELASTIC E=1e6 NU=0.3 RHO=800', 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', 'FIX BOTTOM Z']
+    if (analysis /= 'ANALYSIS STATIC') lines = [character(len=line_length) :: lines, 'TIME DT=1e-5 TEND=1e-4']
+    lines = [character(len=line_length) :: lines, probe, 'END']
+    call write_deck(folder//'/'//name//'.inp', lines)
+    call read_deck(folder//'/'//name//'.inp', deck, error)
+    if (.not. allocated(error)) then
+      call check(name//' refused', .false., 'the deck was read')
+      return
+    end if
+    text = error_text(error)
+    call check_text_contains(name//': message', text, fragment)
+    call check_text_contains(name//': located at RADIUS=', text, ':'//itoa(size(lines) - 1)//':'// &
+                             itoa(index(probe, 'RADIUS'))//': PROBE:')
+  end subroutine expect_refused
+
+  function real_text(x) result(text)
+    real(dp), intent(in) :: x
+    character(:), allocatable :: text
+    character(len=32) :: buffer
+    write(buffer, '(es12.4)') x
+    text = trim(adjustl(buffer))
+  end function real_text
+end program test_sensor
