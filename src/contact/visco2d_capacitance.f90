@@ -14,7 +14,7 @@
 !> refactoring S~.
 module visco2d_capacitance
   use visco2d_kinds, only: dp
-  use visco2d_banded, only: band_matrix_t, band_solve_many
+  use visco2d_factor, only: factor_t, factor_solve_many
   implicit none
   private
 
@@ -82,7 +82,7 @@ contains
   !> distinct unsupported equations of a positive definite S~).
   subroutine capacitance_set(capacitance, factor, held, info)
     type(capacitance_t), intent(inout) :: capacitance
-    type(band_matrix_t), intent(in) :: factor
+    type(factor_t), intent(in) :: factor
     logical, intent(in) :: held(:)
     integer, intent(out) :: info
     integer :: i, j, c, m
@@ -135,7 +135,7 @@ contains
   !> multi-right-hand-side back-substitution (the store doubles when full).
   subroutine add_columns(capacitance, factor, new)
     type(capacitance_t), intent(inout) :: capacitance
-    type(band_matrix_t), intent(in) :: factor
+    type(factor_t), intent(in) :: factor
     integer, intent(in) :: new(:)
     real(dp), allocatable :: grown(:, :)
     integer :: capacity, first, last, k
@@ -154,7 +154,7 @@ contains
       capacitance%columns(new(k), first + k - 1) = 1.0_dp
       capacitance%column_of(new(k)) = first + k - 1
     end do
-    call band_solve_many(factor, capacitance%columns(:, first:last))
+    call factor_solve_many(factor, capacitance%columns(:, first:last))
     capacitance%stored = last
     capacitance%solves = capacitance%solves + size(new)
   end subroutine add_columns
