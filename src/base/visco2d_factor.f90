@@ -16,22 +16,26 @@ module visco2d_factor
   use visco2d_kinds, only: dp
   use visco2d_banded, only: band_matrix_t, band_constrain_matrix, band_factor, band_solve, band_solve_many
   use visco2d_profile, only: profile_matrix_t, profile_from_band, profile_factor, profile_solve, profile_solve_many
+  use visco2d_cholmod, only: cholmod_factor_t, cholmod_compute, cholmod_solve, cholmod_solve_many, cholmod_entries
   implicit none
   private
 
   public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries
-  public :: solver_band, solver_profile, solver_default, solver_name
+  public :: solver_band, solver_profile, solver_cholmod, solver_default, solver_name
 
   integer, parameter :: solver_band = 1        !< band storage, LAPACK dpbtrf/dpbtrs
   integer, parameter :: solver_profile = 2     !< envelope storage (visco2d_profile)
-  integer, parameter :: solver_default = solver_profile
+  integer, parameter :: solver_cholmod = 3     !< sparse supernodal, fill-reducing order (visco2d_cholmod)
+  integer, parameter :: solver_default = solver_cholmod
 
   !> A factored constrained matrix: the band or the profile factor, as `solver` says.
   type :: factor_t
     integer :: solver = solver_default
+    integer :: storage = solver_default         !< the factor in use (CHOLMOD falls back to the profile)
     integer :: n = 0                            !< order
     type(band_matrix_t) :: band                 !< solver_band: the factor in band storage
     type(profile_matrix_t) :: profile           !< solver_profile: the factor in envelope storage
+    type(cholmod_factor_t) :: sparse            !< solver_cholmod: CHOLMOD's factor
     logical :: factored = .false.
   end type factor_t
 
@@ -44,6 +48,8 @@ contains
     select case (solver)
     case (solver_band)
       name = 'band'
+    case (solver_cholmod)
+      name = 'cholmod'
     case default
       name = 'profile'
     end select
@@ -62,11 +68,19 @@ contains
     integer, intent(in), optional :: solver
     if (present(solver)) factor%solver = solver
     factor%n = matrix%n
+    factor%storage = factor%solver
     select case (factor%solver)
     case (solver_band)
       factor%band = matrix
       call band_constrain_matrix(factor%band, constrained)
       call band_factor(factor%band, info)
+    case (solver_cholmod)
+      call cholmod_compute(factor%sparse, matrix, constrained, info)
+      if (info /= 0) then                   ! not positive definite, or CHOLMOD failed: the profile
+        factor%storage = solver_profile     ! factor finds the equation (or stands in)
+        call profile_from_band(matrix, factor%profile, constrained)
+        call profile_factor(factor%profile, info)
+      end if
     case default
       if (allocated(factor%band%ab)) deallocate(factor%band%ab)
       call profile_from_band(matrix, factor%profile, constrained)
@@ -79,9 +93,11 @@ contains
   subroutine factor_solve(factor, b)
     type(factor_t), intent(in) :: factor
     real(dp), intent(inout), contiguous :: b(:)
-    select case (factor%solver)
+    select case (factor%storage)
     case (solver_band)
       call band_solve(factor%band, b)
+    case (solver_cholmod)
+      call cholmod_solve(factor%sparse, b)
     case default
       call profile_solve(factor%profile, b)
     end select
@@ -90,10 +106,12 @@ contains
   !> Solve A X = B in place for the columns of B, one pass over the factor.
   subroutine factor_solve_many(factor, b)
     type(factor_t), intent(in) :: factor
-    real(dp), intent(inout) :: b(:, :)
-    select case (factor%solver)
+    real(dp), intent(inout), contiguous :: b(:, :)
+    select case (factor%storage)
     case (solver_band)
       call band_solve_many(factor%band, b)
+    case (solver_cholmod)
+      call cholmod_solve_many(factor%sparse, b)
     case default
       call profile_solve_many(factor%profile, b)
     end select
@@ -101,12 +119,14 @@ contains
 
   !> The number of reals the factor stores (n (kd + 1) for the band, the
   !> envelope for the profile).
-  pure integer(int64) function factor_entries(factor)
+  integer(int64) function factor_entries(factor)
     type(factor_t), intent(in) :: factor
-    select case (factor%solver)
+    select case (factor%storage)
     case (solver_band)
       factor_entries = 0
       if (allocated(factor%band%ab)) factor_entries = size(factor%band%ab, kind=int64)
+    case (solver_cholmod)
+      factor_entries = cholmod_entries(factor%sparse)
     case default
       factor_entries = 0
       if (allocated(factor%profile%values)) factor_entries = size(factor%profile%values, kind=int64)
