@@ -2,7 +2,7 @@
 !> (src/contact/visco2d_capacitance.f90) gives the same answer as eliminating them
 !> from S~ and refactoring (src/base/visco2d_banded.f90, band_constrain):
 !>
-!>  1. Algebra, on the band and on the profile factor (visco2d_factor): a
+!>  1. Algebra, on the band, profile and CHOLMOD factors (visco2d_factor): a
 !>     banded SPD matrix (n = 120, kd = 9, diagonally dominant,
 !>     condition number ~10), supports with prescribed values eliminated in
 !>     both, and sets of held equations with values. Both solve the same
@@ -24,7 +24,7 @@ program test_capacitance
   use visco2d_error, only: error_t, error_text
   use visco2d_banded, only: band_matrix_t, band_create, band_constrain, band_constrain_rhs, band_factor, band_solve, &
                             band_multiply
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_band, solver_profile, solver_name
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_band, solver_profile, solver_cholmod, solver_name
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
@@ -38,6 +38,7 @@ program test_capacitance
   call execute_command_line('mkdir -p '//folder)
   call test_algebra(solver_band)
   call test_algebra(solver_profile)
+  call test_algebra(solver_cholmod)
   call test_dynamic('stick', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION')
   call test_dynamic('slip_release', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION')
   call test_summary('test_capacitance')

@@ -1,4 +1,4 @@
-!> The profile (envelope) Cholesky of visco2d_profile against the band
+!> The profile (envelope) Cholesky of visco2d_profile and CHOLMOD's against the band
 !> Cholesky of visco2d_banded (LAPACK dpbtrf/dpbtrs) and a dense one
 !> (LAPACK dpotrf/dpotrs), through visco2d_factor:
 !>
@@ -20,15 +20,17 @@
 !>  2. The real S~ of eq. [35] (Table 1 impact, sphere level 2, Wilson-theta
 !>     at DT = 0.01 ms) with its supports, the same comparisons, and a
 !>     multi-right-hand-side solve equal to the single ones.
-!>  3. A singular matrix (a zero row left free): both solvers report the
+!>  3. A singular matrix (a zero row left free): every solver reports the
 !>     same equation.
+!> CHOLMOD (visco2d_cholmod) is checked against dense and band too, with the
+!> same bounds for n in place of w + 1 (its ordering is its own).
 program test_factor
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_banded, only: band_matrix_t, band_create, band_multiply, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, &
-                            solver_band, solver_profile, solver_name
+                            solver_band, solver_profile, solver_cholmod, solver_name
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness
   use visco2d_testing, only: check, test_summary, write_deck
@@ -165,17 +167,20 @@ contains
     character(*), intent(in) :: name
     type(band_matrix_t), intent(in) :: matrix
     logical, intent(in) :: fixed(:)
-    type(factor_t) :: band, profile
-    real(dp), allocatable :: a(:, :), dense(:, :), b(:), x_band(:), x_profile(:), x_dense(:), many(:, :)
-    real(dp) :: kappa, backward_bound, forward_bound, scale, l_band, l_profile, factor_difference
-    integer :: info_band, info_profile, info, n, i, j, k, w
+    type(factor_t) :: band, profile, sparse
+    real(dp), allocatable :: a(:, :), dense(:, :), b(:), x_band(:), x_profile(:), x_dense(:), x_sparse(:), many(:, :)
+    real(dp) :: kappa, backward_bound, forward_bound, scale, l_band, l_profile, factor_difference, sparse_backward
+    integer :: info_band, info_profile, info_sparse, info, n, i, j, k, w
     character(len=200) :: detail
     n = matrix%n
     call factor_compute(band, matrix, fixed, info_band, solver_band)
     call factor_compute(profile, matrix, fixed, info_profile, solver_profile)
     call check(name//': band factors', info_band == 0)
     call check(name//': profile factors', info_profile == 0)
-    if (info_band /= 0 .or. info_profile /= 0) return
+    call factor_compute(sparse, matrix, fixed, info_sparse, solver_cholmod)
+    call check(name//': CHOLMOD factors (not through the profile fallback)', &
+               info_sparse == 0 .and. sparse%storage == solver_cholmod)
+    if (info_band /= 0 .or. info_profile /= 0 .or. info_sparse /= 0) return
     call check(name//': the envelope is smaller than the band', factor_entries(profile) < factor_entries(band))
     a = dense_of(matrix, fixed)
     kappa = condition_number(a)
@@ -228,6 +233,24 @@ contains
                maxval(abs(x_profile - x_dense)) <= forward_bound*maxval(abs(x_dense)), &
                real_text(maxval(abs(x_profile - x_dense))/maxval(abs(x_dense)))//' > '//real_text(forward_bound))
 
+    ! CHOLMOD: another order of elimination, so its rows of L hold up to n
+    ! entries: the bounds with n in place of w + 1.
+    x_sparse = b
+    call factor_solve(sparse, x_sparse)
+    sparse_backward = n*gamma(n + 1)
+    call check(name//': CHOLMOD backward error below n gamma_(n+1)', backward_error(a, x_sparse, b) <= sparse_backward, &
+               real_text(backward_error(a, x_sparse, b))//' > '//real_text(sparse_backward))
+    call check(name//': CHOLMOD = dense dpotrf (to 2 n gamma_(n+1) kappa)', &
+               maxval(abs(x_sparse - x_dense)) <= 2.0_dp*sparse_backward*kappa*maxval(abs(x_dense)), &
+               real_text(maxval(abs(x_sparse - x_dense))/maxval(abs(x_dense)))//' > '// &
+               real_text(2.0_dp*sparse_backward*kappa))
+    call check(name//': CHOLMOD = band (to 2 n gamma_(n+1) kappa)', &
+               maxval(abs(x_sparse - x_band)) <= 2.0_dp*sparse_backward*kappa*maxval(abs(x_band)))
+    print '(a)', name//': CHOLMOD factor '//itoa64(factor_entries(sparse))//' reals; |x - x_dense|/|x|: band '// &
+      real_text(maxval(abs(x_band - x_dense))/maxval(abs(x_dense)))//', profile '// &
+      real_text(maxval(abs(x_profile - x_dense))/maxval(abs(x_dense)))//', CHOLMOD '// &
+      real_text(maxval(abs(x_sparse - x_dense))/maxval(abs(x_dense)))
+
     ! Several right-hand sides at once: each column as its single solve (the
     ! same operations on each column, in another order: the backward bound).
     allocate(many(n, 3))
@@ -242,6 +265,12 @@ contains
     many(:, 1) = b
     call factor_solve_many(band, many(:, 1:1))
     call check(name//': band, one column through solve_many = solve', all(many(:, 1) == x_band))
+    many(:, 1) = b
+    many(:, 2) = 2.0_dp*b
+    call factor_solve_many(sparse, many(:, 1:2))
+    call check(name//': CHOLMOD, two columns at once = one at a time (to 2 n gamma_(n+1) kappa)', &
+               maxval(abs(many(:, 1) - x_sparse)) <= 2.0_dp*sparse_backward*kappa*maxval(abs(x_sparse)) .and. &
+               maxval(abs(many(:, 2) - 2.0_dp*x_sparse)) <= 4.0_dp*sparse_backward*kappa*maxval(abs(x_sparse)))
   end subroutine compare_solvers
 
   !> Part 1: random envelopes, some equations constrained.
@@ -290,9 +319,9 @@ contains
   !> Part 3: equation 7 has no stiffness and no support: both report it.
   subroutine test_singular()
     type(band_matrix_t) :: matrix
-    type(factor_t) :: band, profile
+    type(factor_t) :: band, profile, sparse
     logical :: fixed(40)
-    integer :: info_band, info_profile, j
+    integer :: info_band, info_profile, info_sparse, j
     call make_matrix(40, 5, 1.0_dp, matrix)
     do j = max(1, 7 - 5), 7
       matrix%ab(1 + 7 - j, j) = 0.0_dp                 ! row 7, left of and on the diagonal
@@ -303,6 +332,8 @@ contains
     call factor_compute(profile, matrix, fixed, info_profile, solver_profile)
     call check('singular: band reports equation 7', info_band == 7)
     call check('singular: profile reports equation 7', info_profile == 7)
+    call factor_compute(sparse, matrix, fixed, info_sparse, solver_cholmod)
+    call check('singular: CHOLMOD reports equation 7 (found by the profile factor)', info_sparse == 7)
     fixed(7) = .true.
     call factor_compute(profile, matrix, fixed, info_profile, solver_profile)
     call check('singular: constrained, it factors (diagonal 1)', info_profile == 0)

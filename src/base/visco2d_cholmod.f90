@@ -32,11 +32,11 @@ module visco2d_cholmod
       integer(c_int), value :: n
       integer(c_int), intent(in) :: start(*), rows(*)
     end function visco2d_cholmod_analyze
-    integer(c_int) function visco2d_cholmod_factor(handle, values, rcond_floor) bind(c, name='visco2d_cholmod_factor')
+    integer(c_int) function visco2d_cholmod_factor(handle, values, pivot_floor) bind(c, name='visco2d_cholmod_factor')
       import :: c_ptr, c_int, c_double
       type(c_ptr), value :: handle
       real(c_double), intent(in) :: values(*)
-      real(c_double), value :: rcond_floor
+      real(c_double), value :: pivot_floor
     end function visco2d_cholmod_factor
     integer(c_int) function visco2d_cholmod_solve(handle, nrhs, b) bind(c, name='visco2d_cholmod_solve')
       import :: c_ptr, c_int, c_double
@@ -74,9 +74,9 @@ contains
 
   !> Factor the band matrix with the equations of `constrained` eliminated
   !> (row and column zeroed, diagonal kept, 1 if it was 0). info: 0 factored;
-  !> -1 not positive definite, or a pivot ratio min/max diag(L) below
-  !> sqrt(1e-13) (the caller then finds the equation with another solver);
-  !> > 0 CHOLMOD could not run (memory).
+  !> -1 not positive definite, or a pivot L(j,j)^2 below 1e-13 of its
+  !> diagonal, band_factor's test (the caller then finds the equation with
+  !> another solver); > 0 CHOLMOD could not run (memory).
   subroutine cholmod_compute(factor, band, constrained, info)
     type(cholmod_factor_t), intent(inout) :: factor
     type(band_matrix_t), intent(in) :: band
@@ -112,7 +112,7 @@ contains
         end if
       end do
     end do
-    info = visco2d_cholmod_factor(factor%handle, factor%values, sqrt(1.0e-13_dp))
+    info = visco2d_cholmod_factor(factor%handle, factor%values, 1.0e-13_dp)
   end subroutine cholmod_compute
 
   !> The non-zeros of the band's lower triangle by columns (the diagonal always).

@@ -55,17 +55,38 @@ int visco2d_cholmod_analyze(void *handle, int n, const int *start, const int *ro
     return h->factor == NULL ? 2 : 0;
 }
 
+/* The smallest pivot ratio L(j,j)^2 / A(j,j) over the columns of the
+ * supernodal factor (the band solver's test, in CHOLMOD's order). */
+static double smallest_pivot_ratio(visco2d_cholmod_t *h) {
+    cholmod_factor *L = h->factor;
+    const int *super = L->super, *pi = L->pi, *px = L->px, *perm = L->Perm;
+    const int *start = h->matrix->p;
+    const double *x = L->x, *a = h->matrix->x;
+    double smallest = 1.0;
+    for (size_t s = 0; s < L->nsuper; s++) {
+        int nsrow = pi[s + 1] - pi[s];
+        for (int j = super[s]; j < super[s + 1]; j++) {
+            double l = x[px[s] + (size_t)(j - super[s]) * nsrow + (j - super[s])];
+            double diagonal = a[start[perm[j]]]; /* the diagonal is each column's first entry */
+            double ratio = l * l / diagonal;
+            if (ratio < smallest) smallest = ratio;
+        }
+    }
+    return smallest;
+}
+
 /* Factor the analyzed pattern with these values (in the pattern's order).
- * 0: factored; -1: not positive definite (or a pivot too small to trust:
- * min/max of diag(L) below `rcond_floor`); > 0: CHOLMOD failed otherwise. */
-int visco2d_cholmod_factor(void *handle, const double *values, double rcond_floor) {
+ * 0: factored; -1: not positive definite, or a pivot L(j,j)^2 below
+ * `pivot_floor` times its diagonal A(j,j); > 0: CHOLMOD failed otherwise. */
+int visco2d_cholmod_factor(void *handle, const double *values, double pivot_floor) {
     visco2d_cholmod_t *h = handle;
     if (h->factor == NULL) return 3;
     memcpy(h->matrix->x, values, (size_t)h->matrix->nzmax * sizeof(double));
     if (!cholmod_factorize(h->matrix, h->factor, &h->common)) return 4;
     if (h->common.status == CHOLMOD_NOT_POSDEF) return -1;
     if (h->common.status != CHOLMOD_OK) return 5;
-    if (cholmod_rcond(h->factor, &h->common) < rcond_floor) return -1;
+    if (!h->factor->is_super || !h->factor->is_ll) return 7;
+    if (smallest_pivot_ratio(h) < pivot_floor) return -1;
     return 0;
 }
 
