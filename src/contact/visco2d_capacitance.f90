@@ -10,8 +10,8 @@
 !> The columns z_c = S~^-1 e_c cost one back-substitution each and are kept
 !> (per equation, reused when a node leaves and comes back) until S~
 !> changes; C is refactored (dense Cholesky, m^3/3) when the set changes.
-!> A node touching thus costs O(n kd) instead of the O(n kd^2) of
-!> refactoring S~.
+!> A node touching thus costs one back-substitution (visco2d_factor) instead
+!> of a refactorization of S~; each apply adds Z lambda in one pass (dgemv).
 module visco2d_capacitance
   use visco2d_kinds, only: dp
   use visco2d_factor, only: factor_t, factor_solve_many
