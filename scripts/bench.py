@@ -13,7 +13,8 @@ Measures the whole process's wall time around the subprocess and parses the
 'timing:' lines visco2d prints (src/core/visco2d_timers.f90): seconds per phase
 (assembly, factorization, back-substitution, constitutive update, contact,
 output), the run's total, the time per step of the step loop, and the floor
-(one dpbtrs back-substitution of the run's banded system) with their ratio.
+(one back-substitution with the run's factor: CHOLMOD by default, see
+src/base/visco2d_factor.f90) with their ratio.
 With --repeat N each deck runs N times and the fastest (least wall time) is
 kept. Prints one Markdown table; writes OUT/bench.md and OUT/bench.csv.
 Exit status 1 if a run failed or printed no timing table.
@@ -35,7 +36,7 @@ NUMBER = r"[-+0-9.Ee]+"
 HEADER_RE = re.compile(r"^timing: (\S+) \((\d+) equations, half-bandwidth (\d+)\)")
 PHASE_RE = re.compile(r"^timing:\s+(%s)\s+(%s)\s+(\d+)\s+" % ("|".join(PHASES), NUMBER))
 WHOLE_RE = re.compile(r"^timing:\s+whole run\s+(%s)" % NUMBER)
-STEPS_RE = re.compile(r"^timing:\s+steps (\d+)\s+time per step\s+(%s) s\s+floor \(one dpbtrs\)\s+(%s) s\s+ratio\s+(%s)"
+STEPS_RE = re.compile(r"^timing:\s+steps (\d+)\s+time per step\s+(%s) s\s+floor \(one (?:dpbtrs|solve)\)\s+(%s) s\s+ratio\s+(%s)"
                       % (NUMBER, NUMBER, NUMBER))
 # The phases that do not contain one another ("step loop" contains the in-loop parts of the others).
 ATTRIBUTED = ["assembly_s", "factorization_s", "back_substitution_s", "constitutive_update_s", "contact_s", "output_s"]
@@ -119,7 +120,7 @@ def markdown(rows, machine):
              "%s; seconds of wall-clock time, one core. Phases from `visco2d --timing`; "
              "\"process\" is the whole process measured around it; \"run\" is visco2d's own total; other = run minus "
              "the six phases (predictor, effective loads, bookkeeping); per step = step loop / steps; "
-             "floor = one dpbtrs of the run's system; ratio = per step / floor." % machine, "",
+             "floor = one back-substitution with the run's factor; ratio = per step / floor." % machine, "",
              "| level | equations | half-bw | steps | process s | run s | assembly | factorization (calls) "
              "| back-subst. | constitutive | contact | output | other | per step | floor | ratio |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]

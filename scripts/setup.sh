@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS
 # (reference and OpenBLAS serial),
-# HDF5 (Fortran), pkg-config, numdiff, h5dump (Debian packages), fpm,
+# HDF5 (Fortran), CHOLMOD, pkg-config, numdiff, h5dump (Debian packages), fpm,
 # h5py, matplotlib and meshio (PyPI). Safe to run again; quiet when everything is present.
 #   bash scripts/setup.sh mpi   also OpenMPI (openmpi-bin libopenmpi-dev: mpif90, mpirun) for the
 #                               MPI task farm (make mpi, the MPI stage of make test; ~25 s to install)
@@ -21,6 +21,9 @@ ls /usr/lib/*/libblas.so >/dev/null 2>&1 || packages+=(libblas-dev)
 # liblapack.so.3 (Debian alternatives): dpbtrf 4-5x faster than the reference BLAS.
 ls /usr/lib/*/openblas-serial/libblas.so.3 >/dev/null 2>&1 || packages+=(libopenblas0-serial)
 pkg-config --exists hdf5 2>/dev/null && ls /usr/include/hdf5/serial/hdf5.mod >/dev/null 2>&1 || packages+=(libhdf5-dev)
+# CHOLMOD (SuiteSparse): the sparse Cholesky factor of S~ (src/base/visco2d_cholmod.f90, linked
+# always: fpm.toml); about 5 s to install (19 small Debian packages).
+ls /usr/include/suitesparse/cholmod.h >/dev/null 2>&1 || packages+=(libsuitesparse-dev)
 
 if [ ${#packages[@]} -gt 0 ]; then
   echo "setup: installing ${packages[*]}"

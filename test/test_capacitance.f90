@@ -2,7 +2,8 @@
 !> (src/contact/visco2d_capacitance.f90) gives the same answer as eliminating them
 !> from S~ and refactoring (src/base/visco2d_banded.f90, band_constrain):
 !>
-!>  1. Algebra: a banded SPD matrix (n = 120, kd = 9, diagonally dominant,
+!>  1. Algebra, on the band, profile and CHOLMOD factors (visco2d_factor): a
+!>     banded SPD matrix (n = 120, kd = 9, diagonally dominant,
 !>     condition number ~10), supports with prescribed values eliminated in
 !>     both, and sets of held equations with values. Both solve the same
 !>     well-conditioned system with a backward-stable method, so they agree
@@ -21,8 +22,9 @@
 program test_capacitance
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
-  use visco2d_banded, only: band_matrix_t, band_create, band_constrain, band_constrain_rhs, band_constrain_matrix, &
-                            band_factor, band_solve, band_multiply
+  use visco2d_banded, only: band_matrix_t, band_create, band_constrain, band_constrain_rhs, band_factor, band_solve, &
+                            band_multiply
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_band, solver_profile, solver_cholmod, solver_name
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
@@ -34,7 +36,9 @@ program test_capacitance
   character(*), parameter :: folder = 'build/test-tmp/test_capacitance'
 
   call execute_command_line('mkdir -p '//folder)
-  call test_algebra()
+  call test_algebra(solver_band)
+  call test_algebra(solver_profile)
+  call test_algebra(solver_cholmod)
   call test_dynamic('stick', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION')
   call test_dynamic('slip_release', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION')
   call test_summary('test_capacitance')
@@ -83,13 +87,18 @@ contains
     call band_solve(factor, u)
   end function by_elimination
 
-  subroutine test_algebra()
+  !> The capacitance system on the factor of `solver` (band or profile).
+  subroutine test_algebra(solver)
+    integer, intent(in) :: solver
     integer, parameter :: n = 120, kd = 9
-    type(band_matrix_t) :: matrix, factor
+    type(band_matrix_t) :: matrix
+    type(factor_t) :: factor
     type(capacitance_t) :: capacitance
     logical :: supports(n), held(n), fixed(n)
     real(dp) :: values(n), f(n), u(n), reference(n), residual(n)
     integer :: i, info, set
+    character(:), allocatable :: name
+    name = 'algebra ('//solver_name(solver)//')'
     call make_matrix(n, kd, matrix)
     do i = 1, n
       f(i) = 2.0_dp*pseudo_random() - 1.0_dp
@@ -98,10 +107,8 @@ contains
     supports = .false.
     supports([1, 2, 57]) = .true.                     ! one support with a non-zero value
     values(1:2) = 0.0_dp
-    factor = matrix
-    call band_constrain_matrix(factor, supports)
-    call band_factor(factor, info)
-    call check('algebra: S~ with supports factors', info == 0)
+    call factor_compute(factor, matrix, supports, info, solver)
+    call check(name//': S~ with supports factors', info == 0)
     call capacitance_reset(capacitance, n)
     do set = 1, 3
       held = .false.
@@ -114,31 +121,31 @@ contains
         held([41, 43, 44, 90]) = .true.               ! 40 leaves
       end select
       call capacitance_set(capacitance, factor, held, info)
-      call check('algebra set '//char(48 + set)//': C factors', info == 0)
+      call check(name//' set '//char(48 + set)//': C factors', info == 0)
       u = f
       call band_constrain_rhs(matrix, supports, values, u)
-      call band_solve(factor, u)
+      call factor_solve(factor, u)
       call capacitance_apply(capacitance, values, u)
       fixed = supports .or. held
       reference = by_elimination(matrix, fixed, values, f)
-      call check('algebra set '//char(48 + set)//': same solution as refactoring (1e-12)', &
+      call check(name//' set '//char(48 + set)//': same solution as refactoring (1e-12)', &
                  maxval(abs(u - reference)) <= 1.0e-12_dp*maxval(abs(reference)))
-      call check('algebra set '//char(48 + set)//': held values exact', all(pack(u, held) == pack(values, held)))
-      call check('algebra set '//char(48 + set)//': support values', &
+      call check(name//' set '//char(48 + set)//': held values exact', all(pack(u, held) == pack(values, held)))
+      call check(name//' set '//char(48 + set)//': support values', &
                  maxval(abs(pack(u - values, supports))) <= 1.0e-15_dp)
       residual = band_multiply(matrix, u) - f
-      call check('algebra set '//char(48 + set)//': free rows in equilibrium', &
+      call check(name//' set '//char(48 + set)//': free rows in equilibrium', &
                  maxval(abs(pack(residual, .not. fixed))) <= 1.0e-12_dp*maxval(abs(f)))
-      call check('algebra set '//char(48 + set)//': lambda = reaction on the held rows', &
+      call check(name//' set '//char(48 + set)//': lambda = reaction on the held rows', &
                  maxval(abs(pack(residual, held) - capacitance%multiplier)) <= 1.0e-11_dp*maxval(abs(f)))
     end do
     ! Columns: 3 for set 1, 2 more for set 2 (40, 41, 43, 44, 90), none for set 3.
-    call check('algebra: one back-substitution per equation ever held', capacitance%solves == 5)
-    call check('algebra: C factored once per set', capacitance%factorizations == 3)
+    call check(name//': one back-substitution per equation ever held', capacitance%solves == 5)
+    call check(name//': C factored once per set', capacitance%factorizations == 3)
     held = .false.
     held(40) = .true.                                 ! 40 comes back: its column is kept
     call capacitance_set(capacitance, factor, held, info)
-    call check('algebra: a returning equation reuses its column', capacitance%solves == 5)
+    call check(name//': a returning equation reuses its column', capacitance%solves == 5)
   end subroutine test_algebra
 
   !> The Table 1 impact, level 2, both ways.

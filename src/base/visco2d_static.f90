@@ -1,8 +1,8 @@
 !> The legacy base: static linear analysis S U = R (eq. [25] without inertia),
 !> and the legacy program's quasi-static time loop for viscoelastic bodies.
 !>
-!> STATIC: assemble, impose supports, factor once (dpbtrf), back-substitute
-!> (dpbtrs), recover strains and stresses at the Gauss points and the nodes.
+!> STATIC: assemble, impose supports, factor once (visco2d_factor), back-substitute
+!> once, recover strains and stresses at the Gauss points and the nodes.
 !>
 !> QUASISTATIC: step 0 is the instantaneous response at t = 0 (dt = 0, so
 !> mu = G(0)); each later step n solves S_n dU = R(t_n) - F(sigma_{n-1} + s0_n)
@@ -23,8 +23,8 @@ module visco2d_static
   use visco2d_mesh, only: mesh_t
   use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
   use visco2d_element, only: element_strains, gauss_to_node_extrapolation
-  use visco2d_banded, only: band_matrix_t, band_constrain, band_factor, band_solve, band_multiply, &
-                            band_constrain_matrix, band_constrain_rhs
+  use visco2d_banded, only: band_matrix_t, band_multiply, band_constrain_rhs
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
                               prescribed_displacement, internal_force, scatter_add, gravity_load, nodal_field
   use visco2d_element, only: element_internal_force
@@ -61,7 +61,8 @@ contains
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: extra_fixed(:)
     real(dp), intent(in), optional :: extra_values(:)
-    type(band_matrix_t) :: stiffness, constrained
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
     real(dp), allocatable :: shear(:), bulk(:), load(:), u(:), zero(:)
     logical, allocatable :: fixed(:)
     integer :: e, info
@@ -78,14 +79,13 @@ contains
       fixed = fixed .or. extra_fixed
     end if
     u = load
-    constrained = stiffness
-    call band_constrain(constrained, fixed, zero, u)
-    call band_factor(constrained, info)
+    call band_constrain_rhs(stiffness, fixed, zero, u)
+    call factor_compute(factor, stiffness, fixed, info)
     if (info > 0) then
       call singular_error(deck, info, error)
       return
     end if
-    call band_solve(constrained, u)
+    call factor_solve(factor, u)
     if (.not. all(ieee_is_finite(u))) then
       call not_finite_error(deck, 'the static displacement', error)
       return
@@ -266,7 +266,8 @@ contains
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: error
-    type(band_matrix_t) :: stiffness, factor
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
     type(step_coefficients_t), allocatable :: coefficients(:)
     type(viscoelastic_state_t) :: state
     real(dp), allocatable :: u(:), du(:), rhs(:), load(:), internal(:), stress(:, :, :), trial(:, :, :)
@@ -348,9 +349,7 @@ contains
       shear = coefficients(deck%mesh%element_material)%shear
       bulk = coefficients(deck%mesh%element_material)%bulk
       call assemble_stiffness(deck, shear, bulk, stiffness)
-      factor = stiffness
-      call band_constrain_matrix(factor, fixed)
-      call band_factor(factor, info)
+      call factor_compute(factor, stiffness, fixed, info)
       factorizations = factorizations + 1
       if (info > 0) call singular_error(deck, info, error)
     end subroutine quasistatic_factor
@@ -373,7 +372,7 @@ contains
       rhs = rhs + load
       du = prescribed_displacement(deck, t) - u          ! increments of the prescribed values
       call band_constrain_rhs(stiffness, fixed, du, rhs)
-      call band_solve(factor, rhs)
+      call factor_solve(factor, rhs)
       du = rhs
       u = u + du
       do e = 1, deck%mesh%nelem

@@ -10,11 +10,11 @@
 !> The columns z_c = S~^-1 e_c cost one back-substitution each and are kept
 !> (per equation, reused when a node leaves and comes back) until S~
 !> changes; C is refactored (dense Cholesky, m^3/3) when the set changes.
-!> A node touching thus costs O(n kd) instead of the O(n kd^2) of
-!> refactoring S~.
+!> A node touching thus costs one back-substitution (visco2d_factor) instead
+!> of a refactorization of S~; each apply adds Z lambda in one pass (dgemv).
 module visco2d_capacitance
   use visco2d_kinds, only: dp
-  use visco2d_banded, only: band_matrix_t, band_solve_many
+  use visco2d_factor, only: factor_t, factor_solve_many
   implicit none
   private
 
@@ -28,6 +28,13 @@ module visco2d_capacitance
       real(dp), intent(inout) :: a(lda, *)
       integer, intent(out) :: info
     end subroutine dpotrf
+    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
+      import :: dp
+      character, intent(in) :: trans
+      integer, intent(in) :: m, n, lda, incx, incy
+      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
+      real(dp), intent(inout) :: y(*)
+    end subroutine dgemv
     subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
       import :: dp
       character, intent(in) :: uplo
@@ -49,6 +56,7 @@ module visco2d_capacitance
     integer, allocatable :: slot(:)        !< (m) their columns
     real(dp), allocatable :: matrix(:, :)  !< (m, m) Cholesky factor of C
     real(dp), allocatable :: multiplier(:) !< (m) lambda of the last apply
+    real(dp), allocatable :: weights(:)    !< (capacity) lambda by column of `columns` (0: not held)
     integer :: factorizations = 0          !< dense factorizations of C
     integer :: solves = 0                  !< back-substitutions with S~ for new columns
   end type capacitance_t
@@ -74,6 +82,7 @@ contains
     if (allocated(capacitance%matrix)) deallocate(capacitance%matrix)
     allocate(capacitance%matrix(0, 0))
     capacitance%multiplier = [real(dp) ::]
+    capacitance%weights = [real(dp) ::]
   end subroutine capacitance_reset
 
   !> Hold the equations with held(c) (none of them a support of `factor`):
@@ -82,7 +91,7 @@ contains
   !> distinct unsupported equations of a positive definite S~).
   subroutine capacitance_set(capacitance, factor, held, info)
     type(capacitance_t), intent(inout) :: capacitance
-    type(band_matrix_t), intent(in) :: factor
+    type(factor_t), intent(in) :: factor
     logical, intent(in) :: held(:)
     integer, intent(out) :: info
     integer :: i, j, c, m
@@ -115,7 +124,7 @@ contains
   subroutine capacitance_apply(capacitance, values, w)
     type(capacitance_t), intent(inout) :: capacitance
     real(dp), intent(in) :: values(:)
-    real(dp), intent(inout) :: w(:)
+    real(dp), intent(inout), contiguous :: w(:)
     integer :: i, m, info
     m = size(capacitance%held)
     if (m == 0) return
@@ -123,9 +132,14 @@ contains
       capacitance%multiplier(i) = values(capacitance%held(i)) - w(capacitance%held(i))
     end do
     call dpotrs('L', m, 1, capacitance%matrix, m, capacitance%multiplier, m, info)
-    do i = 1, m
-      w = w + capacitance%multiplier(i)*capacitance%columns(:, capacitance%slot(i))
-    end do
+    if (size(capacitance%weights) /= size(capacitance%columns, 2)) then
+      deallocate(capacitance%weights)
+      allocate(capacitance%weights(size(capacitance%columns, 2)))
+    end if
+    capacitance%weights = 0.0_dp
+    capacitance%weights(capacitance%slot) = capacitance%multiplier
+    call dgemv('N', capacitance%n, capacitance%stored, 1.0_dp, capacitance%columns, capacitance%n, &
+               capacitance%weights, 1, 1.0_dp, w, 1)           ! w += Z lambda, one pass over the columns
     do i = 1, m                                         ! exactly on the constraint, not to round-off
       w(capacitance%held(i)) = values(capacitance%held(i))
     end do
@@ -135,7 +149,7 @@ contains
   !> multi-right-hand-side back-substitution (the store doubles when full).
   subroutine add_columns(capacitance, factor, new)
     type(capacitance_t), intent(inout) :: capacitance
-    type(band_matrix_t), intent(in) :: factor
+    type(factor_t), intent(in) :: factor
     integer, intent(in) :: new(:)
     real(dp), allocatable :: grown(:, :)
     integer :: capacity, first, last, k
@@ -154,7 +168,7 @@ contains
       capacitance%columns(new(k), first + k - 1) = 1.0_dp
       capacitance%column_of(new(k)) = first + k - 1
     end do
-    call band_solve_many(factor, capacitance%columns(:, first:last))
+    call factor_solve_many(factor, capacitance%columns(:, first:last))
     capacitance%stored = last
     capacitance%solves = capacitance%solves + size(new)
   end subroutine add_columns

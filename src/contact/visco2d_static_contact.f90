@@ -10,8 +10,8 @@ module visco2d_static_contact
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof, band_vector, assemble_stiffness, external_load, gravity_load, &
                               support_mask, prescribed_displacement
-  use visco2d_banded, only: band_matrix_t, band_constrain_matrix, band_constrain_rhs, band_factor, band_solve_many, &
-                            band_multiply
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress, singular_message
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
@@ -381,14 +381,12 @@ contains
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:), reaction_base(:), reaction_rate(:)
     type(error_t), allocatable, intent(out) :: error
-    type(band_matrix_t) :: factor
+    type(factor_t) :: factor
     real(dp), allocatable :: rhs(:, :)
     logical, allocatable :: fixed(:)
     integer :: info
     fixed = system%supports .or. held
-    factor = system%stiffness
-    call band_constrain_matrix(factor, fixed)
-    call band_factor(factor, info)
+    call factor_compute(factor, system%stiffness, fixed, info)
     if (info > 0) then
       call set_error(error, singular_message(deck, info), file=deck%cards%file)
       return
@@ -398,7 +396,7 @@ contains
     call band_constrain_rhs(system%stiffness, fixed, merge(0.0_dp, system%prescribed, held), rhs(:, 1))
     rhs(:, 2) = 0.0_dp
     call band_constrain_rhs(system%stiffness, fixed, merge(values, 0.0_dp, held), rhs(:, 2))
-    call band_solve_many(factor, rhs)
+    call factor_solve_many(factor, rhs)
     rate = rhs(:, 1)
     base = rhs(:, 2)
     reaction_rate = band_multiply(system%stiffness, rate) - system%load

@@ -1,8 +1,8 @@
 !> Phase timers for `visco2d --timing` and `make bench`: wall-clock seconds
 !> and call counts per phase of a run (assembly, factorization,
 !> back-substitution, constitutive update, contact, output), plus the floor
-!> the step loop is compared with: one dpbtrs back-substitution of the same
-!> banded system. Off by default; when off, timer_start/timer_stop return at
+!> the step loop is compared with: one back-substitution (forward and back
+!> with the factor of visco2d_factor) of the same system. Off by default; when off, timer_start/timer_stop return at
 !> once. The state is module-level on purpose, as a profiler's is: every
 !> module reports into the same table without threading it through calls.
 module visco2d_timers
@@ -17,8 +17,8 @@ module visco2d_timers
   public :: phase_step_loop, phase_count
 
   integer, parameter :: phase_assembly = 1       !< element matrices, S~, loads (eq. [35])
-  integer, parameter :: phase_factorization = 2  !< dpbtrf of S~ (and the contact capacitance matrix)
-  integer, parameter :: phase_solve = 3          !< dpbtrs back-substitutions (eq. [34])
+  integer, parameter :: phase_factorization = 2  !< the factor of S~ (and the contact capacitance matrix)
+  integer, parameter :: phase_solve = 3          !< back-substitutions (eq. [34])
   integer, parameter :: phase_constitutive = 4   !< strains, stresses, history, internal forces (eqs. [13]-[24])
   integer, parameter :: phase_contact = 5        !< contact search, adjusted displacements, pressure, impact measures
   integer, parameter :: phase_output = 6         !< history rows, snapshots, files
@@ -91,7 +91,7 @@ contains
     name = trim(names(phase))
   end function timer_name
 
-  !> The floor: seconds of one dpbtrs back-substitution of the run's system.
+  !> The floor: seconds of one back-substitution of the run's system.
   subroutine timers_set_floor(seconds)
     real(dp), intent(in) :: seconds
     floor_seconds = seconds
@@ -129,7 +129,7 @@ contains
     if (step_total > 0 .and. floor_seconds > 0.0_dp) then
       per_step = timer_seconds(phase_step_loop)/step_total
       write(unit, '(a, i0, a, es11.3e3, a, es11.3e3, a, f6.2)') 'timing:   steps ', step_total, &
-        '  time per step ', per_step, ' s  floor (one dpbtrs) ', floor_seconds, ' s  ratio ', per_step/floor_seconds
+        '  time per step ', per_step, ' s  floor (one solve) ', floor_seconds, ' s  ratio ', per_step/floor_seconds
     end if
   end subroutine timers_report
 end module visco2d_timers

@@ -50,7 +50,7 @@ module visco2d_dynamic
   use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
   use visco2d_dynamic_cards, only: integrator_wilson
   use visco2d_element, only: gauss_count
-  use visco2d_banded, only: band_solve
+  use visco2d_factor, only: factor_solve
   use visco2d_assembly, only: external_load, node_dof, prescribed_displacement, internal_force, nodal_field
   use visco2d_viscoelastic, only: viscoelastic_state_create
   use visco2d_static, only: singular_error, node_text, put_field_summary, put_probe_summary
@@ -355,7 +355,7 @@ contains
     end associate
   end subroutine measure_step
 
-  !> The floor of the step loop for `--timing`: the seconds of one dpbtrs
+  !> The floor of the step loop for `--timing`: the seconds of one
   !> back-substitution with the run's factor (the best of a few repeats).
   subroutine measure_floor(stepper)
     type(stepper_t), intent(in) :: stepper
@@ -368,7 +368,7 @@ contains
     do repeat = 1, 5
       rhs = stepper%base
       call system_clock(start)
-      call band_solve(stepper%points(1)%factor, rhs)
+      call factor_solve(stepper%points(1)%factor, rhs)
       call system_clock(finish)
       best = min(best, real(finish - start, dp)/real(rate, dp))
     end do

@@ -70,7 +70,7 @@ contains
     real(dp), intent(out) :: increments(:, :, :), trial(:, :, :)
     real(dp), intent(out) :: force(:)
     real(dp), intent(in), optional :: history(:, :, :)       !< (4, gauss_count, nelem)
-    real(dp) :: local(8), increment(4), sigma(4), volumetric
+    real(dp) :: local(8), increment(4), sigma(4), volumetric, element_force(8)
     integer :: e, g, j
     force = 0.0_dp
     do e = 1, operators%nelem
@@ -87,7 +87,10 @@ contains
         increments(:, g, e) = increment
         trial(:, g, e) = sigma
       end do
-      force(operators%dofs(:, e)) = force(operators%dofs(:, e)) + operators_element_force(operators, e, trial(:, :, e))
+      element_force = operators_element_force(operators, e, trial(:, :, e))
+      do j = 1, 8                                   ! a loop, not force(dofs) = force(dofs) + ...: no temporary
+        force(operators%dofs(j, e)) = force(operators%dofs(j, e)) + element_force(j)
+      end do
     end do
   end subroutine operators_trial_stress
 end module visco2d_operators

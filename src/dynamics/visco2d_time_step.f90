@@ -3,7 +3,7 @@
 !> module visco2d_integrators; Wilson-theta and the Newmark family have one,
 !> Bathe two):
 !>   effective_stiffness   S~ = (1 - alpha_f) S_h + c M                 eq. [35]
-!>   factor_effective      S~ with the supports imposed, factored (dpbtrf)
+!>   factor_effective      S~ with the supports imposed, factored (visco2d_factor)
 !>   effective_load        R~ = R_h - F(sigma_t) - (1 - alpha_f) F(s0_h) + M b   eq. [36]
 !>   solve_supports        S~ dU = R~ with the supports only             eq. [34]
 !>   contact_repeat        the plate's conditions on dU (capacitance system), the
@@ -34,8 +34,8 @@ module visco2d_time_step
   use visco2d_material, only: has_memory
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
-  use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_factor, band_solve, band_constrain_matrix, &
-                            band_constrain_rhs
+  use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_constrain_rhs
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, prescribed_displacement, &
                               scatter_add, lumped_mass, gravity_load
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms
@@ -62,7 +62,8 @@ module visco2d_time_step
     type(row_t) :: row
     real(dp) :: length = 0.0_dp                     !< the sub-step, fraction dt
     real(dp) :: h = 0.0_dp                          !< the solve interval, theta length
-    type(band_matrix_t) :: effective, factor
+    type(band_matrix_t) :: effective                !< S~ (eq. [35]), unconstrained
+    type(factor_t) :: factor                        !< its Cholesky factor with the supports imposed
     type(capacitance_t) :: capacitance
     type(step_coefficients_t), allocatable :: over_h(:), over_length(:)   !< per material
     real(dp), allocatable :: shear(:), bulk(:)      !< per element, over the sub-step
@@ -167,7 +168,7 @@ contains
   end subroutine effective_stiffness
 
   !> S~ of row r with the supports imposed (with the refactoring strategy:
-  !> also the held equations), factored by dpbtrf; info > 0: not positive
+  !> also the held equations), factored (visco2d_factor); info > 0: not positive
   !> definite at that equation. With the capacitance strategy the held
   !> equations are then put in the capacitance system (hold_contact).
   subroutine factor_effective(stepper, r, info)
@@ -175,13 +176,11 @@ contains
     integer, intent(in) :: r
     integer, intent(out) :: info
     associate (point => stepper%points(r))
-    point%factor = point%effective
     if (stepper%by_refactoring) then
-      call band_constrain_matrix(point%factor, stepper%fixed)
+      call factor_compute(point%factor, point%effective, stepper%fixed, info)
     else
-      call band_constrain_matrix(point%factor, stepper%supports)
+      call factor_compute(point%factor, point%effective, stepper%supports, info)
     end if
-    call band_factor(point%factor, info)
     stepper%factorizations = stepper%factorizations + 1
     if (info > 0) return
     if (.not. stepper%by_refactoring) then
@@ -269,7 +268,7 @@ contains
     if (stepper%by_refactoring) return
     stepper%free = stepper%base
     call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%free)
-    call band_solve(point%factor, stepper%free)                               ! eq. [34] without contact
+    call factor_solve(point%factor, stepper%free)                             ! eq. [34] without contact
     end associate
   end subroutine solve_supports
 
@@ -348,7 +347,7 @@ contains
     if (stepper%by_refactoring) then
       stepper%solution = stepper%base
       call band_constrain_rhs(point%effective, stepper%fixed, stepper%prescribed, stepper%solution)
-      call band_solve(point%factor, stepper%solution)
+      call factor_solve(point%factor, stepper%solution)
     else
       stepper%solution = stepper%free
       if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%prescribed, stepper%solution)

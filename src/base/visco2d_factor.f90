@@ -1,0 +1,135 @@
+!> The Cholesky factor of a constrained stiffness (eq. [25]'s S, eq. [35]'s
+!> S~) behind one interface, whatever its storage: `factor_compute` takes the
+!> assembled band matrix and the constrained equations (rows and columns
+!> zeroed, diagonal kept, as band_constrain_matrix), `factor_solve` and
+!> `factor_solve_many` solve with it (eq. [34]). The solver:
+!>   solver_profile  envelope storage, Fortran Cholesky and substitutions
+!>                   (module visco2d_profile): the default, the fastest
+!>                   measured at mesh levels 1-6 (doc/study.md, Benchmarks)
+!>   solver_band     the legacy band storage and LAPACK dpbtrf/dpbtrs
+!>                   (module visco2d_banded): the reference the tests
+!>                   compare the profile solver with
+!> Both give the same factor up to round-off (the same arithmetic on the
+!> same non-zeros, in another order).
+module visco2d_factor
+  use, intrinsic :: iso_fortran_env, only: int64
+  use visco2d_kinds, only: dp
+  use visco2d_banded, only: band_matrix_t, band_constrain_matrix, band_factor, band_solve, band_solve_many
+  use visco2d_profile, only: profile_matrix_t, profile_from_band, profile_factor, profile_solve, profile_solve_many
+  use visco2d_cholmod, only: cholmod_factor_t, cholmod_compute, cholmod_solve, cholmod_solve_many, cholmod_entries
+  implicit none
+  private
+
+  public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries
+  public :: solver_band, solver_profile, solver_cholmod, solver_default, solver_name
+
+  integer, parameter :: solver_band = 1        !< band storage, LAPACK dpbtrf/dpbtrs
+  integer, parameter :: solver_profile = 2     !< envelope storage (visco2d_profile)
+  integer, parameter :: solver_cholmod = 3     !< sparse supernodal, fill-reducing order (visco2d_cholmod)
+  integer, parameter :: solver_default = solver_cholmod
+
+  !> A factored constrained matrix: the band or the profile factor, as `solver` says.
+  type :: factor_t
+    integer :: solver = solver_default
+    integer :: storage = solver_default         !< the factor in use (CHOLMOD falls back to the profile)
+    integer :: n = 0                            !< order
+    type(band_matrix_t) :: band                 !< solver_band: the factor in band storage
+    type(profile_matrix_t) :: profile           !< solver_profile: the factor in envelope storage
+    type(cholmod_factor_t) :: sparse            !< solver_cholmod: CHOLMOD's factor
+    logical :: factored = .false.
+  end type factor_t
+
+contains
+
+  !> The name of a solver, as a summary or a message writes it.
+  pure function solver_name(solver) result(name)
+    integer, intent(in) :: solver
+    character(:), allocatable :: name
+    select case (solver)
+    case (solver_band)
+      name = 'band'
+    case (solver_cholmod)
+      name = 'cholmod'
+    case default
+      name = 'profile'
+    end select
+  end function solver_name
+
+  !> Factor `matrix` (unfactored, unconstrained; left unchanged) with the
+  !> equations of `constrained` eliminated (row and column zeroed, the
+  !> diagonal kept, 1 if it was 0). info > 0: equation info has a
+  !> non-positive pivot or one below 1e-13 of its diagonal (band_factor).
+  !> `solver` (default: the factor's current one) chooses the storage.
+  subroutine factor_compute(factor, matrix, constrained, info, solver)
+    type(factor_t), intent(inout) :: factor
+    type(band_matrix_t), intent(in) :: matrix
+    logical, intent(in) :: constrained(:)
+    integer, intent(out) :: info
+    integer, intent(in), optional :: solver
+    if (present(solver)) factor%solver = solver
+    factor%n = matrix%n
+    factor%storage = factor%solver
+    select case (factor%solver)
+    case (solver_band)
+      factor%band = matrix
+      call band_constrain_matrix(factor%band, constrained)
+      call band_factor(factor%band, info)
+    case (solver_cholmod)
+      call cholmod_compute(factor%sparse, matrix, constrained, info)
+      if (info /= 0) then                   ! not positive definite, or CHOLMOD failed: the profile
+        factor%storage = solver_profile     ! factor finds the equation (or stands in)
+        call profile_from_band(matrix, factor%profile, constrained)
+        call profile_factor(factor%profile, info)
+      end if
+    case default
+      if (allocated(factor%band%ab)) deallocate(factor%band%ab)
+      call profile_from_band(matrix, factor%profile, constrained)
+      call profile_factor(factor%profile, info)
+    end select
+    factor%factored = info == 0
+  end subroutine factor_compute
+
+  !> Solve A x = b in place (A the constrained matrix of factor_compute).
+  subroutine factor_solve(factor, b)
+    type(factor_t), intent(in) :: factor
+    real(dp), intent(inout), contiguous :: b(:)
+    select case (factor%storage)
+    case (solver_band)
+      call band_solve(factor%band, b)
+    case (solver_cholmod)
+      call cholmod_solve(factor%sparse, b)
+    case default
+      call profile_solve(factor%profile, b)
+    end select
+  end subroutine factor_solve
+
+  !> Solve A X = B in place for the columns of B, one pass over the factor.
+  subroutine factor_solve_many(factor, b)
+    type(factor_t), intent(in) :: factor
+    real(dp), intent(inout), contiguous :: b(:, :)
+    select case (factor%storage)
+    case (solver_band)
+      call band_solve_many(factor%band, b)
+    case (solver_cholmod)
+      call cholmod_solve_many(factor%sparse, b)
+    case default
+      call profile_solve_many(factor%profile, b)
+    end select
+  end subroutine factor_solve_many
+
+  !> The number of reals the factor stores (n (kd + 1) for the band, the
+  !> envelope for the profile).
+  integer(int64) function factor_entries(factor)
+    type(factor_t), intent(in) :: factor
+    select case (factor%storage)
+    case (solver_band)
+      factor_entries = 0
+      if (allocated(factor%band%ab)) factor_entries = size(factor%band%ab, kind=int64)
+    case (solver_cholmod)
+      factor_entries = cholmod_entries(factor%sparse)
+    case default
+      factor_entries = 0
+      if (allocated(factor%profile%values)) factor_entries = size(factor%profile%values, kind=int64)
+    end select
+  end function factor_entries
+end module visco2d_factor
