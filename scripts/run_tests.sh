@@ -51,6 +51,11 @@ bash scripts/test_cli.sh "$exe" > "$log/cli.log" 2>&1
 count "$log/cli.log"
 echo "   $(grep -c '^PASS ' "$log/cli.log") checks passed"
 
+echo "== MPI task farm (2 ranks; built first: the batch stage runs --mpi through it)"
+bash scripts/test_mpi.sh "$exe" > "$log/mpi.log" 2>&1
+count "$log/mpi.log"
+echo "   $(grep -c '^PASS ' "$log/mpi.log") checks passed; $(grep '^# ' "$log/mpi.log" | tr '\n' ' ')"
+
 echo "== batch runs and sweeps (scripts/test_batch.sh: visco2d-batch sweeps, -j, shards, collect, threshold, MPI)"
 bash scripts/test_batch.sh "$exe" > "$log/batch.log" 2>&1
 count "$log/batch.log"
@@ -71,11 +76,6 @@ echo "== report (make report smoke check)"
 bash scripts/test_report.sh "$exe" > "$log/report.log" 2>&1
 count "$log/report.log"
 echo "   $(grep -c '^PASS ' "$log/report.log") checks passed"
-
-echo "== MPI task farm (2 ranks)"
-bash scripts/test_mpi.sh "$exe" > "$log/mpi.log" 2>&1
-count "$log/mpi.log"
-echo "   $(grep -c '^PASS ' "$log/mpi.log") checks passed; $(grep '^# ' "$log/mpi.log" | tr '\n' ' ')"
 
 echo "== reference outputs (rtol 1e-6)"
 rm -rf build/reference-check && mkdir -p build/reference-check
