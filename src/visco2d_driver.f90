@@ -9,6 +9,7 @@ module visco2d_driver
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
+  use visco2d_deck_types, only: solver_card_names
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
@@ -141,6 +142,7 @@ contains
     call record_put(record, 'analysis', analysis_name(deck%analysis))
     call record_put(record, 'geometry', geometry_name(deck%geometry))
     call record_put(record, 'formulation', formulation_name(deck%formulation))
+    if (deck%solver_line > 0) call record_put(record, 'solver', trim(solver_card_names(deck%solver)))
     call record_put(record, 'effects', effects_text(effects))
     call record_put_integer(record, 'nodes', deck%mesh%nnode)
     call record_put_integer(record, 'elements', deck%mesh%nelem)

@@ -300,6 +300,15 @@ program test_bad_decks
   lines(2) = 'ANALYSIS EXPLICIT'
   call expect_read_error('analysis_unknown', lines, 2, 10, 'ANALYSIS', 'STATIC, QUASISTATIC or DYNAMIC, got "EXPLICIT"')
 
+  lines = square()
+  call expect_read_error('solver_unknown', [lines(1:2), 'SOLVER LU', lines(3:)], 3, 8, 'SOLVER', &
+                         'solver must be BAND (the legacy band storage and LAPACK), PROFILE (envelope storage) '// &
+                         'or CHOLMOD (sparse, the default), got "LU"')
+
+  lines = square()
+  call expect_read_error('solver_twice', [lines(1:2), 'SOLVER BAND', 'SOLVER CHOLMOD', lines(3:)], 4, 0, 'SOLVER', &
+                         'only one SOLVER card is allowed (first on line 3)')
+
   lines = dynamic()
   call expect_read_error('dynamic_without_time', [lines(1:8), lines(10:11)], 2, 0, 'ANALYSIS', &
                          'DYNAMIC analysis needs a TIME DT=.. TEND=.. card')

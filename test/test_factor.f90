@@ -34,6 +34,9 @@ program test_factor
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness
   use visco2d_testing, only: check, test_summary, write_deck
+  use visco2d_record, only: record_t
+  use visco2d_driver, only: run_deck
+  use visco2d_expect, only: summary_value
   implicit none
 
   interface
@@ -72,6 +75,7 @@ program test_factor
   call test_random('random n=400 kd=30 shift=1e-9, nothing constrained', 400, 30, 1.0e-9_dp, .false.)
   call test_assembled()
   call test_singular()
+  call test_solver_card()
   call test_summary('test_factor')
 
 contains
@@ -354,4 +358,56 @@ contains
     write(buffer, '(i0)') i
     text = trim(buffer)
   end function itoa64
+  !> The SOLVER card: the paper's Table 1 impact (inputs/table1_elastic.inp)
+  !> with SOLVER BAND (the legacy LAPACK path), PROFILE and CHOLMOD gives the
+  !> default run's alpha, t and q. The systems are the same; their solutions
+  !> differ by round-off (condition number ~1e4 at level 1: ~1e-12), and the
+  !> contact events, decided on the same side of the plate, are the same, so
+  !> 1e-9 relative is a bound with room for the round-off, far below any
+  !> physical change.
+  subroutine test_solver_card()
+    character(len=*), parameter :: names(3) = ['BAND   ', 'PROFILE', 'CHOLMOD']
+    character(len=*), parameter :: keys(4) = ['alpha_max_mm  ', 't_alpha_max_ms', 'q_max_MPa     ', 'steps         ']
+    character(len=200), allocatable :: lines(:)
+    character(len=200) :: line
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    real(dp) :: reference(4), value
+    integer :: unit, ios, k, j, n
+    character(:), allocatable :: path, text
+    open(newunit=unit, file='inputs/table1_elastic.inp', status='old', action='read', iostat=ios)
+    call check('SOLVER card: inputs/table1_elastic.inp readable', ios == 0)
+    if (ios /= 0) return
+    allocate(lines(0))
+    do
+      read(unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      lines = [character(len=200) :: lines, line]
+    end do
+    close(unit)
+    n = size(lines)
+    call write_deck(folder//'/table1_default.inp', lines)
+    call run_deck(folder//'/table1_default.inp', folder//'/out', record, error)
+    call check('SOLVER card: the default run', .not. allocated(error))
+    if (allocated(error)) return
+    do j = 1, size(keys)
+      text = summary_value(record, trim(keys(j)))
+      read(text, *) reference(j)
+    end do
+    do k = 1, size(names)
+      path = folder//'/table1_'//trim(names(k))//'.inp'
+      call write_deck(path, [character(len=200) :: lines(:n - 1), 'SOLVER '//trim(names(k)), lines(n:)])
+      call run_deck(path, folder//'/out', record, error)
+      call check('SOLVER '//trim(names(k))//': runs', .not. allocated(error))
+      if (allocated(error)) cycle
+      call check('SOLVER '//trim(names(k))//': the summary names it', summary_value(record, 'solver') == trim(names(k)))
+      do j = 1, size(keys)
+        text = summary_value(record, trim(keys(j)))
+        read(text, *) value
+        call check('SOLVER '//trim(names(k))//': '//trim(keys(j))//' equals the default run''s to 1e-9', &
+                   abs(value - reference(j)) <= 1.0e-9_dp*abs(reference(j)))
+      end do
+    end do
+  end subroutine test_solver_card
+
 end program test_factor

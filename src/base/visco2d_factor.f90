@@ -3,17 +3,21 @@
 !> assembled band matrix and the constrained equations (rows and columns
 !> zeroed, diagonal kept, as band_constrain_matrix), `factor_solve` and
 !> `factor_solve_many` solve with it (eq. [34]). The solver:
+!>   solver_cholmod  CHOLMOD (SuiteSparse), sparse supernodal with a
+!>                   fill-reducing order (module visco2d_cholmod): the
+!>                   default, the fastest measured at mesh levels 1-6
+!>                   (doc/study.md, Benchmarks)
 !>   solver_profile  envelope storage, Fortran Cholesky and substitutions
-!>                   (module visco2d_profile): the default, the fastest
-!>                   measured at mesh levels 1-6 (doc/study.md, Benchmarks)
+!>                   (module visco2d_profile)
 !>   solver_band     the legacy band storage and LAPACK dpbtrf/dpbtrs
 !>                   (module visco2d_banded): the reference the tests
-!>                   compare the profile solver with
-!> Both give the same factor up to round-off (the same arithmetic on the
-!> same non-zeros, in another order).
+!>                   compare the others with
+!> The deck's SOLVER card chooses one (solver_of_card). All give the same
+!> factor up to round-off (the same matrix, other orders of elimination).
 module visco2d_factor
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
+  use visco2d_deck_types, only: solver_card_default, solver_card_band, solver_card_profile, solver_card_cholmod
   use visco2d_banded, only: band_matrix_t, band_constrain_matrix, band_factor, band_solve, band_solve_many
   use visco2d_profile, only: profile_matrix_t, profile_from_band, profile_factor, profile_solve, profile_solve_many
   use visco2d_cholmod, only: cholmod_factor_t, cholmod_compute, cholmod_solve, cholmod_solve_many, cholmod_entries
@@ -21,11 +25,11 @@ module visco2d_factor
   private
 
   public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries
-  public :: solver_band, solver_profile, solver_cholmod, solver_default, solver_name
+  public :: solver_band, solver_profile, solver_cholmod, solver_default, solver_name, solver_of_card
 
-  integer, parameter :: solver_band = 1        !< band storage, LAPACK dpbtrf/dpbtrs
-  integer, parameter :: solver_profile = 2     !< envelope storage (visco2d_profile)
-  integer, parameter :: solver_cholmod = 3     !< sparse supernodal, fill-reducing order (visco2d_cholmod)
+  integer, parameter :: solver_band = solver_card_band        !< band storage, LAPACK dpbtrf/dpbtrs
+  integer, parameter :: solver_profile = solver_card_profile  !< envelope storage (visco2d_profile)
+  integer, parameter :: solver_cholmod = solver_card_cholmod  !< sparse supernodal, fill-reducing order (visco2d_cholmod)
   integer, parameter :: solver_default = solver_cholmod
 
   !> A factored constrained matrix: the band or the profile factor, as `solver` says.
@@ -40,6 +44,13 @@ module visco2d_factor
   end type factor_t
 
 contains
+
+  !> The solver of a deck's SOLVER card (deck%solver; solver_card_default: the default).
+  pure integer function solver_of_card(card) result(solver)
+    integer, intent(in) :: card
+    solver = card
+    if (card == solver_card_default) solver = solver_default
+  end function solver_of_card
 
   !> The name of a solver, as a summary or a message writes it.
   pure function solver_name(solver) result(name)

@@ -24,7 +24,7 @@ module visco2d_static
   use visco2d_material, only: stress_from_strain, von_mises, max_shear, has_memory
   use visco2d_element, only: element_strains, gauss_to_node_extrapolation
   use visco2d_banded, only: band_matrix_t, band_multiply, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, nodal_average, &
                               prescribed_displacement, internal_force, scatter_add, gravity_load, nodal_field
   use visco2d_element, only: element_internal_force
@@ -80,7 +80,7 @@ contains
     end if
     u = load
     call band_constrain_rhs(stiffness, fixed, zero, u)
-    call factor_compute(factor, stiffness, fixed, info)
+    call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
     if (info > 0) then
       call singular_error(deck, info, error)
       return
@@ -349,7 +349,7 @@ contains
       shear = coefficients(deck%mesh%element_material)%shear
       bulk = coefficients(deck%mesh%element_material)%bulk
       call assemble_stiffness(deck, shear, bulk, stiffness)
-      call factor_compute(factor, stiffness, fixed, info)
+      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
       factorizations = factorizations + 1
       if (info > 0) call singular_error(deck, info, error)
     end subroutine quasistatic_factor

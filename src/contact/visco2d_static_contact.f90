@@ -11,7 +11,7 @@ module visco2d_static_contact
   use visco2d_assembly, only: node_dof, band_vector, assemble_stiffness, external_load, gravity_load, &
                               support_mask, prescribed_displacement
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many, solver_of_card
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress, singular_message
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
@@ -386,7 +386,7 @@ contains
     logical, allocatable :: fixed(:)
     integer :: info
     fixed = system%supports .or. held
-    call factor_compute(factor, system%stiffness, fixed, info)
+    call factor_compute(factor, system%stiffness, fixed, info, solver_of_card(deck%solver))
     if (info > 0) then
       call set_error(error, singular_message(deck, info), file=deck%cards%file)
       return

@@ -35,7 +35,7 @@ module visco2d_time_step
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solver_default
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, prescribed_displacement, &
                               scatter_add, lumped_mass, gravity_load
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms
@@ -82,6 +82,7 @@ module visco2d_time_step
     integer, allocatable :: held_rows(:)          !< the equations held by the plate
     logical :: memory = .false., contact_on = .false.
     logical :: by_refactoring = .false.            !< tests only: contact by refactoring S~
+    integer :: solver = solver_default             !< the factor's storage (SOLVER card, visco2d_factor)
     type(contact_t) :: contact
     integer :: factorizations = 0
     real(dp) :: touch_fraction = 1.0_dp            !< earliest touch in the sub-step (0..1)
@@ -105,6 +106,7 @@ contains
     nmat = size(materials)
     stepper%integrator = integrator_create(deck%dynamics)
     stepper%by_refactoring = by_refactoring
+    stepper%solver = solver_of_card(deck%solver)
     do k = 1, nmat
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
     end do
@@ -177,9 +179,9 @@ contains
     integer, intent(out) :: info
     associate (point => stepper%points(r))
     if (stepper%by_refactoring) then
-      call factor_compute(point%factor, point%effective, stepper%fixed, info)
+      call factor_compute(point%factor, point%effective, stepper%fixed, info, stepper%solver)
     else
-      call factor_compute(point%factor, point%effective, stepper%supports, info)
+      call factor_compute(point%factor, point%effective, stepper%supports, info, stepper%solver)
     end if
     stepper%factorizations = stepper%factorizations + 1
     if (info > 0) return

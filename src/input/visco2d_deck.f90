@@ -25,7 +25,8 @@ module visco2d_deck
   use visco2d_mesh_build, only: build_mesh
   use visco2d_deck_types, only: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t, &
                                 analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
-                                geometry_name, total_steps, formulation_name, initial_velocity, add_warning
+                                geometry_name, total_steps, formulation_name, initial_velocity, add_warning, &
+                                solver_card_names
   use visco2d_deck_targets, only: pending_t, read_fix, read_pressure, read_force, read_probe, read_expect, &
                                   resolve_materials, resolve_fixes, resolve_forces, resolve_probes, curve_index
   use visco2d_deck_checks, only: check_time_stages, check_dynamic_cards, check_contact_cards, &
@@ -41,8 +42,8 @@ module visco2d_deck
   public :: plate_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(26) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
-    'FORMULATION', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
+  character(len=11), parameter :: card_keywords(27) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+    'FORMULATION', 'SOLVER', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
     'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'BRUISE', 'END']
 
   !> What read_deck keeps while it reads the cards: the mesh cards, the
@@ -94,7 +95,7 @@ contains
 
     associate (cards => deck%cards, card => deck%cards%cards(i))
     select case (card%keyword)
-    case ('TITLE', 'ANALYSIS', 'GEOMETRY', 'FORMULATION')
+    case ('TITLE', 'ANALYSIS', 'GEOMETRY', 'FORMULATION', 'SOLVER')
       call read_model_card(deck, reading, i, error)
     case ('WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'GRAVITY', 'OUTPUT', 'PLATE', 'STOP')
       call read_motion_card(deck, i, error)
@@ -151,6 +152,7 @@ contains
     integer, intent(in) :: i
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable :: word
+    integer :: k
 
     associate (cards => deck%cards, card => deck%cards%cards(i))
     select case (card%keyword)
@@ -195,6 +197,19 @@ contains
       call once(deck, i, reading%formulation_line, error); if (allocated(error)) return
       call read_formulation(cards, card, deck%formulation, error); if (allocated(error)) return
       reading%formulation_line = card%line
+    case ('SOLVER')
+      call once(deck, i, deck%solver_line, error); if (allocated(error)) return
+      deck%solver_line = card%line
+      call positional_word(cards, card, 1, 'solver (BAND, PROFILE or CHOLMOD)', word, error)
+      if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'SOLVER BAND | PROFILE | CHOLMOD'); if (allocated(error)) return
+      deck%solver = 0
+      do k = 1, size(solver_card_names)
+        if (word == trim(solver_card_names(k))) deck%solver = k
+      end do
+      if (deck%solver == 0) call card_error(error, cards, card, 'solver must be BAND (the legacy band storage '// &
+        'and LAPACK), PROFILE (envelope storage) or CHOLMOD (sparse, the default), got "'//word//'"', &
+        field_column(card, '1'))
     end select
     end associate
   end subroutine read_model_card

@@ -22,12 +22,21 @@ module visco2d_deck_types
   public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
+  public :: solver_card_default, solver_card_band, solver_card_profile, solver_card_cholmod, solver_card_names
   public :: card_at_line, line_error, card_keyword_at, add_warning
 
 
   integer, parameter :: analysis_static = 1       !< S U = R once
   integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
   integer, parameter :: analysis_dynamic = 3      !< incremental in time with inertia (Wilson-theta, the extension)
+
+  !> SOLVER BAND | PROFILE | CHOLMOD: the storage of the Cholesky factor
+  !> (visco2d_factor numbers its solvers the same way; 0: its default).
+  integer, parameter :: solver_card_default = 0
+  integer, parameter :: solver_card_band = 1      !< band storage, LAPACK dpbtrf/dpbtrs (the legacy program's)
+  integer, parameter :: solver_card_profile = 2   !< envelope (skyline) storage
+  integer, parameter :: solver_card_cholmod = 3   !< CHOLMOD, sparse with a fill-reducing order
+  character(len=7), parameter :: solver_card_names(3) = ['BAND   ', 'PROFILE', 'CHOLMOD']
 
   !> A warning about a deck that still runs (file:line: CARD: text).
   type :: warning_t
@@ -99,6 +108,8 @@ module visco2d_deck_types
     integer :: gravity_line = 0
     type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
     integer :: formulation = formulation_standard !< FORMULATION STANDARD | BBAR
+    integer :: solver = solver_card_default       !< SOLVER BAND | PROFILE | CHOLMOD (0: the default)
+    integer :: solver_line = 0
     type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
     integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)
     integer :: stop_line = 0
