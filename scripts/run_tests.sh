@@ -36,6 +36,19 @@ python3 scripts/check_walkthrough.py doc/walkthrough.md > "$log/walkthrough.log"
 count "$log/walkthrough.log"
 echo "   $(grep -c '^PASS ' "$log/walkthrough.log") quoted blocks match"
 
+# fpm does not rebuild the test-side modules (visco2d_testing, ...) when a
+# library module they use changes, and a stale .mod then breaks the build of
+# the tests ("Mismatch in components of derived type"): after a change under
+# src/, the tests' objects and modules are compiled again.
+for stamp in build/gfortran_*/visco2d_testing.mod; do
+  [ -e "$stamp" ] || continue
+  if [ -n "$(find src -newer "$stamp" \( -name '*.f90' -o -name '*.F90' -o -name '*.c' \) -print -quit)" ]; then
+    dir=$(dirname "$stamp")
+    rm -f "$dir"/visco2d/test_* "$dir"/visco2d_testing.mod "$dir"/visco2d_test_decks.mod \
+          "$dir"/visco2d_analytic.mod "$dir"/visco2d_spectrum.mod
+  fi
+done
+
 echo "== unit and verification tests (fpm test; one line per test program as it finishes)"
 fpm test --profile release 2>&1 | tee "$log/fpm-test.log" | grep --line-buffered -E '^[a-z_]+: [0-9]+ passed' | sed -u 's/^/   /'
 status=${PIPESTATUS[0]}
