@@ -16,7 +16,9 @@
 !>    1e-12 R) except surface nodes, which keep their polar angle (to 1e-12)
 !>    and move inward by less than their own level's outward volume offset;
 !>  - the legacy grid is the grid visco2d made before the contact grid (its
-!>    level-1 pole segment is 5.0 deg, its largest angle 152 deg).
+!>    level-1 pole segment is 5.0 deg, its largest angle 152 deg);
+!>  - the card: GRID= other than CONTACT or LEGACY, and CORE= above 0.7 on the
+!>    contact grid (at 0.8 the map folds elements), are refused at their column.
 program test_sphere_grid
   use visco2d_kinds, only: dp, pi
   use visco2d_mesh_generator, only: sphere_grid, sphere_grid_contact, sphere_grid_legacy, sphere_default_grade, &
@@ -24,6 +26,7 @@ program test_sphere_grid
   use visco2d_budget, only: sphere_mesh_counts
   use visco2d_testing, only: check, check_close, test_summary
   use visco2d_strings, only: itoa, rtoa
+  use visco2d_test_decks, only: try_read_deck, check_error_location
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
 
@@ -41,6 +44,10 @@ program test_sphere_grid
     call check_nested(level)
   end do
   call check_legacy_deficit()
+  call check_card('grid_unknown', 'MESH SPHERE R=0.0366 GRID=FANCY', 22, 'GRID must be CONTACT or LEGACY, got "FANCY"')
+  call check_card('core_contact_above_0.7', 'MESH SPHERE R=0.0366 CORE=0.8', 22, &
+                  'CORE must be in (0.05, 0.7] on GRID=CONTACT, got 8.0000E-01')
+  call check_card('core_legacy_0.8_accepted', 'MESH SPHERE R=0.0366 CORE=0.8 GRID=LEGACY', 0, '')
   call test_summary('test_sphere_grid')
 
 contains
@@ -170,6 +177,24 @@ contains
                        0.0_dp, atol=0.3_dp)
     end do
   end subroutine check_legacy_deficit
+
+  !> A deck whose MESH card is `mesh` (line 4): refused at `column` with `fragment`, or read (column 0).
+  subroutine check_card(name, mesh, column, fragment)
+    character(*), intent(in) :: name, mesh, fragment
+    integer, intent(in) :: column
+    character(*), parameter :: path = 'build/test_decks/sphere_grid_card.inp'
+    logical :: refused
+    character(:), allocatable :: message
+    call execute_command_line('mkdir -p build/test_decks')
+    call try_read_deck(path, refused, message, [character(len=80) :: 'TITLE card', 'ANALYSIS STATIC', &
+      'MATERIAL m ELASTIC E=1e6 NU=0.3', mesh, 'PRESSURE OUTER P=1e3', 'FIX TOP Z', 'END'])
+    if (column == 0) then
+      call check(name, .not. refused, message)
+    else
+      call check(name//'_refused', refused)
+      if (refused) call check_error_location(name, message, path, 4, column, 'MESH', fragment)
+    end if
+  end subroutine check_card
 
   !> Smallest and largest interior angle (deg), least corner Jacobian (the
   !> cross product of the two sides at a corner, m^2) and the volume of

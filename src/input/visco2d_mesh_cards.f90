@@ -324,6 +324,10 @@ contains
       call card_error(error, deck, card, 'CORE must be in (0.05, 0.95), got '//rtoa(core), field_column(card, 'CORE'))
       return
     end if
+    if (grid == sphere_grid_contact .and. core > 0.7_dp) then   ! at 0.8 the map folds elements near the core
+      call card_error(error, deck, card, 'CORE must be in (0.05, 0.7] on GRID=CONTACT, got '//rtoa(core), &
+                      field_column(card, 'CORE')); return
+    end if
     if (radius > max_coordinate) then
       call card_error(error, deck, card, 'R must be <= '//rtoa(max_coordinate)//' m, got '//rtoa(radius), &
                       field_column(card, 'R')); return
