@@ -148,7 +148,12 @@ for case in cases:
             check("alpha_order_positive_%s_dt%g" % (case, dt), False, "missing run or value %s" % exc)
             continue
         d1, d2 = f2 - f1, f3 - f2
-        # Positive observed order: the level 2->3 change is smaller than the 1->2 change and of the same sign.
+        # Positive observed order: the level 2->3 change is smaller than the 1->2 change and of the same sign;
+        # unless levels 1-3 already agree to 0.1 % (the contact grid on Table 2): then the order of changes of
+        # 0.01-0.06 % is noise, and the check is that agreement.
+        if max(f1, f2, f3) - min(f1, f2, f3) <= 1e-3 * f3:
+            check("alpha_levels_1_3_within_0.1pct_%s_dt%g" % (case, dt), True)
+            continue
         order = math.log2(d1 / d2) if d1 * d2 > 0 else float("nan")
         check("alpha_order_positive_%s_dt%g" % (case, dt), order > 0,
               "alpha %.6g, %.6g, %.6g mm: observed order %.3g" % (f1, f2, f3, order))

@@ -125,7 +125,7 @@ contains
     lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC']
     if (present(formulation)) call add(lines, 'FORMULATION '//formulation)
     call add(lines, 'MATERIAL apple ELASTIC E=18.11e6 NU='//nu//' RHO=756.85')
-    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
+    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY')   ! the grid the bounds were set on
     call add(lines, 'INITIAL VZ=-0.9982 AZ=-9.8')
     call add(lines, 'GRAVITY G=9.8')
     call add(lines, 'WILSON THETA=1.4')
@@ -726,7 +726,7 @@ contains
     do level = 3, 4
       lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
                'MATERIAL apple VISCOELASTIC K=13.5e6 RHO=757', 'PRONY G=3.91e6 BETA=203']
-      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
+      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY')   ! the grid the bounds were set on
       call add(lines, 'DROP HEIGHT=0.05')
       call add(lines, 'GRAVITY G=9.8')
       call add(lines, 'WILSON THETA=1.4')

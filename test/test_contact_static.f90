@@ -369,7 +369,7 @@ contains
     file = folder//'/impact_'//itoa(levels(k))//'.inp'
     call write_deck(file, [character(len=80) :: &
       'TITLE Table-1 elastic impact', 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(levels(k)), &
+      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(levels(k))//' GRID=LEGACY', &
       'PLATE Z=0 SLIP', 'INITIAL VZ=-0.9982 AZ=-9.8', 'GRAVITY G=9.8', 'TIME DT=1e-5 TEND=3e-3', 'END'])
     call read_deck(file, deck, error)
     if (.not. allocated(error)) call solve_dynamic(deck, record, error)

@@ -4,8 +4,10 @@
 !> Exact solution: a hydrostatic state sigma_r = sigma_z = sigma_theta = -p,
 !> tau_rz = 0, with the uniform contraction u = -k (x - x_c), k = p (1 - 2 nu)/E,
 !> about the centre x_c = (0, R), plus the rigid translation along z fixed by
-!> FIX TOP Z: u_z(top pole (0, 2R)) = 0 gives t_z = k R, so
-!>   u_r = -k r,   u_z = -k (z - 2R).
+!> FIX TOP Z: u_z(top pole (0, z_top)) = 0, so
+!>   u_r = -k r,   u_z = -k (z - z_top)
+!> (z_top = 2R on the legacy grid; the contact grid moves its top pole out
+!> a little to give the polygon the sphere's volume).
 !> The displacement is linear, hence in the bilinear element space, and the
 !> straight-sided faceted surface carries exactly the traction -p n of the
 !> hydrostatic state, so the discrete solution is exact up to round-off on
@@ -109,16 +111,16 @@ contains
     u_max = 0.0_dp
     top = maxloc(mesh%xy(2, :), dim=1)
     do node = 1, mesh%nnode
-      exact = [-k*mesh%xy(1, node), -k*(mesh%xy(2, node) - 2.0_dp*radius)]
+      exact = [-k*mesh%xy(1, node), -k*(mesh%xy(2, node) - mesh%xy(2, top))]
       u_error = max(u_error, maxval(abs(solution%displacement(:, node) - exact)))
       u_max = max(u_max, norm2(exact))
     end do
     print '(a, es10.3)', '  '//tag//': max |u - u_exact| / max |u_exact| at nodes        = ', u_error/u_max
-    call check(tag//': u = -k (x - x_c) + k R e_z at every node (1e-8 of max |u|)', u_error <= 1.0e-8_dp*u_max)
-    ! The top pole is the FIX TOP Z node (0, 2R): u_z = 0 exactly (prescribed).
+    call check(tag//': u = -k (x - x_c) + translation at every node (1e-8 of max |u|)', u_error <= 1.0e-8_dp*u_max)
+    ! The top pole is the FIX TOP Z node (0, z_top), z_top within 10 % of 2R (the contact grid: 7.6 % at level 1): u_z = 0 exactly (prescribed).
     top_uz = solution%displacement(2, top)
-    call check(tag//': the top pole is at (0, 2R) and has u_z = 0', mesh%xy(1, top) == 0.0_dp .and. &
-               abs(mesh%xy(2, top) - 2.0_dp*radius) <= 1.0e-12_dp*radius .and. top_uz == 0.0_dp)
+    call check(tag//': the top pole is on the axis near (0, 2R) and has u_z = 0', mesh%xy(1, top) == 0.0_dp .and. &
+               abs(mesh%xy(2, top) - 2.0_dp*radius) <= 0.1_dp*radius .and. top_uz == 0.0_dp)
     ! Global equilibrium: the pressure on a closed surface has zero resultant,
     ! so the one support carries nothing (round-off: 1e-8 of p R^2, the scale of
     ! the nodal forces per radian).

@@ -124,7 +124,7 @@ contains
       'ANALYSIS STATIC', &                                                   ! 2
       'GEOMETRY AXISYMMETRIC', &                                             ! 3
       'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &              ! 4
-      'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &                          ! 5
+      'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY', &          ! 5 (the grid the tests' bounds were set on)
       'PLATE Z=0 '//mode, &                                                  ! 6
       'GRAVITY G='//exact_text(g), &                                         ! 7
       'END']                                                                 ! 8

@@ -8,7 +8,8 @@ module visco2d_mesh_cards
   use visco2d_error, only: error_t
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
                            positional_real, positional_integer, positional_word, check_fields_used, field_column
-  use visco2d_mesh_generator, only: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core
+  use visco2d_mesh_generator, only: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core, &
+                                    sphere_grid_contact, sphere_grid_legacy
   use visco2d_budget, only: run_size_t, mesh_run_size, sphere_mesh_counts, grid_mesh_counts, memory_limit, &
                             bytes_text, count_text, max_mesh_entities
   use visco2d_strings, only: itoa, rtoa
@@ -229,8 +230,9 @@ contains
       hint = ' (a coarser mesh)'
     end if
   end function raise_hint
-  !> MESH SPHERE R=.. [LEVEL=1] [MAT=id] [GRADE=2.35] [CORE=0.35]
-  !> (MAT= may be omitted when the deck has one material)
+  !> MESH SPHERE R=.. [LEVEL=1] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]
+  !> (MAT= may be omitted when the deck has one material; GRADE and CORE
+  !> default to 2.5 and 0.2 on the contact grid, 2.35 and 0.35 on the legacy grid)
   !> MESH RECT R0=.. R1=.. Z0=.. Z1=.. NR=.. NZ=.. [MAT=id]
   !> MESH RING R0=.. R1=.. NR=.. NT=.. [ANGLE=90] [MAT=id]   (plane-strain ring sector)
   subroutine read_mesh_card(input, deck, card, error)
@@ -290,13 +292,22 @@ contains
     integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
     type(error_t), allocatable, intent(inout) :: error
     real(dp) :: radius, grade, core
-    integer :: level
+    integer :: level, grid
     integer(int64) :: nodes, elements, least_width
+    character(:), allocatable :: grid_name
     call named_real(deck, card, 'R', radius, error); if (allocated(error)) return
     call named_integer(deck, card, 'LEVEL', level, error, default=1); if (allocated(error)) return
-    call named_real(deck, card, 'GRADE', grade, error, default=sphere_default_grade); if (allocated(error)) return
-    call named_real(deck, card, 'CORE', core, error, default=sphere_default_core); if (allocated(error)) return
-    call check_fields_used(deck, card, error, 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRADE=b] [CORE=c]')
+    call named_word(deck, card, 'GRID', grid_name, error, default='CONTACT'); if (allocated(error)) return
+    select case (grid_name)
+    case ('CONTACT'); grid = sphere_grid_contact
+    case ('LEGACY'); grid = sphere_grid_legacy
+    case default
+      call card_error(error, deck, card, 'GRID must be CONTACT or LEGACY, got "'//grid_name//'"', &
+                      field_column(card, 'GRID')); return
+    end select
+    call named_real(deck, card, 'GRADE', grade, error, default=sphere_default_grade(grid)); if (allocated(error)) return
+    call named_real(deck, card, 'CORE', core, error, default=sphere_default_core(grid)); if (allocated(error)) return
+    call check_fields_used(deck, card, error, 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]')
     if (allocated(error)) return
     if (radius <= 0.0_dp) then
       call card_error(error, deck, card, 'R must be > 0 m, got '//rtoa(radius), field_column(card, 'R')); return
@@ -313,6 +324,10 @@ contains
       call card_error(error, deck, card, 'CORE must be in (0.05, 0.95), got '//rtoa(core), field_column(card, 'CORE'))
       return
     end if
+    if (grid == sphere_grid_contact .and. core > 0.7_dp) then   ! at 0.8 the map folds elements near the core
+      call card_error(error, deck, card, 'CORE must be in (0.05, 0.7] on GRID=CONTACT, got '//rtoa(core), &
+                      field_column(card, 'CORE')); return
+    end if
     if (radius > max_coordinate) then
       call card_error(error, deck, card, 'R must be <= '//rtoa(max_coordinate)//' m, got '//rtoa(radius), &
                       field_column(card, 'R')); return
@@ -320,7 +335,7 @@ contains
     call sphere_mesh_counts(level, nodes, elements, least_width)
     call check_generated_size(deck, card, 'SPHERE', nodes, elements, least_width, 'LEVEL', error)
     if (allocated(error)) return
-    call sphere_grid(radius, level, grade, core, xy, connectivity, edge_element, edge_side, edge_set)
+    call sphere_grid(radius, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
   end subroutine read_sphere_mesh
 
   !> MESH RECT: the fields checked, the grid generated.
