@@ -165,7 +165,7 @@ sed 's/${radius}/0.03/g' peach.inp > drop.inp
 batch threshold drop.inp --param height=0.01:0.5 --when 'bruise_volume_cm3>0' --tol 0.005 -q -o search > search.log 2>&1
 check_ok threshold_runs $? search.log
 batch threshold drop.inp --param height=0.01:0.5 --when 'bruise_volume_cm3>0' --tol 0.005 -j 2 -q -o search2 > search2.log 2>&1
-batch run drop.inp --param height=0.1:0.16:25 -q -o fine --keys bruise_volume_cm3 > fine.log 2>&1
+batch run drop.inp --param height=0.07:0.1:25 -q -o fine --keys bruise_volume_cm3 > fine.log 2>&1   # the onset: 0.083 m
 python3 - search.log search2.log fine/table.csv > verdict.log 2>&1 <<'EOF'
 import csv, re, sys
 rows = list(csv.DictReader(open(sys.argv[3])))
@@ -184,7 +184,7 @@ for log in sys.argv[1:3]:
         f'{log}: bracket [{low}, {high}] misses the fine sweep onset in [{below}, {above}]'
     assert abs(critical - (below + above) / 2) <= 0.005, f'{log}: {critical} vs fine {below}..{above}'
     print(f'# {log}: height_critical = {critical} in [{low}, {high}] after {runs} runs; '
-          f'fine sweep (25 runs, 2.5 mm apart): onset in [{below}, {above}]')
+          f'fine sweep (25 runs, 1.25 mm apart): onset in [{below}, {above}]')
 EOF
 check threshold_agrees_with_fine_sweep "$(tr '\n' ' ' < verdict.log | head -c 600)" \
   bash -c '! grep -q Error verdict.log && grep -q "^# " verdict.log'

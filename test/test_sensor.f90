@@ -116,10 +116,17 @@ contains
       call check('impact level '//itoa(level)//': the sensor is nearer the centre of mass than the node', &
                  abs(sensor(level) - cm(level)) < abs(node(level) - cm(level)))
     end do
+    ! The sensor's peak falls toward the centre of mass's as the mesh is
+    ! refined (measured on levels 1-5: 75.0, 70.2, 69.6, 49.4, 45.6 g on the
+    ! legacy grid against 41.1 g, doc/verification.md), while the node's does
+    ! not converge; with only 2 and 4 nodes in the 10 mm sensor at levels 1
+    ! and 2, the distance to the centre of mass is what can be checked here.
     change_node = abs(node(2) - node(1))/node(2)
     change_sensor = abs(sensor(2) - sensor(1))/sensor(2)
-    call check('impact: levels 1 -> 2 change the sensor peak less than the centre node peak', &
-               change_sensor < change_node, 'sensor '//real_text(change_sensor)//', node '//real_text(change_node))
+    call check('impact: levels 1 -> 2 bring the sensor peak nearer the centre-of-mass peak', &
+               abs(sensor(2) - cm(2)) < abs(sensor(1) - cm(1)), 'sensor '//real_text(sensor(1))//' -> '// &
+               real_text(sensor(2))//' g, centre of mass '//real_text(cm(1))//' -> '//real_text(cm(2))//' g (node '// &
+               'change '//real_text(change_node)//', sensor change '//real_text(change_sensor)//')')
   end subroutine test_impact
 
   !> 3. Refused RADIUS= values.
