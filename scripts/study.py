@@ -54,6 +54,7 @@ reported).
 """
 import argparse
 import csv
+import json
 import math
 import os
 import re
@@ -98,7 +99,9 @@ REFERENCE_TEXT = (
     "f1 the coarsest and f3 the finest; f* = f3 + (f3 − f2)/(2^p − 1); if the observed order is not "
     "meaningful — non-monotone, or p outside [0.5, 4] — p = 2 is used and the table says so) plus the "
     "Richardson time-step correction at the finest level (the same formula over the three finest DT; "
-    "DT halves each time). Errors are |f − f*|/|f*| in percent.")
+    "DT halves each time). Errors are |f − f*|/|f*| in percent. With a stored reference (--reference; "
+    "the fast study uses scripts/study_reference.json, the f* of a full study) the errors are against "
+    "that converged f*, and the table shows this study's own extrapolation beside it.")
 
 
 def parse_list(text, kind):
@@ -255,6 +258,41 @@ def references(rows, case, levels, dts_ms):
     return result
 
 
+STORED_REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "study_reference.json")
+
+
+def read_stored_reference(path):
+    """f* per case and quantity from a full study (its OUT/reference.json), or {} without a file."""
+    if not path or not os.path.exists(path):
+        return {}
+    with open(path) as handle:
+        data = json.load(handle)
+    return {case: {short: float(value) for short, value in quantities.items() if short != "source"}
+            for case, quantities in data.get("cases", {}).items()}
+
+
+def apply_stored(refs, stored):
+    """Replace each case's Richardson f* by the stored converged value where one is stored (the
+    extrapolation from the study's own levels stays beside it, as `extrapolated`)."""
+    for case, ref in refs.items():
+        for short, value in stored.get(case, {}).items():
+            if ref.get(short) is not None:
+                ref[short]["extrapolated"] = ref[short]["value"]
+                ref[short]["value"] = value
+                ref[short]["stored"] = True
+
+
+def write_reference(refs, path, levels, dts_ms, version):
+    """OUT/reference.json: the study's f* (copy it to scripts/study_reference.json to make it the fast study's)."""
+    data = {"source": "make study, levels %s, DT %s ms, %s" % (",".join(str(lv) for lv in sorted(levels)),
+                                                               ",".join("%g" % d for d in sorted(dts_ms)), version),
+            "cases": {case: {short: r["value"] for short, r in ref.items() if r is not None}
+                      for case, ref in refs.items()}}
+    with open(path, "w") as handle:
+        json.dump(data, handle, indent=2)
+        handle.write("\n")
+
+
 def add_errors(rows, refs):
     for row in rows:
         if row["status"] != "ok":
@@ -343,7 +381,11 @@ def markdown(rows, refs, cases, levels, dts_ms, fast, version, machine):
                 cells.append("%+.3g" % corr)
                 if note != "observed order":
                     notes.append("%s, %s: %s." % (label, "mesh" if part == "mesh" else "DT", note))
-            cells.append("**%s**" % fmt(r["value"], 5))
+            if r.get("stored"):
+                cells.append("**%s** (stored, from a full study; extrapolated here: %s)" % (
+                    fmt(r["value"], 5), fmt(r["extrapolated"], 5)))
+            else:
+                cells.append("**%s**" % fmt(r["value"], 5))
             lines.append("| " + " | ".join(cells) + " |")
         lines.append("")
         if notes:
@@ -387,50 +429,58 @@ def markdown(rows, refs, cases, levels, dts_ms, fast, version, machine):
 
 
 def plot(rows, cases, dts_ms, path):
+    """Error against CPU seconds: one row of panels per quantity (alpha_m, t, q_m) and one for their
+    maximum (with the cheapest run within 1 %), one column per case, one curve per DT."""
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.ticker import NullFormatter
     floor = 1e-4    # % : a zero error is drawn here (log axis)
-    fig, axes = plt.subplots(1, len(cases), figsize=(6.2 * len(cases), 5.0), squeeze=False)
+    panels = [("err_%s_pct" % short, "error of %s (%%)" % label) for short, _, _, label in QUANTITIES]
+    panels.append(("err_max_pct", "max error of α_m, t, q_m (%)"))
+    fig, axes = plt.subplots(len(panels), len(cases), figsize=(6.2 * len(cases), 3.6 * len(panels)), squeeze=False)
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
-    for ax, case in zip(axes[0], cases):
-        for k, dt in enumerate(sorted(dts_ms, reverse=True)):
-            pts = sorted((r for r in rows if r["case"] == case and r["dt_ms"] == dt and "err_max_pct" in r),
-                         key=lambda r: r["level"])
-            if not pts:
-                continue
-            xs = [max(r["cpu_s"], 1e-4) for r in pts]
-            ys = [max(r["err_max_pct"], floor) for r in pts]
-            ax.plot(xs, ys, "o-", color=colours[k % len(colours)], label="DT = %g ms" % dt, markersize=4)
-            for x, y, r in zip(xs, ys, pts):
-                ax.annotate("L%d" % r["level"], (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7)
-        ax.axhline(TOLERANCE_PCT, color="grey", linestyle="--", linewidth=0.8, label="1 %")
-        best = cheapest_within(rows, case)
-        if best is not None:
-            x, y = max(best["cpu_s"], 1e-4), max(best["err_max_pct"], floor)
-            ax.plot([x], [y], "o", markersize=16, markerfacecolor="none", markeredgecolor="red", markeredgewidth=1.5)
-            ax.annotate("cheapest within %g %%%%:\nlevel %d, DT %g ms, %.3g s" % (TOLERANCE_PCT, best["level"], best["dt_ms"],
-                                                                               best["cpu_s"]),
-                        (x, y), textcoords="offset points", xytext=(-20, -42), fontsize=8, color="red",
-                        arrowprops=dict(arrowstyle="->", color="red", linewidth=0.8))
-        else:
-            ax.text(0.03, 0.5, "no run within 1 % in all of α, t, q", transform=ax.transAxes, fontsize=8,
-                    color="red")
-        shown = [max(r["err_max_pct"], floor) for r in rows if r["case"] == case and "err_max_pct" in r]
-        if shown:
-            ax.set_ylim(bottom=min(min(shown), TOLERANCE_PCT) / 2)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.xaxis.set_minor_formatter(NullFormatter())
-        ax.yaxis.set_minor_formatter(NullFormatter())
-        ax.set_xlabel("CPU seconds of the solve (one core)")
-        ax.set_ylabel("max relative error of α_m, t, q_m vs Richardson (%)")
-        ax.set_title(case)
-        ax.grid(True, which="both", linewidth=0.3)
-        ax.legend(fontsize=8)
+    for column, case in enumerate(cases):
+        for row_index, (key, ylabel) in enumerate(panels):
+            ax = axes[row_index][column]
+            for k, dt in enumerate(sorted(dts_ms, reverse=True)):
+                pts = sorted((r for r in rows if r["case"] == case and r["dt_ms"] == dt and key in r),
+                             key=lambda r: r["level"])
+                if not pts:
+                    continue
+                xs = [max(r["cpu_s"], 1e-4) for r in pts]
+                ys = [max(r[key], floor) for r in pts]
+                ax.plot(xs, ys, "o-", color=colours[k % len(colours)], label="DT = %g ms" % dt, markersize=4)
+                for x, y, r in zip(xs, ys, pts):
+                    ax.annotate("L%d" % r["level"], (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7)
+            ax.axhline(TOLERANCE_PCT, color="grey", linestyle="--", linewidth=0.8, label="1 %")
+            best = cheapest_within(rows, case) if key == "err_max_pct" else None
+            if best is not None:
+                x, y = max(best["cpu_s"], 1e-4), max(best["err_max_pct"], floor)
+                ax.plot([x], [y], "o", markersize=16, markerfacecolor="none", markeredgecolor="red",
+                        markeredgewidth=1.5)
+                ax.annotate("cheapest within %g %%%%:\nlevel %d, DT %g ms, %.3g s" % (
+                    TOLERANCE_PCT, best["level"], best["dt_ms"], best["cpu_s"]), (x, y), textcoords="offset points",
+                    xytext=(-20, -42), fontsize=8, color="red",
+                    arrowprops=dict(arrowstyle="->", color="red", linewidth=0.8))
+            elif key == "err_max_pct":
+                ax.text(0.03, 0.5, "no run within 1 % in all of α, t, q", transform=ax.transAxes, fontsize=8,
+                        color="red")
+            shown = [max(r[key], floor) for r in rows if r["case"] == case and key in r]
+            if shown:
+                ax.set_ylim(bottom=min(min(shown), TOLERANCE_PCT) / 2)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.xaxis.set_minor_formatter(NullFormatter())
+            ax.yaxis.set_minor_formatter(NullFormatter())
+            ax.set_xlabel("CPU seconds of the solve (one core)")
+            ax.set_ylabel(ylabel)
+            ax.set_title(case)
+            ax.grid(True, which="both", linewidth=0.3)
+            if row_index == 0:
+                ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    fig.savefig(path, dpi=100)
     plt.close(fig)
 
 
@@ -524,6 +574,10 @@ def main():
                              % ", ".join(INTEGRATOR_CARDS))
     parser.add_argument("--integrator-cases", default="table1_elastic",
                         help="the cases the other integrators run (default table1_elastic)")
+    parser.add_argument("--reference",
+                        help="a JSON file of converged f* (OUT/reference.json of a full study) to measure the errors "
+                             "against instead of extrapolating from this study's own levels; default for --fast: "
+                             "scripts/study_reference.json")
     parser.add_argument("--integrator-levels",
                         help="comma list of the mesh levels the other integrators run (default: the study's "
                              "levels up to 4; the level-5 runs would double the study's time)")
@@ -579,6 +633,11 @@ def main():
                           file=sys.stderr, flush=True)
 
     refs = {case: references(rows, case, levels, dts_ms) for case in cases}
+    stored_path = args.reference or (STORED_REFERENCE if args.fast else None)
+    stored = read_stored_reference(stored_path)
+    if not args.fast:
+        write_reference(refs, os.path.join(out, "reference.json"), levels, dts_ms, version)
+    apply_stored(refs, stored)
     add_errors(rows, refs)
 
     with open(os.path.join(out, "study.csv"), "w", newline="") as handle:
@@ -591,8 +650,8 @@ def main():
                 cells.append(("%.10g" % value) if isinstance(value, float) else value)
             writer.writerow(cells)
     wilson_rows = [r for r in rows if r["integrator"] == DECK_INTEGRATOR]
-    text = markdown(wilson_rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast, version,
-                    machine)
+    text = markdown(wilson_rows, refs, cases, sorted(levels), sorted(dts_ms, reverse=True), args.fast and not stored,
+                    version, machine)
     written = "study.csv, study.md, study.png"
     if integrator_cases:
         text += "\n" + integrator_markdown(rows, integrator_cases, [DECK_INTEGRATOR] + others)
