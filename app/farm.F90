@@ -20,7 +20,7 @@ program visco2d_farm
   use visco2d_error, only: error_t, error_text
   use visco2d_batch, only: duplicate_case_message, run_batch_deck
   use visco2d_case_folder, only: prepare_output_root
-  use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
+  use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup, get_argument
   use visco2d_progress, only: progress_configure, progress_off
 #endif
   use, intrinsic :: iso_c_binding, only: c_int
@@ -241,15 +241,6 @@ contains
       flush(6)
     end if
   end subroutine report
-
-  subroutine get_argument(position, value)
-    integer, intent(in) :: position
-    character(:), allocatable, intent(out) :: value
-    integer :: n
-    call get_command_argument(position, length=n)
-    allocate(character(len=n) :: value)
-    call get_command_argument(position, value)
-  end subroutine get_argument
 
   subroutine print_help()
     print '(a)', 'visco2d-farm - the decks of a batch over MPI ranks (a task farm)'

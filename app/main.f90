@@ -11,7 +11,7 @@ program visco2d
   use visco2d_expect, only: run_line, expect_tally_t
   use visco2d_batch, only: duplicate_case_message
   use visco2d_case_folder, only: prepare_output_root
-  use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup
+  use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup, get_argument
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: itoa
@@ -174,15 +174,6 @@ contains
       call progress_configure(progress_auto, delay)
     end if
   end subroutine configure_progress
-
-  subroutine get_argument(position, value)
-    integer, intent(in) :: position
-    character(:), allocatable, intent(out) :: value
-    integer :: n
-    call get_command_argument(position, length=n)
-    allocate(character(len=n) :: value)
-    call get_command_argument(position, value)
-  end subroutine get_argument
 
   !> A usage error (of the relax subcommand if `relax`): message and usage on stderr, exit status 2.
   subroutine usage_error(message, relax)

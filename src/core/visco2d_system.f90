@@ -12,7 +12,7 @@ module visco2d_system
 
   public :: make_directory, rename_path, remove_file, remove_directory, process_id, is_terminal
   public :: directory_exists, path_exists, remove_tree, process_alive, matching_paths, ignore_file_size_signal
-  public :: path_t
+  public :: path_t, get_argument
   public :: install_interrupt_cleanup, interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
   public :: file_open_write, file_write, file_close
 
@@ -358,4 +358,13 @@ contains
     integer, intent(in) :: fd
     is_terminal = c_isatty(int(fd, c_int)) == 1
   end function is_terminal
+  !> The command-line argument at `position`, whole (any length).
+  subroutine get_argument(position, value)
+    integer, intent(in) :: position
+    character(:), allocatable, intent(out) :: value
+    integer :: n
+    call get_command_argument(position, length=n)
+    allocate(character(len=n) :: value)
+    call get_command_argument(position, value)
+  end subroutine get_argument
 end module visco2d_system
