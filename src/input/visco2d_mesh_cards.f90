@@ -1,5 +1,5 @@
 !> The mesh cards: legacy NODE and ELEMENT cards with generation, or a MESH
-!> generator card (SPHERE, RECT, RING), read into a mesh_input_t with the
+!> generator card (SPHERE, SPHEROID, RECT, RING), read into a mesh_input_t with the
 !> size of the mesh checked against the limits before it is generated.
 !> visco2d_mesh_build turns the input into a checked, numbered mesh_t.
 module visco2d_mesh_cards
@@ -8,8 +8,9 @@ module visco2d_mesh_cards
   use visco2d_error, only: error_t
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
                            positional_real, positional_integer, positional_word, check_fields_used, field_column
-  use visco2d_mesh_generator, only: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core, &
-                                    sphere_grid_contact, sphere_grid_legacy
+  use visco2d_mesh_generator, only: spheroid_grid, rectangle_grid, ring_grid, sphere_default_grade, &
+                                    sphere_default_core, sphere_grid_contact, sphere_grid_legacy, &
+                                    spheroid_least_ratio, spheroid_largest_ratio
   use visco2d_budget, only: run_size_t, mesh_run_size, sphere_mesh_counts, grid_mesh_counts, memory_limit, &
                             bytes_text, count_text, max_mesh_entities
   use visco2d_strings, only: itoa, rtoa
@@ -233,6 +234,8 @@ contains
   !> MESH SPHERE R=.. [LEVEL=1] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]
   !> (MAT= may be omitted when the deck has one material; GRADE and CORE
   !> default to 2.5 and 0.2 on the contact grid, 2.35 and 0.35 on the legacy grid)
+  !> MESH SPHEROID A=.. C=.. [LEVEL=1] [MAT=id] [GRID=..] [GRADE=b] [CORE=c]
+  !> (the sphere grid stretched: equatorial semi-axis A, polar semi-axis C)
   !> MESH RECT R0=.. R1=.. Z0=.. Z1=.. NR=.. NZ=.. [MAT=id]
   !> MESH RING R0=.. R1=.. NR=.. NT=.. [ANGLE=90] [MAT=id]   (plane-strain ring sector)
   subroutine read_mesh_card(input, deck, card, error)
@@ -249,17 +252,18 @@ contains
       call card_error(error, deck, card, 'a MESH card cannot be combined with NODE/ELEMENT cards or another MESH')
       return
     end if
-    call positional_word(deck, card, 1, 'mesh kind (SPHERE, RECT or RING)', kind, error); if (allocated(error)) return
+    call positional_word(deck, card, 1, 'mesh kind (SPHERE, SPHEROID, RECT or RING)', kind, error)
+    if (allocated(error)) return
     call named_word(deck, card, 'MAT', material, error, default=''); if (allocated(error)) return
     select case (kind)
-    case ('SPHERE')
-      call read_sphere_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
+    case ('SPHERE', 'SPHEROID')
+      call read_sphere_mesh(deck, card, kind == 'SPHEROID', xy, connectivity, edge_element, edge_side, edge_set, error)
     case ('RECT')
       call read_rect_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
     case ('RING')
       call read_ring_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
     case default
-      call card_error(error, deck, card, 'mesh kind must be SPHERE, RECT or RING, got "'//kind//'"', &
+      call card_error(error, deck, card, 'mesh kind must be SPHERE, SPHEROID, RECT or RING, got "'//kind//'"', &
                       field_column(card, '1'))
     end select
     if (allocated(error)) return
@@ -284,18 +288,27 @@ contains
     input%generator_column = card%column
   end subroutine read_mesh_card
 
-  !> MESH SPHERE: the fields checked, the grid generated.
-  subroutine read_sphere_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
+  !> MESH SPHERE or (`spheroid`) MESH SPHEROID: the fields checked, the grid generated.
+  subroutine read_sphere_mesh(deck, card, spheroid, xy, connectivity, edge_element, edge_side, edge_set, error)
     type(card_deck_t), intent(in) :: deck
     type(card_t), intent(inout) :: card
+    logical, intent(in) :: spheroid
     real(dp), allocatable, intent(out) :: xy(:, :)
     integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
     type(error_t), allocatable, intent(inout) :: error
-    real(dp) :: radius, grade, core
+    real(dp) :: equatorial, polar, grade, core
     integer :: level, grid
     integer(int64) :: nodes, elements, least_width
-    character(:), allocatable :: grid_name
-    call named_real(deck, card, 'R', radius, error); if (allocated(error)) return
+    character(:), allocatable :: grid_name, usage
+    if (spheroid) then
+      usage = 'MESH SPHEROID A=.. C=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]'
+      call named_real(deck, card, 'A', equatorial, error); if (allocated(error)) return
+      call named_real(deck, card, 'C', polar, error); if (allocated(error)) return
+    else
+      usage = 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]'
+      call named_real(deck, card, 'R', equatorial, error); if (allocated(error)) return
+      polar = equatorial
+    end if
     call named_integer(deck, card, 'LEVEL', level, error, default=1); if (allocated(error)) return
     call named_word(deck, card, 'GRID', grid_name, error, default='CONTACT'); if (allocated(error)) return
     select case (grid_name)
@@ -307,10 +320,18 @@ contains
     end select
     call named_real(deck, card, 'GRADE', grade, error, default=sphere_default_grade(grid)); if (allocated(error)) return
     call named_real(deck, card, 'CORE', core, error, default=sphere_default_core(grid)); if (allocated(error)) return
-    call check_fields_used(deck, card, error, 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]')
+    call check_fields_used(deck, card, error, usage)
     if (allocated(error)) return
-    if (radius <= 0.0_dp) then
-      call card_error(error, deck, card, 'R must be > 0 m, got '//rtoa(radius), field_column(card, 'R')); return
+    if (spheroid) then
+      call check_semi_axis(equatorial, 'A'); if (allocated(error)) return
+      call check_semi_axis(polar, 'C'); if (allocated(error)) return
+      if (.not. (polar/equatorial >= spheroid_least_ratio .and. polar/equatorial <= spheroid_largest_ratio)) then
+        call card_error(error, deck, card, 'C/A must be in ['//rtoa(spheroid_least_ratio)//', '// &
+          rtoa(spheroid_largest_ratio)//'] (the range on which the stretched sphere grid is validated), got C/A = '// &
+          rtoa(polar/equatorial), field_column(card, 'C')); return
+      end if
+    else
+      call check_semi_axis(equatorial, 'R'); if (allocated(error)) return
     end if
     if (level < 1 .or. level > 7) then
       call card_error(error, deck, card, 'LEVEL must be in 1..7 (level 7 has 360,448 elements), got '//itoa(level), &
@@ -328,14 +349,23 @@ contains
       call card_error(error, deck, card, 'CORE must be in (0.05, 0.7] on GRID=CONTACT, got '//rtoa(core), &
                       field_column(card, 'CORE')); return
     end if
-    if (radius > max_coordinate) then
-      call card_error(error, deck, card, 'R must be <= '//rtoa(max_coordinate)//' m, got '//rtoa(radius), &
-                      field_column(card, 'R')); return
-    end if
     call sphere_mesh_counts(level, nodes, elements, least_width)
-    call check_generated_size(deck, card, 'SPHERE', nodes, elements, least_width, 'LEVEL', error)
+    call check_generated_size(deck, card, trim(merge('SPHEROID', 'SPHERE  ', spheroid)), nodes, elements, least_width, &
+                              'LEVEL', error)
     if (allocated(error)) return
-    call sphere_grid(radius, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
+    call spheroid_grid(equatorial, polar, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
+  contains
+    !> A radius or semi-axis: > 0 and at most max_coordinate (m).
+    subroutine check_semi_axis(value, field)
+      real(dp), intent(in) :: value
+      character(*), intent(in) :: field
+      if (value <= 0.0_dp) then
+        call card_error(error, deck, card, field//' must be > 0 m, got '//rtoa(value), field_column(card, field))
+      else if (value > max_coordinate) then
+        call card_error(error, deck, card, field//' must be <= '//rtoa(max_coordinate)//' m, got '//rtoa(value), &
+                        field_column(card, field))
+      end if
+    end subroutine check_semi_axis
   end subroutine read_sphere_mesh
 
   !> MESH RECT: the fields checked, the grid generated.

@@ -10,6 +10,7 @@ module visco2d_mesh_generator
 
   public :: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core
   public :: sphere_grid_contact, sphere_grid_legacy, sphere_grid_name
+  public :: spheroid_grid, spheroid_least_ratio, spheroid_largest_ratio
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
@@ -35,6 +36,10 @@ module visco2d_mesh_generator
   !> bottom and top corners in the reference disc, chosen so that no element
   !> angle leaves [52, 128] deg on levels 1-5.
   real(dp), parameter :: core_corner_bottom = 55.0_dp*pi/180.0_dp, core_corner_top = 50.0_dp*pi/180.0_dp
+  !> The validated range of a spheroid's aspect ratio C/A (`MESH SPHEROID`):
+  !> on it the stretched sphere grid keeps every element angle of the default
+  !> contact grid within [35, 145] deg on levels 1-5 (test_spheroid).
+  real(dp), parameter :: spheroid_least_ratio = 0.6_dp, spheroid_largest_ratio = 1.6_dp
 
 contains
 
@@ -154,6 +159,25 @@ contains
       edge_set(nedge) = set
     end subroutine add_edge
   end subroutine sphere_grid
+
+  !> Half section (r >= 0) of a spheroid of equatorial semi-axis A (along r)
+  !> and polar semi-axis C (along z), contact pole at z = 0, centre at z = C:
+  !> the sphere grid of radius A (`sphere_grid`, same level, grid, grade and
+  !> core) stretched along z by C/A. The affine map keeps the topology, the
+  !> level family (level L's nodes are still level L + 1's), the grading's
+  !> index fractions and the sign of every Jacobian (det times C/A > 0), and
+  !> multiplies every volume of revolution by C/A: the contact grid's volume
+  !> 4/3 pi A^3 becomes the spheroid's 4/3 pi A^2 C exactly. Its radius of
+  !> curvature at the contact pole is A^2/C. A = C is the sphere grid itself.
+  subroutine spheroid_grid(equatorial, polar, level, grade, core, grid, xy, connectivity, edge_element, edge_side, &
+                           edge_set)
+    real(dp), intent(in) :: equatorial, polar, grade, core
+    integer, intent(in) :: level, grid
+    real(dp), allocatable, intent(out) :: xy(:, :)
+    integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
+    call sphere_grid(equatorial, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
+    if (polar /= equatorial) xy(2, :) = xy(2, :)*(polar/equatorial)
+  end subroutine spheroid_grid
 
   !> Surface angle (from the contact pole) of the fraction x of the surface
   !> segments: theta = pi (e^{bx} - 1)/(e^b - 1), uniform for b = 0.
