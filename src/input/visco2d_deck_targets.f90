@@ -5,7 +5,7 @@
 module visco2d_deck_targets
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, short_real, to_lower
+  use visco2d_strings, only: itoa, short_real, to_lower, to_upper
   use visco2d_ranges, only: length_range, pressure_range, force_range, expected_value_range, tolerance_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, &
                            named_word, positional_word, positional_real, &
@@ -207,12 +207,33 @@ contains
       end do
       if (deck%mesh%element_material(e) == 0) then
         call line_error(error, deck, deck%mesh%element_line(e), 'element '//itoa(deck%mesh%element_id(e))// &
-          ' uses material '//trim(name)//', which is not defined by a MATERIAL card', 'MAT')
+          ' uses material '//trim(name)//', which is not defined by a MATERIAL card', &
+          material_field(deck, deck%mesh%element_line(e), name))
         return
       end if
       end associate
     end do
   end subroutine resolve_materials
+
+  !> The field of the card on `line` that names material `name`: SKINMAT or
+  !> COREMAT (the MESH SPHERE regions) when one of them does, else MAT.
+  function material_field(deck, line, name) result(field)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: line
+    character(*), intent(in) :: name
+    character(:), allocatable :: field
+    integer :: k, i
+    field = 'MAT'
+    do k = 1, deck%cards%count
+      if (deck%cards%cards(k)%line /= line) cycle
+      do i = 1, size(deck%cards%cards(k)%tokens)
+        associate (token => deck%cards%cards(k)%tokens(i))
+        if ((token%name == 'SKINMAT' .or. token%name == 'COREMAT') .and. to_upper(token%value) == to_upper(trim(name))) &
+          field = token%name
+        end associate
+      end do
+    end do
+  end function material_field
 
   !> Node index of a target written as a node number; error if undefined.
   integer function target_node(deck, pending, error) result(node)

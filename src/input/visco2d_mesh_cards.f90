@@ -7,10 +7,11 @@ module visco2d_mesh_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
-                           positional_real, positional_integer, positional_word, check_fields_used, field_column
+                           positional_real, positional_integer, positional_word, check_fields_used, field_column, has_field
   use visco2d_mesh_generator, only: spheroid_grid, rectangle_grid, ring_grid, sphere_default_grade, &
                                     sphere_default_core, sphere_grid_contact, sphere_grid_legacy, &
-                                    spheroid_least_ratio, spheroid_largest_ratio
+                                    spheroid_least_ratio, spheroid_largest_ratio, sphere_element_layer, &
+                                    sphere_layer_count
   use visco2d_budget, only: run_size_t, mesh_run_size, sphere_mesh_counts, grid_mesh_counts, memory_limit, &
                             bytes_text, count_text, max_mesh_entities
   use visco2d_strings, only: itoa, rtoa
@@ -232,8 +233,11 @@ contains
     end if
   end function raise_hint
   !> MESH SPHERE R=.. [LEVEL=1] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]
+  !>   [SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id]
   !> (MAT= may be omitted when the deck has one material; GRADE and CORE
-  !> default to 2.5 and 0.2 on the contact grid, 2.35 and 0.35 on the legacy grid)
+  !> default to 2.5 and 0.2 on the contact grid, 2.35 and 0.35 on the legacy grid;
+  !> SKINMAT= gives the outermost n of the 8 level-1 polar layers, n 2^(L-1)
+  !> layers at level L, another material, COREMAT= the core block)
   !> MESH SPHEROID A=.. C=.. [LEVEL=1] [MAT=id] [GRID=..] [GRADE=b] [CORE=c]
   !> (the sphere grid stretched: equatorial semi-axis A, polar semi-axis C)
   !> MESH RECT R0=.. R1=.. Z0=.. Z1=.. NR=.. NZ=.. [MAT=id]
@@ -243,8 +247,8 @@ contains
     type(card_deck_t), intent(in) :: deck
     type(card_t), intent(inout) :: card
     type(error_t), allocatable, intent(inout) :: error
-    character(:), allocatable :: kind, material
-    integer :: i
+    character(:), allocatable :: kind, material, skin_material, core_material
+    integer :: i, level, skin_layers
     real(dp), allocatable :: xy(:, :)
     integer, allocatable :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
 
@@ -257,7 +261,8 @@ contains
     call named_word(deck, card, 'MAT', material, error, default=''); if (allocated(error)) return
     select case (kind)
     case ('SPHERE', 'SPHEROID')
-      call read_sphere_mesh(deck, card, kind == 'SPHEROID', xy, connectivity, edge_element, edge_side, edge_set, error)
+      call read_sphere_mesh(deck, card, kind == 'SPHEROID', xy, connectivity, edge_element, edge_side, edge_set, &
+                            level, skin_material, skin_layers, core_material, error)
     case ('RECT')
       call read_rect_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
     case ('RING')
@@ -280,6 +285,16 @@ contains
     input%element_line = [(card%line, i = 1, input%nelem)]
     allocate(input%material(input%nelem))
     input%material = material
+    if (kind == 'SPHERE' .or. kind == 'SPHEROID') then
+      do i = 1, input%nelem
+        if (sphere_element_layer(level, i) == 0 .and. len(core_material) > 0) then
+          input%material(i) = core_material
+        else if (sphere_element_layer(level, i) > sphere_layer_count(level) - skin_layers*2**(level - 1) &
+                 .and. len(skin_material) > 0) then
+          input%material(i) = skin_material
+        end if
+      end do
+    end if
     input%edge_element = edge_element
     input%edge_side = edge_side
     input%edge_set = edge_set
@@ -288,24 +303,31 @@ contains
     input%generator_column = card%column
   end subroutine read_mesh_card
 
-  !> MESH SPHERE or (`spheroid`) MESH SPHEROID: the fields checked, the grid generated.
-  subroutine read_sphere_mesh(deck, card, spheroid, xy, connectivity, edge_element, edge_side, edge_set, error)
+  !> MESH SPHERE or (`spheroid`) MESH SPHEROID: the fields checked, the grid
+  !> generated; its level and the material regions (SKINMAT=, SKIN_LAYERS=,
+  !> COREMAT=; '' where the field is absent) returned for the caller to assign.
+  subroutine read_sphere_mesh(deck, card, spheroid, xy, connectivity, edge_element, edge_side, edge_set, &
+                              level, skin_material, skin_layers, core_material, error)
     type(card_deck_t), intent(in) :: deck
     type(card_t), intent(inout) :: card
     logical, intent(in) :: spheroid
     real(dp), allocatable, intent(out) :: xy(:, :)
     integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
+    integer, intent(out) :: level, skin_layers
+    character(:), allocatable, intent(out) :: skin_material, core_material
     type(error_t), allocatable, intent(inout) :: error
     real(dp) :: equatorial, polar, grade, core
-    integer :: level, grid
+    integer :: grid
     integer(int64) :: nodes, elements, least_width
     character(:), allocatable :: grid_name, usage
     if (spheroid) then
-      usage = 'MESH SPHEROID A=.. C=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]'
+      usage = 'MESH SPHEROID A=.. C=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c] '// &
+              '[SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id]'
       call named_real(deck, card, 'A', equatorial, error); if (allocated(error)) return
       call named_real(deck, card, 'C', polar, error); if (allocated(error)) return
     else
-      usage = 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]'
+      usage = 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c] '// &
+              '[SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id]'
       call named_real(deck, card, 'R', equatorial, error); if (allocated(error)) return
       polar = equatorial
     end if
@@ -320,8 +342,12 @@ contains
     end select
     call named_real(deck, card, 'GRADE', grade, error, default=sphere_default_grade(grid)); if (allocated(error)) return
     call named_real(deck, card, 'CORE', core, error, default=sphere_default_core(grid)); if (allocated(error)) return
+    call named_word(deck, card, 'SKINMAT', skin_material, error, default=''); if (allocated(error)) return
+    call named_integer(deck, card, 'SKIN_LAYERS', skin_layers, error, default=1); if (allocated(error)) return
+    call named_word(deck, card, 'COREMAT', core_material, error, default=''); if (allocated(error)) return
     call check_fields_used(deck, card, error, usage)
     if (allocated(error)) return
+    call check_regions(); if (allocated(error)) return
     if (spheroid) then
       call check_semi_axis(equatorial, 'A'); if (allocated(error)) return
       call check_semi_axis(polar, 'C'); if (allocated(error)) return
@@ -355,6 +381,22 @@ contains
     if (allocated(error)) return
     call spheroid_grid(equatorial, polar, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
   contains
+    !> SKINMAT=, SKIN_LAYERS= and COREMAT=: ids of at most 32 characters; the
+    !> skin 1 to 7 of the 8 level-1 layers (at least one layer of flesh).
+    subroutine check_regions()
+      if (len(skin_material) > name_length) then
+        call card_error(error, deck, card, 'SKINMAT id longer than 32 characters', field_column(card, 'SKINMAT'))
+      else if (len(core_material) > name_length) then
+        call card_error(error, deck, card, 'COREMAT id longer than 32 characters', field_column(card, 'COREMAT'))
+      else if (has_field(card, 'SKIN_LAYERS') .and. len(skin_material) == 0) then
+        call card_error(error, deck, card, 'SKIN_LAYERS= needs SKINMAT=id (the skin''s material)', &
+                        field_column(card, 'SKIN_LAYERS'))
+      else if (skin_layers < 1 .or. skin_layers > 7) then
+        call card_error(error, deck, card, 'SKIN_LAYERS must be in 1..7 (of the 8 polar layers at level 1; '// &
+          'level L has 8*2^(L-1)), got '//itoa(skin_layers), field_column(card, 'SKIN_LAYERS'))
+      end if
+    end subroutine check_regions
+
     !> A radius or semi-axis: > 0 and at most max_coordinate (m).
     subroutine check_semi_axis(value, field)
       real(dp), intent(in) :: value

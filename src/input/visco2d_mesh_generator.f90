@@ -11,6 +11,7 @@ module visco2d_mesh_generator
   public :: sphere_grid, rectangle_grid, ring_grid, sphere_default_grade, sphere_default_core
   public :: sphere_grid_contact, sphere_grid_legacy, sphere_grid_name
   public :: spheroid_grid, spheroid_least_ratio, spheroid_largest_ratio
+  public :: sphere_element_layer, sphere_layer_count
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
@@ -178,6 +179,32 @@ contains
     call sphere_grid(equatorial, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
     if (polar /= equatorial) xy(2, :) = xy(2, :)*(polar/equatorial)
   end subroutine spheroid_grid
+
+  !> Number of polar element layers between the core and the surface of
+  !> the sphere grid at `level`: 8 f, f = 2^(L-1).
+  pure integer function sphere_layer_count(level)
+    integer, intent(in) :: level
+    sphere_layer_count = 8*2**(level - 1)
+  end function sphere_layer_count
+
+  !> The region of element `element` (in the order `sphere_grid` makes them)
+  !> of the sphere grid at `level`: 0 for the core block, k = 1 .. 8f for the
+  !> k-th polar layer counted outward from the core (8f: the layer on the
+  !> surface). Layer k lies between the node rings k - 1 and k, so the
+  !> outermost n f layers of every level end on the same node ring (the
+  !> fraction 1 - n/8 of the way from the core to the surface): materials
+  !> assigned by layer have their interfaces on element boundaries.
+  pure integer function sphere_element_layer(level, element) result(layer)
+    integer, intent(in) :: level, element
+    integer :: f, core_elements
+    f = 2**(level - 1)
+    core_elements = f*8*f
+    if (element <= core_elements) then
+      layer = 0
+    else
+      layer = (element - core_elements - 1)/(10*f) + 1
+    end if
+  end function sphere_element_layer
 
   !> Surface angle (from the contact pole) of the fraction x of the surface
   !> segments: theta = pi (e^{bx} - 1)/(e^b - 1), uniform for b = 0.
