@@ -45,7 +45,7 @@ for stamp in build/gfortran_*/visco2d_testing.mod; do
   if [ -n "$(find src -newer "$stamp" \( -name '*.f90' -o -name '*.F90' -o -name '*.c' \) -print -quit)" ]; then
     dir=$(dirname "$stamp")
     rm -f "$dir"/visco2d/test_* "$dir"/visco2d_testing.mod "$dir"/visco2d_test_decks.mod \
-          "$dir"/visco2d_analytic.mod "$dir"/visco2d_spectrum.mod
+          "$dir"/visco2d_analytic.mod "$dir"/visco2d_spectrum.mod "$dir"/visco2d_mesh_measures.mod
   fi
 done
 

@@ -47,6 +47,7 @@
 program test_contact_dynamic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use visco2d_kinds, only: dp
+  use visco2d_lapack, only: dgels
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
@@ -60,17 +61,6 @@ program test_contact_dynamic
 
   character(*), parameter :: folder = 'build/test-tmp/test_contact_dynamic'
   integer, parameter :: line_length = 100
-
-  interface
-    subroutine dgels(trans, m, n, nrhs, a, lda, b, ldb, work, lwork, info)
-      import :: dp
-      character, intent(in) :: trans
-      integer, intent(in) :: m, n, nrhs, lda, ldb, lwork
-      real(dp), intent(inout) :: a(lda, *), b(ldb, *)
-      real(dp), intent(out) :: work(*)
-      integer, intent(out) :: info
-    end subroutine dgels
-  end interface
 
   !> One dynamic run: its record and the history columns used here.
   type :: run_t

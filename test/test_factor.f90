@@ -27,6 +27,7 @@
 program test_factor
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
+  use visco2d_lapack, only: dpotrf, dpotrs, dsyev
   use visco2d_error, only: error_t, error_text
   use visco2d_banded, only: band_matrix_t, band_create, band_multiply, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, &
@@ -38,32 +39,6 @@ program test_factor
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
   implicit none
-
-  interface
-    subroutine dpotrf(uplo, n, a, lda, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, lda
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(out) :: info
-    end subroutine dpotrf
-    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, nrhs, lda, ldb
-      real(dp), intent(in) :: a(lda, *)
-      real(dp), intent(inout) :: b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dpotrs
-    subroutine dsyev(jobz, uplo, n, a, lda, w, work, lwork, info)
-      import :: dp
-      character, intent(in) :: jobz, uplo
-      integer, intent(in) :: n, lda, lwork
-      real(dp), intent(inout) :: a(lda, *)
-      real(dp), intent(out) :: w(*), work(*)
-      integer, intent(out) :: info
-    end subroutine dsyev
-  end interface
 
   real(dp), parameter :: unit_roundoff = epsilon(1.0_dp)/2.0_dp
   character(*), parameter :: folder = 'build/test-tmp/test_factor'

@@ -4,30 +4,13 @@
 !> (dpbtrf once, dpbtrs per right-hand side).
 module visco2d_banded
   use visco2d_kinds, only: dp
+  use visco2d_lapack, only: dpbtrf, dpbtrs
   implicit none
   private
 
   public :: band_matrix_t, band_create, band_add_element, band_multiply, band_multiply_rows, band_constrain
   public :: band_constrain_matrix, band_constrain_rhs
   public :: band_factor, band_solve, band_solve_many
-
-  interface
-    subroutine dpbtrf(uplo, n, kd, ab, ldab, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, kd, ldab
-      real(dp), intent(inout) :: ab(ldab, *)
-      integer, intent(out) :: info
-    end subroutine dpbtrf
-    subroutine dpbtrs(uplo, n, kd, nrhs, ab, ldab, b, ldb, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, kd, nrhs, ldab, ldb
-      real(dp), intent(in) :: ab(ldab, *)
-      real(dp), intent(inout) :: b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dpbtrs
-  end interface
 
   !> Lower band storage as LAPACK's 'L': ab(1 + i - j, j) = A(i, j) for j <= i <= j + kd.
   type :: band_matrix_t

@@ -11,6 +11,7 @@
 module visco2d_profile
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
+  use visco2d_lapack, only: ddot, daxpy, dgemv, dger   ! the inner loops (see below)
   use visco2d_banded, only: band_matrix_t
   implicit none
   private
@@ -20,33 +21,6 @@ module visco2d_profile
   ! The inner loops are BLAS calls: the optimized BLAS vectorizes the dot
   ! products, which the compiler may not (reordering a sum changes its
   ! round-off, so it keeps the sequential order without -ffast-math).
-  interface
-    pure function ddot(n, x, incx, y, incy)
-      import :: dp
-      integer, intent(in) :: n, incx, incy
-      real(dp), intent(in) :: x(*), y(*)
-      real(dp) :: ddot
-    end function ddot
-    pure subroutine daxpy(n, alpha, x, incx, y, incy)
-      import :: dp
-      integer, intent(in) :: n, incx, incy
-      real(dp), intent(in) :: alpha, x(*)
-      real(dp), intent(inout) :: y(*)
-    end subroutine daxpy
-    pure subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-      import :: dp
-      character, intent(in) :: trans
-      integer, intent(in) :: m, n, lda, incx, incy
-      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
-      real(dp), intent(inout) :: y(*)
-    end subroutine dgemv
-    pure subroutine dger(m, n, alpha, x, incx, y, incy, a, lda)
-      import :: dp
-      integer, intent(in) :: m, n, incx, incy, lda
-      real(dp), intent(in) :: alpha, x(*), y(*)
-      real(dp), intent(inout) :: a(lda, *)
-    end subroutine dger
-  end interface
 
   !> Row i of the lower triangle, columns first(i) .. i, in
   !> values(start(i) : start(i) + i - first(i)) (the diagonal last).

@@ -14,36 +14,12 @@
 !> of a refactorization of S~; each apply adds Z lambda in one pass (dgemv).
 module visco2d_capacitance
   use visco2d_kinds, only: dp
+  use visco2d_lapack, only: dpotrf, dpotrs, dgemv
   use visco2d_factor, only: factor_t, factor_solve_many
   implicit none
   private
 
   public :: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
-
-  interface
-    subroutine dpotrf(uplo, n, a, lda, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, lda
-      real(dp), intent(inout) :: a(lda, *)
-      integer, intent(out) :: info
-    end subroutine dpotrf
-    subroutine dgemv(trans, m, n, alpha, a, lda, x, incx, beta, y, incy)
-      import :: dp
-      character, intent(in) :: trans
-      integer, intent(in) :: m, n, lda, incx, incy
-      real(dp), intent(in) :: alpha, a(lda, *), x(*), beta
-      real(dp), intent(inout) :: y(*)
-    end subroutine dgemv
-    subroutine dpotrs(uplo, n, nrhs, a, lda, b, ldb, info)
-      import :: dp
-      character, intent(in) :: uplo
-      integer, intent(in) :: n, nrhs, lda, ldb
-      real(dp), intent(in) :: a(lda, *)
-      real(dp), intent(inout) :: b(ldb, *)
-      integer, intent(out) :: info
-    end subroutine dpotrs
-  end interface
 
   !> The kept columns of S~^-1 and the factored capacitance matrix of the
   !> current set of held equations.
