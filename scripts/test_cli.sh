@@ -1171,19 +1171,7 @@ cd "$work" || exit 0
 # quadrilaterals, 2 pi |J| r, envelope >= threshold); no /bruise group and no
 # bruise keys without a BRUISE card.
 mkdir -p "$work/bruise" && cd "$work/bruise" || exit 0
-cat > bruise.inp <<'DECK'
-TITLE dropped sphere with a bruise criterion
-ANALYSIS DYNAMIC
-GEOMETRY AXISYMMETRIC
-MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=800
-MESH SPHERE R=0.0381 LEVEL=2
-INITIAL VZ=-2
-PLATE Z=0 SLIP RELEASE=YES
-STOP AT=SEPARATION
-TIME DT=1e-5 TEND=10e-3
-BRUISE CRITERION=MAXSHEAR STRESS=0.2e6 THRESHOLDS=0.3e6
-END
-DECK
+cp "$root/test/decks/bruise_drop.inp" bruise.inp
 "$exe" -q -o out bruise.inp > bruise.out 2> bruise.err
 check_rc bruise_run_exit_0 0 $?
 bruise_value() { sed -n "s/^$1 = //p" out/bruise/summary.txt 2>/dev/null | head -1; }
