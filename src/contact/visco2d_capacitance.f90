@@ -12,6 +12,15 @@
 !> changes; C is refactored (dense Cholesky, m^3/3) when the set changes.
 !> A node touching thus costs one back-substitution (visco2d_factor) instead
 !> of a refactorization of S~; each apply adds Z lambda in one pass (dgemv).
+!>
+!> With a pad the held equation c is a multi-point constraint
+!>   u_c - sum_k w_k u_p(k) = value_c
+!> (a body node on the pad's surface segment, nodes p(1), p(2)): the unit
+!> column e_c becomes c = e_c - sum_k w_k e_p(k), and everything above holds
+!> with E = [c ...]: C = E^T S~^-1 E, u = w + S~^-1 E lambda; lambda acts
+!> on the body node and, with the weights, equal and opposite on the pad.
+!> The constraints are set once (`capacitance_partners`): they follow the
+!> undeformed positions, so the kept columns stay valid.
 module visco2d_capacitance
   use visco2d_kinds, only: dp
   use visco2d_lapack, only: dpotrf, dpotrs, dgemv
@@ -19,7 +28,7 @@ module visco2d_capacitance
   implicit none
   private
 
-  public :: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
+  public :: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, capacitance_partners
 
   !> The kept columns of S~^-1 and the factored capacitance matrix of the
   !> current set of held equations.
@@ -33,6 +42,8 @@ module visco2d_capacitance
     real(dp), allocatable :: matrix(:, :)  !< (m, m) Cholesky factor of C
     real(dp), allocatable :: multiplier(:) !< (m) lambda of the last apply
     real(dp), allocatable :: weights(:)    !< (capacity) lambda by column of `columns` (0: not held)
+    integer, allocatable :: partner(:, :)  !< (2, n) equations of the other end of equation c's constraint (0: none)
+    real(dp), allocatable :: weight(:, :)  !< (2, n) their weights
     integer :: factorizations = 0          !< dense factorizations of C
     integer :: solves = 0                  !< back-substitutions with S~ for new columns
   end type capacitance_t
@@ -61,6 +72,30 @@ contains
     capacitance%weights = [real(dp) ::]
   end subroutine capacitance_reset
 
+  !> The multi-point constraints of a pad: equation c, when held, keeps
+  !> u_c - sum_k weight(k, c) u_partner(k, c) at its value (partner 0: none).
+  !> Kept over resets.
+  subroutine capacitance_partners(capacitance, partner, weight)
+    type(capacitance_t), intent(inout) :: capacitance
+    integer, intent(in) :: partner(:, :)
+    real(dp), intent(in) :: weight(:, :)
+    capacitance%partner = partner
+    capacitance%weight = weight
+  end subroutine capacitance_partners
+
+  !> c_i^T x for the constraint of equation c: x(c) - sum_k w_k x(p_k).
+  pure real(dp) function constrained(capacitance, x, c) result(value)
+    type(capacitance_t), intent(in) :: capacitance
+    real(dp), intent(in) :: x(:)
+    integer, intent(in) :: c
+    integer :: k
+    value = x(c)
+    if (.not. allocated(capacitance%partner)) return
+    do k = 1, 2
+      if (capacitance%partner(k, c) > 0) value = value - capacitance%weight(k, c)*x(capacitance%partner(k, c))
+    end do
+  end function constrained
+
   !> Hold the equations with held(c) (none of them a support of `factor`):
   !> compute the missing columns with `factor` and factor C. info > 0 if C
   !> is not positive definite (the held set is dependent: cannot happen for
@@ -84,7 +119,8 @@ contains
     allocate(capacitance%matrix(m, m))
     do j = 1, m
       do i = 1, m
-        capacitance%matrix(i, j) = capacitance%columns(capacitance%held(i), capacitance%slot(j))
+        capacitance%matrix(i, j) = constrained(capacitance, capacitance%columns(:, capacitance%slot(j)), &
+                                               capacitance%held(i))
       end do
     end do
     if (allocated(capacitance%multiplier)) deallocate(capacitance%multiplier)
@@ -105,7 +141,7 @@ contains
     m = size(capacitance%held)
     if (m == 0) return
     do i = 1, m
-      capacitance%multiplier(i) = values(capacitance%held(i)) - w(capacitance%held(i))
+      capacitance%multiplier(i) = values(capacitance%held(i)) - constrained(capacitance, w, capacitance%held(i))
     end do
     call dpotrs('L', m, 1, capacitance%matrix, m, capacitance%multiplier, m, info)
     if (size(capacitance%weights) /= size(capacitance%columns, 2)) then
@@ -117,7 +153,8 @@ contains
     call dgemv('N', capacitance%n, capacitance%stored, 1.0_dp, capacitance%columns, capacitance%n, &
                capacitance%weights, 1, 1.0_dp, w, 1)           ! w += Z lambda, one pass over the columns
     do i = 1, m                                         ! exactly on the constraint, not to round-off
-      w(capacitance%held(i)) = values(capacitance%held(i))
+      w(capacitance%held(i)) = values(capacitance%held(i)) + w(capacitance%held(i)) &
+                               - constrained(capacitance, w, capacitance%held(i))
     end do
   end subroutine capacitance_apply
 
@@ -128,7 +165,7 @@ contains
     type(factor_t), intent(in) :: factor
     integer, intent(in) :: new(:)
     real(dp), allocatable :: grown(:, :)
-    integer :: capacity, first, last, k
+    integer :: capacity, first, last, k, j
     if (size(new) == 0) return
     capacity = 0
     if (allocated(capacitance%columns)) capacity = size(capacitance%columns, 2)
@@ -142,6 +179,12 @@ contains
     capacitance%columns(:, first:last) = 0.0_dp
     do k = 1, size(new)
       capacitance%columns(new(k), first + k - 1) = 1.0_dp
+      if (allocated(capacitance%partner)) then         ! c = e_c - sum w e_p
+        do j = 1, 2
+          if (capacitance%partner(j, new(k)) > 0) capacitance%columns(capacitance%partner(j, new(k)), first + k - 1) = &
+            -capacitance%weight(j, new(k))
+        end do
+      end if
       capacitance%column_of(new(k)) = first + k - 1
     end do
     call factor_solve_many(factor, capacitance%columns(:, first:last))

@@ -5,6 +5,15 @@
 !> STICK holds u_r and u_z, SLIP (frictionless) u_z only. With RELEASE=YES a
 !> contact node whose reaction turns tensile is freed again.
 !>
+!> With a PAD (visco2d_pad_mesh) the body touches the pad's top surface
+!> instead: node to segment, each body node against the pad surface segment
+!> under its undeformed r (the small-displacement frame), with weights
+!> (1 - s, s) on the segment's two nodes. Its gap is then
+!>   g = z + u_z - Z - [(1 - s) u_z(a) + s u_z(b)],
+!> and a held node keeps g = 0 (and, with STICK, the same relation in u_r):
+!> a multi-point constraint that visco2d_capacitance imposes with equal and
+!> opposite forces on the body node and the segment.
+!>
 !> This module holds the contact state and search used by the dynamics, and
 !> the contact pressure recovered from the nodal reactions (a consistent
 !> boundary-mass projection), the contact radius and force. The static
@@ -20,13 +29,14 @@ module visco2d_contact
   use visco2d_element, only: element_lumped_mass
   use visco2d_assembly, only: node_dof, scatter_add
   use visco2d_hertz, only: hertz_t, hertz_impact
+  use visco2d_pad_mesh, only: is_pad_element
   implicit none
   private
 
   public :: contact_t, hertz_t
   public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
   public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
-  public :: volume_weights, hertz_impact
+  public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression
 
   !> The state of contact with the plate.
   type :: contact_t
@@ -40,6 +50,10 @@ module visco2d_contact
     logical, allocatable :: touched(:)          !< (nnode) put on the plate in this increment
     logical, allocatable :: let_go(:)           !< (nnode) freed in this increment
     integer :: pole = 0                         !< lowest boundary node (nearest the axis): q is reported here
+    logical :: pad = .false.                    !< the body touches a pad's surface, not the rigid plate
+    integer, allocatable :: partner(:, :)       !< (2, nnode) pad surface nodes under a body node (0: none)
+    real(dp), allocatable :: weight(:, :)       !< (2, nnode) their weights (1 - s, s)
+    integer :: pad_axis = 0                     !< the pad's surface node on the axis (its compression)
     integer :: iterations = 0                   !< increments repeated because the contact set changed
   end type contact_t
 
@@ -64,6 +78,7 @@ contains
     allocate(keys(4*mesh%nelem), pairs(2, 4*mesh%nelem))
     count = 0
     do e = 1, mesh%nelem
+      if (is_pad_element(deck, e)) cycle                ! the pad is what the body touches
       do side = 1, 4
         call side_nodes(mesh, e, side, a, b)
         count = count + 1
@@ -71,6 +86,7 @@ contains
         keys(count) = int(pairs(1, count), int64)*int(mesh%nnode + 1, int64) + int(pairs(2, count), int64)
       end do
     end do
+    keys = keys(1:count)                                ! the body's sides only, with a pad
     call sort_integers(keys, order)
     allocate(contact%edges(2, count), boundary(mesh%nnode))
     boundary = .false.
@@ -103,15 +119,76 @@ contains
            abs(mesh%xy(1, a)) < abs(mesh%xy(1, contact%pole)))) contact%pole = a
     end do
     end associate
+    if (deck%pad%first_node > 0) call pad_partners(deck, contact)
   end subroutine contact_create
 
-  !> Gap z + u_z - Z of a node (m), u the displacement vector in band order.
+  !> Under each candidate, the pad surface segment that contains its
+  !> undeformed r: partner nodes and weights (none beyond the pad's width).
+  subroutine pad_partners(deck, contact)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(inout) :: contact
+    integer :: i, k, node
+    real(dp) :: r, s
+    associate (mesh => deck%mesh, surface => deck%pad%surface)
+    contact%pad = .true.
+    contact%pad_axis = surface(1)
+    allocate(contact%partner(2, mesh%nnode), contact%weight(2, mesh%nnode))
+    contact%partner = 0
+    contact%weight = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      r = abs(mesh%xy(1, node))
+      do k = 1, size(surface) - 1
+        if (r > mesh%xy(1, surface(k + 1))) cycle
+        s = (r - mesh%xy(1, surface(k)))/(mesh%xy(1, surface(k + 1)) - mesh%xy(1, surface(k)))
+        contact%partner(:, node) = [surface(k), surface(k + 1)]
+        contact%weight(:, node) = [1.0_dp - s, s]
+        exit
+      end do
+    end do
+    end associate
+  end subroutine pad_partners
+
+  !> sum_k w_k f(partner_k) for component `component` (1: r, 2: z) of the
+  !> nodal field f (band order): the pad surface's value under a body node
+  !> (0 for the rigid plate, or a node beyond the pad).
+  pure real(dp) function contact_partner_sum(deck, contact, field, node, component) result(total)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: field(:)
+    integer, intent(in) :: node, component
+    integer :: k
+    total = 0.0_dp
+    if (.not. contact%pad) return
+    do k = 1, 2
+      if (contact%partner(k, node) > 0) total = total + contact%weight(k, node)* &
+        field(node_dof(deck%mesh, contact%partner(k, node), component))
+    end do
+  end function contact_partner_sum
+
+  !> The pad's compression at the axis, -u_z of its surface there (m; 0 without a pad).
+  pure real(dp) function pad_compression(deck, contact, u) result(compression)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: u(:)
+    compression = 0.0_dp
+    if (contact%pad) compression = -u(node_dof(deck%mesh, contact%pad_axis, 2))
+  end function pad_compression
+
+  !> Gap z + u_z - Z of a node (m), u the displacement vector in band order;
+  !> with a pad, less the pad surface's u_z under the node (huge beyond the pad).
   pure real(dp) function contact_gap(deck, contact, u, node) result(gap)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(in) :: contact
     real(dp), intent(in) :: u(:)
     integer, intent(in) :: node
     gap = deck%mesh%xy(2, node) + u(node_dof(deck%mesh, node, 2)) - contact%z_plate
+    if (.not. contact%pad) return
+    if (contact%partner(1, node) == 0) then
+      gap = huge(1.0_dp)
+    else
+      gap = gap - contact_partner_sum(deck, contact, u, node, 2)
+    end if
   end function contact_gap
 
   !> The equations held by contact: u_z of every contact node, and u_r too with STICK.
@@ -168,7 +245,8 @@ contains
         end if
       else
         if (contact%let_go(node)) cycle
-        finish = contact_gap(deck, contact, u, node) + du(node_dof(deck%mesh, node, 2))
+        finish = contact_gap(deck, contact, u, node) + du(node_dof(deck%mesh, node, 2)) &
+                 - contact_partner_sum(deck, contact, du, node, 2)
         if (finish >= -contact%tolerance) cycle
         start = max(contact_gap(deck, contact, u, node), 0.0_dp)
         fraction = min(fraction, start/(start - finish))

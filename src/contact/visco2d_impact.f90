@@ -15,7 +15,7 @@ module visco2d_impact
   use visco2d_material, only: stress_from_strain
   use visco2d_viscoelastic, only: step_coefficients_t, viscoelastic_state_t, element_terms, history_stress
   use visco2d_contact, only: contact_t, contact_count, contact_pressure, contact_force, contact_radius, &
-                             nearest_free_node
+                             nearest_free_node, pad_compression
   use visco2d_hertz, only: put_hertz_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column, record_warn
   implicit none
@@ -65,6 +65,8 @@ module visco2d_impact
     !> the basis of force_N, so that they sum to the plate force
     real(dp), allocatable :: reaction_at_force_max(:), reaction_at_alpha_max(:)
     integer, allocatable :: pole_corners(:, :) !< (corner, element) pairs at the pole (node_corners)
+    logical :: pad = .false.                  !< on a PAD: alpha is the approach less the pad's compression
+    real(dp) :: pad_compression = 0.0_dp, pad_compression_max = 0.0_dp, t_pad_compression_max = 0.0_dp
   end type impact_t
 
 contains
@@ -97,6 +99,7 @@ contains
     impact%r_at_force_max = deck%mesh%xy(1, :)
     impact%r_at_alpha_max = deck%mesh%xy(1, :)
     impact%stop_reason = 'end of time'
+    impact%pad = deck%pad%first_node > 0
     impact%accel_centre = a(node_dof(deck%mesh, impact%centre_node, 2))
     associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
     impact%mass_z = nodal_mass(2, :)
@@ -189,7 +192,8 @@ contains
     if (m%t_contact < 0.0_dp) return
     since = t - m%t_contact
     m%contact_nodes_max = max(m%contact_nodes_max, m%contact_nodes)
-    m%alpha = m%u_cm_contact - cm(1)
+    m%pad_compression = pad_compression(deck, contact, u)
+    m%alpha = m%u_cm_contact - cm(1) - m%pad_compression        ! on a pad: the body's own deformation
     if (m%alpha > m%alpha_max) then
       m%have_before = m%t_alpha_max > 0.0_dp .or. m%alpha_max > 0.0_dp   ! a sample before this one since contact
       m%alpha_before = m%alpha_previous
@@ -218,6 +222,7 @@ contains
     end if
     call keep_max(m%q_surface, m%q_surface_max, m%t_q_surface_max)
     call keep_max(m%force, m%force_max, m%t_force_max)
+    call keep_max(m%pad_compression, m%pad_compression_max, m%t_pad_compression_max)
     call keep_max(m%accel_centre, m%accel_max, m%t_accel_max)
     do k = 1, size(m%sensor)
       if (deck%probes(k)%radius > 0.0_dp) call keep_max(m%sensor(k), m%sensor_max(k), m%t_sensor_max(k))
@@ -370,18 +375,22 @@ contains
   end subroutine pressure_table
 
   !> History columns of an impact (t_ms and alpha_mm are filled by impact_summary).
-  pure function impact_columns() result(columns)
-    character(len=17) :: columns(8)
-    columns = [character(len=17) :: 't_ms', 'alpha_mm', 'force_N', 'q_MPa', 'q_surface_MPa', 'contact_radius_mm', &
+  !> With a pad, also its compression at the axis.
+  pure function impact_columns(pad) result(columns)
+    logical, intent(in) :: pad
+    character(len=18), allocatable :: columns(:)
+    columns = [character(len=18) :: 't_ms', 'alpha_mm', 'force_N', 'q_MPa', 'q_surface_MPa', 'contact_radius_mm', &
                'accel_center_g', 'n_contact']
+    if (pad) columns = [character(len=18) :: columns, 'pad_compression_mm']
   end function impact_columns
 
   !> The values of impact_columns now.
   pure function impact_row(impact) result(row)
     type(impact_t), intent(in) :: impact
-    real(dp) :: row(8)
+    real(dp), allocatable :: row(:)
     row = [0.0_dp, 0.0_dp, impact%force, 1.0e-6_dp*impact%q, 1.0e-6_dp*impact%q_surface, 1.0e3_dp*impact%radius, &
            impact%accel_centre/g_unit, real(impact%contact_nodes, dp)]
+    if (impact%pad) row = [row, 1.0e3_dp*impact%pad_compression]
   end function impact_row
 
   !> The impact keys of the summary (doc/outputs.md), the Hertz reference for
@@ -431,6 +440,10 @@ contains
       call record_put_real(record, 'force_max_N', m%force_max)
       call record_put_real(record, 't_force_max_ms', 1.0e3_dp*m%t_force_max)
       call record_put_real(record, 'contact_radius_max_mm', 1.0e3_dp*m%radius_max)
+      if (m%pad) then
+        call record_put_real(record, 'pad_compression_max_mm', 1.0e3_dp*m%pad_compression_max)
+        call record_put_real(record, 't_pad_compression_max_ms', 1.0e3_dp*m%t_pad_compression_max)
+      end if
       call record_put_real(record, 'accel_center_max_g', m%accel_max/g_unit)
       call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*m%t_accel_max)
       call record_put_real(record, 'accel_cm_max_g', m%accel_cm_max/g_unit)
@@ -463,6 +476,8 @@ contains
       record%history(alpha_column, row) = 0.0_dp
       if (m%t_contact >= 0.0_dp) record%history(alpha_column, row) = &
         1.0e3_dp*(m%u_cm_contact - record%history(uz_column, row))
+      if (m%pad) record%history(alpha_column, row) = record%history(alpha_column, row) - &
+        record%history(record_column(record, 'pad_compression_mm'), row)
     end do
     end associate
   end subroutine impact_summary

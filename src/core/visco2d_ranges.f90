@@ -22,7 +22,7 @@ module visco2d_ranges
   public :: modulus_range, density_range, rate_range, speed_range, acceleration_range, gravity_range
   public :: length_range, drop_height_range, pressure_range, force_range, time_range, time_step_range
   public :: curve_factor_range, expected_value_range, tolerance_range, bulk_shear_ratio_limit
-  public :: failure_stress_range, failure_energy_range
+  public :: failure_stress_range, failure_energy_range, pad_length_range
 
   !> Accepted values: lower <= value <= upper and, if floor > 0, |value| >= floor
   !> or (if zero) value = 0.
@@ -48,6 +48,8 @@ module visco2d_ranges
   type(range_t), parameter :: gravity_range = range_t(0.0_dp, 1.0e6_dp, 1.0e-6_dp, 'm/s^2')
   !> Coordinates and displacements: PLATE Z, PROBE R= Z=, FIX UR= UZ=.
   type(range_t), parameter :: length_range = range_t(-1.0e4_dp, 1.0e4_dp, 0.0_dp, 'm')
+  !> THICKNESS, WIDTH and SIZE of PAD: from a 1 micrometre film to 100 m.
+  type(range_t), parameter :: pad_length_range = range_t(1.0e-6_dp, 1.0e2_dp, 0.0_dp, 'm', .false.)
   !> HEIGHT of DROP: V = sqrt(2 g h) is divided by in the Hertz references.
   type(range_t), parameter :: drop_height_range = range_t(0.0_dp, 1.0e3_dp, 1.0e-9_dp, 'm')
   !> P of PRESSURE (times its curve): 1e12 Pa is ten times the pressure at the Earth's centre.

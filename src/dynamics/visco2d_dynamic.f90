@@ -110,9 +110,11 @@ contains
     if (present(refactor_contact)) by_refactoring = refactor_contact
     call stepper_create(deck, by_refactoring, stepper)
     call initial_state(deck, stepper, state)
-    if (stepper%contact_on) call impact_start(deck, stepper%mass, state%a, measures%impact)
+    associate (body_mass => merge(0.0_dp, stepper%mass, stepper%pad))    ! the body's, not a PAD's
+    if (stepper%contact_on) call impact_start(deck, body_mass, state%a, measures%impact)
     call book_start(measures%book, stepper%mass, state%v)
-    call log_create(deck, stepper%mass, stepper%contact_on, record, measures%log)
+    call log_create(deck, body_mass, stepper%contact_on, record, measures%log)
+    end associate
     step_count = 0
     call log_row(measures%log, deck, record, step_count, state, measures%book, &
                  stored_energy(deck, stepper%operators, state, stepper%memory), measures%impact)
@@ -167,14 +169,14 @@ contains
     state%v(1::2) = velocity(1)
     state%v(2::2) = velocity(2)
     end associate
-    state%v = merge(0.0_dp, state%v, stepper%fixed)
+    state%v = merge(0.0_dp, state%v, stepper%fixed .or. stepper%pad)   ! a PAD starts at rest
     state%internal = internal_force(deck, state%stress)
     state%load = external_load(deck, 0.0_dp)
     state%a = (state%load + stepper%gravity - state%internal)/stepper%mass
     do k = 1, 2
       if (deck%dynamics%acceleration_given(k)) state%a(k::2) = deck%dynamics%acceleration(k)
     end do
-    state%a = merge(0.0_dp, state%a, stepper%fixed)
+    state%a = merge(0.0_dp, state%a, stepper%fixed .or. stepper%pad)
     state%target = prescribed_displacement(deck, 0.0_dp)
     state%reaction = merge(stepper%mass*state%a + state%internal - state%load - stepper%gravity, 0.0_dp, stepper%fixed)
   end subroutine initial_state

@@ -9,7 +9,7 @@ module visco2d_energy_book
   use visco2d_strings, only: itoa, gtoa, rtoa
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof
-  use visco2d_contact, only: contact_t
+  use visco2d_contact, only: contact_t, contact_partner_sum
   implicit none
   private
 
@@ -95,7 +95,8 @@ contains
   end subroutine book_substep
 
   !> The kinetic energy (velocity v before the sub-step's update) of the
-  !> components the plate stopped in this sub-step.
+  !> components the plate stopped in this sub-step; on a pad, relative to
+  !> its surface (a node's mass arrested on a much heavier surface).
   subroutine book_contact_loss(book, deck, contact, mass, v)
     type(energy_book_t), intent(inout) :: book
     type(deck_t), intent(in) :: deck
@@ -106,8 +107,9 @@ contains
       node = contact%candidates(i)
       if (.not. contact%touched(node)) cycle
       associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
-      book%contact_loss = book%contact_loss + 0.5_dp*mass(z)*v(z)**2
-      if (contact%stick) book%contact_loss = book%contact_loss + 0.5_dp*mass(r)*v(r)**2
+      book%contact_loss = book%contact_loss + 0.5_dp*mass(z)*(v(z) - contact_partner_sum(deck, contact, v, node, 2))**2
+      if (contact%stick) book%contact_loss = book%contact_loss + &
+        0.5_dp*mass(r)*(v(r) - contact_partner_sum(deck, contact, v, node, 1))**2
       end associate
     end do
   end subroutine book_contact_loss

@@ -42,7 +42,9 @@ module visco2d_time_step
   use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
                              contact_gap
-  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
+  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, &
+                                 capacitance_partners
+  use visco2d_pad_mesh, only: is_pad_node
   use visco2d_timers, only: timer_start, timer_stop, phase_solve, phase_constitutive, phase_contact, &
                             phase_factorization
   use visco2d_integrators, only: integrator_t, row_t, integrator_create, solve_interval, mass_coefficient, &
@@ -80,6 +82,9 @@ module visco2d_time_step
     real(dp), allocatable :: mass(:), gravity(:)
     logical, allocatable :: supports(:), fixed(:), held(:)
     integer, allocatable :: held_rows(:)          !< the equations held by the plate
+    logical, allocatable :: pad(:)                !< the pad's equations (PAD), else none
+    integer, allocatable :: partner(:, :)         !< (2, n) a held equation's pad surface equations (0: none)
+    real(dp), allocatable :: partner_weight(:, :) !< (2, n) their weights
     logical :: memory = .false., contact_on = .false.
     logical :: by_refactoring = .false.            !< tests only: contact by refactoring S~
     integer :: solver = solver_default             !< the factor's storage (SOLVER card, visco2d_factor)
@@ -130,9 +135,61 @@ contains
     allocate(stepper%trial(4, gauss_count, mesh%nelem), stepper%increments(4, gauss_count, mesh%nelem))
     if (stepper%memory) allocate(stepper%history_h(4, gauss_count, mesh%nelem), &
                                  stepper%history_length(4, gauss_count, mesh%nelem))
+    allocate(stepper%pad(n), stepper%partner(2, n), stepper%partner_weight(2, n))
+    stepper%pad = .false.
+    stepper%partner = 0
+    stepper%partner_weight = 0.0_dp
     if (stepper%contact_on) call contact_create(deck, stepper%contact)
+    if (stepper%contact_on .and. stepper%contact%pad) call pad_constraints(stepper, deck)
     end associate
   end subroutine stepper_create
+
+  !> With a PAD: its equations (no gravity on the pad, at rest at t = 0), and
+  !> the constraint of each body equation that may touch it: the pad surface
+  !> equations under the node, in the same direction, with their weights
+  !> (supported ones left out: they do not move), into every row's
+  !> capacitance system. The refactoring strategy has no multi-point
+  !> constraints: with a pad the capacitance system is used.
+  subroutine pad_constraints(stepper, deck)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer :: i, node, c, k, r, equation, partner
+    associate (contact => stepper%contact, mesh => deck%mesh)
+    stepper%by_refactoring = .false.
+    do node = 1, mesh%nnode
+      if (is_pad_node(deck, node)) stepper%pad(node_dof(mesh, node, 1):node_dof(mesh, node, 2)) = .true.
+    end do
+    stepper%gravity = merge(0.0_dp, stepper%gravity, stepper%pad)
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      do c = 1, 2
+        equation = node_dof(mesh, node, c)
+        do k = 1, 2
+          if (contact%partner(k, node) == 0) cycle
+          partner = node_dof(mesh, contact%partner(k, node), c)
+          if (stepper%supports(partner)) cycle
+          stepper%partner(k, equation) = partner
+          stepper%partner_weight(k, equation) = contact%weight(k, node)
+        end do
+      end do
+    end do
+    do r = 1, size(stepper%points)
+      call capacitance_partners(stepper%points(r)%capacitance, stepper%partner, stepper%partner_weight)
+    end do
+    end associate
+  end subroutine pad_constraints
+
+  !> sum_k w_k x(partner_k) of equation c's constraint (0 without a pad).
+  pure real(dp) function partner_sum(stepper, x, c) result(total)
+    type(stepper_t), intent(in) :: stepper
+    real(dp), intent(in) :: x(:)
+    integer, intent(in) :: c
+    integer :: k
+    total = 0.0_dp
+    do k = 1, 2
+      if (stepper%partner(k, c) > 0) total = total + stepper%partner_weight(k, c)*x(stepper%partner(k, c))
+    end do
+  end function partner_sum
 
   !> Eq. [35] for row r and time step dt: S~ = (1 - alpha_f) S_h + c M, S_h
   !> assembled with the moduli over the solve interval h; also the step
@@ -302,9 +359,13 @@ contains
                              stepper%du, stepper%dv, stepper%da)                       ! eqs. [37]-[39]
       if (stepper%contact_on) then                                      ! held on the plate: U'' = U' = 0
         call adjusted_displacements(stepper, deck, state%u, 1.0_dp)
-        stepper%du = merge(stepper%prescribed, stepper%du, stepper%held)
-        stepper%dv = merge(-state%v, stepper%dv, stepper%held)
-        stepper%da = merge(-state%a, stepper%da, stepper%held)
+        if (stepper%contact%pad) then
+          call follow_pad(stepper, state)
+        else
+          stepper%du = merge(stepper%prescribed, stepper%du, stepper%held)
+          stepper%dv = merge(-state%v, stepper%dv, stepper%held)
+          stepper%da = merge(-state%a, stepper%da, stepper%held)
+        end if
       end if
       if (.not. all(ieee_is_finite(stepper%da)) .or. .not. all(ieee_is_finite(stepper%du))) then
         finite = .false.
@@ -340,6 +401,22 @@ contains
     end associate
   end subroutine contact_repeat
 
+  !> With a pad, a held body equation moves with the pad's surface under
+  !> it at the sub-step's end: U = U_surface + value, U' = U'_surface,
+  !> U'' = U''_surface (the rigid plate's U' = U'' = 0 when the pad is still).
+  subroutine follow_pad(stepper, state)
+    type(stepper_t), intent(inout) :: stepper
+    type(dynamic_state_t), intent(in) :: state
+    integer :: i, c
+    do i = 1, size(stepper%held_rows)
+      c = stepper%held_rows(i)
+      if (stepper%supports(c)) cycle
+      stepper%du(c) = stepper%prescribed(c) + partner_sum(stepper, stepper%du, c)
+      stepper%dv(c) = partner_sum(stepper, state%v, c) + partner_sum(stepper, stepper%dv, c) - state%v(c)
+      stepper%da(c) = partner_sum(stepper, state%a, c) + partner_sum(stepper, stepper%da, c) - state%a(c)
+    end do
+  end subroutine follow_pad
+
   !> dU of eq. [34] with the held equations: the capacitance correction of
   !> `free`, or (refactoring strategy) a solve with S~ refactored.
   subroutine solve_held(stepper, r)
@@ -372,11 +449,17 @@ contains
     integer, intent(in) :: r
     type(dynamic_state_t), intent(in) :: state, start
     real(dp) :: inertia(size(stepper%solution))
+    integer :: i
     associate (point => stepper%points(r), p => stepper%held_rows)
     inertia = solve_point_inertia(point%row, point%h, stepper%solution, state%u, state%v, state%a, start%u, start%v)
     stepper%reaction_solve = 0.0_dp
     stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%base(p) &
                                 - stepper%mass(p)*inertia(p)
+    if (stepper%contact%pad) then                   ! on a pad: only the inertia relative to its surface
+      do i = 1, size(p)
+        stepper%reaction_solve(p(i)) = stepper%reaction_solve(p(i)) + stepper%mass(p(i))*partner_sum(stepper, inertia, p(i))
+      end do
+    end if
     end associate
   end subroutine solve_point_reactions
 

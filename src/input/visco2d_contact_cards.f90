@@ -1,16 +1,17 @@
-!> The cards of the contact extension: PLATE (a rigid flat plate) and STOP
-!> (when a dynamic run ends). Each reader checks its own card; visco2d_deck
+!> The cards of the contact extension: PLATE (a rigid flat plate), PAD (a
+!> deformable layer on it, meshed by visco2d_pad_mesh) and STOP (when a
+!> dynamic run ends). Each reader checks its own card; visco2d_deck
 !> checks how the cards fit together.
 module visco2d_contact_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
-  use visco2d_ranges, only: length_range
+  use visco2d_ranges, only: length_range, pad_length_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, positional_word, &
                            check_fields_used, has_field, field_column
   implicit none
   private
 
-  public :: plate_t, read_plate, read_stop, stop_name
+  public :: plate_t, pad_t, read_plate, read_pad, read_stop, stop_name
   public :: stop_at_tend, stop_at_max_deformation, stop_at_separation
 
   integer, parameter :: stop_at_tend = 1             !< run to the end of the last TIME card
@@ -25,7 +26,64 @@ module visco2d_contact_cards
     integer :: line = 0           !< 0: no plate
   end type plate_t
 
+  !> PAD THICKNESS=.. MAT=id [WIDTH=..] [SIZE=..] [BOTTOM=BONDED|SLIP]: a
+  !> deformable layer of material MAT between the body and the rigid plate.
+  !> Its top surface is the PLATE card's Z (where the body touches); it rests
+  !> on the rigid plate at Z - THICKNESS. The pad's nodes and elements follow
+  !> the body's in the mesh (visco2d_pad_mesh fills in the mesh part).
+  type :: pad_t
+    real(dp) :: thickness = 0.0_dp   !< m
+    real(dp) :: width = 0.0_dp       !< m, radius (half-width in plane strain); 0: the default, 1.5 x the body's
+    real(dp) :: size = 0.0_dp        !< m, element size at the impact point; 0: the body's pole edge
+    logical :: bonded = .true.       !< BOTTOM=BONDED: bottom held in r and z; SLIP: in z only
+    character(:), allocatable :: material    !< MAT= id
+    integer :: line = 0              !< 0: no pad
+    integer :: material_index = 0    !< into deck%materials (once the mesh has the pad)
+    integer :: first_node = 0        !< the pad's nodes are first_node..nnode (0: no pad)
+    integer :: first_element = 0     !< the pad's elements are first_element..nelem
+    integer, allocatable :: surface(:)   !< the top surface's nodes, by increasing r
+    integer, allocatable :: bottom(:)    !< the bottom's nodes (on the rigid plate)
+  end type pad_t
+
 contains
+
+  !> PAD THICKNESS=.. MAT=id [WIDTH=..] [SIZE=..] [BOTTOM=BONDED|SLIP].
+  subroutine read_pad(cards, card, pad, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(pad_t), intent(inout) :: pad
+    type(error_t), allocatable, intent(inout) :: error
+    character(:), allocatable :: word
+    character(len=*), parameter :: form = 'PAD THICKNESS=.. MAT=id [WIDTH=..] [SIZE=..] [BOTTOM=BONDED|SLIP]'
+    if (.not. has_field(card, 'THICKNESS')) then
+      call card_error(error, cards, card, 'missing field THICKNESS= (expected: '//form//')'); return
+    end if
+    if (.not. has_field(card, 'MAT')) then
+      call card_error(error, cards, card, 'missing field MAT= (the pad''s material; expected: '//form//')'); return
+    end if
+    call named_real(cards, card, 'THICKNESS', pad%thickness, error, range=pad_length_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'WIDTH', pad%width, error, default=0.0_dp, range=pad_length_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'SIZE', pad%size, error, default=0.0_dp, range=pad_length_range)
+    if (allocated(error)) return
+    call named_word(cards, card, 'MAT', pad%material, error); if (allocated(error)) return
+    if (len(pad%material) > 32) then
+      call card_error(error, cards, card, 'MAT id longer than 32 characters', field_column(card, 'MAT')); return
+    end if
+    call named_word(cards, card, 'BOTTOM', word, error, default='BONDED'); if (allocated(error)) return
+    select case (word)
+    case ('BONDED')
+      pad%bonded = .true.
+    case ('SLIP')
+      pad%bonded = .false.
+    case default
+      call card_error(error, cards, card, 'BOTTOM must be BONDED or SLIP, got "'//word//'"', &
+                      field_column(card, 'BOTTOM')); return
+    end select
+    call check_fields_used(cards, card, error, form); if (allocated(error)) return
+    pad%line = card%line
+  end subroutine read_pad
 
   !> Name of a stop criterion as written on the STOP card.
   pure function stop_name(code) result(name)

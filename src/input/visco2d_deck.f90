@@ -18,11 +18,12 @@ module visco2d_deck
   use visco2d_dynamic_cards, only: dynamics_t, output_request_t, read_wilson, read_initial, read_drop, &
                                    read_gravity, read_output, read_formulation, theta_unconditional, &
                                    read_integrator
-  use visco2d_contact_cards, only: plate_t, read_plate, read_stop, stop_name, stop_at_tend, &
+  use visco2d_contact_cards, only: plate_t, pad_t, read_plate, read_pad, read_stop, stop_name, stop_at_tend, &
                                    stop_at_max_deformation, stop_at_separation
   use visco2d_bruise_cards, only: read_bruise, check_bruise_cards
   use visco2d_mesh_cards, only: mesh_input_t, read_node_card, read_element_card, read_mesh_card
   use visco2d_mesh_build, only: build_mesh
+  use visco2d_pad_mesh, only: append_pad
   use visco2d_deck_types, only: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t, &
                                 analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
                                 geometry_name, total_steps, formulation_name, initial_velocity, add_warning, &
@@ -39,12 +40,13 @@ module visco2d_deck
   public :: dynamics_t, output_request_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
-  public :: plate_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
+  public :: plate_t, pad_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(27) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+  character(len=11), parameter :: card_keywords(28) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
     'FORMULATION', 'SOLVER', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
-    'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'STOP', 'PROBE', 'EXPECT', 'BRUISE', 'END']
+    'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'PAD', 'STOP', 'PROBE', 'EXPECT', &
+    'BRUISE', 'END']
 
   !> What read_deck keeps while it reads the cards: the mesh cards, the
   !> targets still to resolve and the lines of the once-only cards.
@@ -97,7 +99,7 @@ contains
     select case (card%keyword)
     case ('TITLE', 'ANALYSIS', 'GEOMETRY', 'FORMULATION', 'SOLVER')
       call read_model_card(deck, reading, i, error)
-    case ('WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'GRAVITY', 'OUTPUT', 'PLATE', 'STOP')
+    case ('WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'GRAVITY', 'OUTPUT', 'PLATE', 'PAD', 'STOP')
       call read_motion_card(deck, i, error)
     case ('MATERIAL')
       call read_material(cards, card, deck%materials, error); if (allocated(error)) return
@@ -140,7 +142,7 @@ contains
       call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
         suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
         'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
-        'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE STOP PROBE EXPECT BRUISE END)')
+        'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE PAD STOP PROBE EXPECT BRUISE END)')
     end select
     end associate
   end subroutine read_card
@@ -250,6 +252,9 @@ contains
     case ('PLATE')
       call once(deck, i, deck%plate%line, error); if (allocated(error)) return
       call read_plate(cards, card, deck%plate, error)
+    case ('PAD')
+      call once(deck, i, deck%pad%line, error); if (allocated(error)) return
+      call read_pad(cards, card, deck%pad, error)
     case ('STOP')
       call once(deck, i, deck%stop_line, error); if (allocated(error)) return
       call read_stop(cards, card, deck%stop_at, error); if (allocated(error)) return
@@ -387,6 +392,9 @@ contains
     call check_memory_needs_time(deck, reading%analysis_line, error); if (allocated(error)) return
     call check_mass(deck, error); if (allocated(error)) return
     call check_plate_position(deck, error); if (allocated(error)) return
+    if (deck%pad%line > 0) then                       ! the pad's mesh after the body's (its checks need the body)
+      call append_pad(deck, error); if (allocated(error)) return
+    end if
     call check_locking(deck)
     end associate
   end subroutine finish_deck

@@ -100,6 +100,14 @@ contains
       call line_error(error, deck, deck%plate%line, &
                       'PLATE needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no contact search)'); return
     end if
+    if (deck%pad%line > 0 .and. deck%plate%line == 0) then
+      call line_error(error, deck, deck%pad%line, 'PAD needs a PLATE card: the pad lies on the rigid plate, '// &
+                      'its top surface at the PLATE card''s Z'); return
+    end if
+    if (deck%pad%line > 0 .and. deck%analysis /= analysis_dynamic) then
+      call line_error(error, deck, deck%pad%line, 'PAD needs ANALYSIS DYNAMIC (this deck is '// &
+                      analysis_name(deck%analysis)//'; the static contact solver has the rigid plate only)'); return
+    end if
     if (deck%stop_line == 0) then
       if (deck%plate%line > 0 .and. deck%analysis == analysis_dynamic) deck%stop_at = stop_at_max_deformation
       return

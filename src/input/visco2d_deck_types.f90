@@ -13,7 +13,7 @@ module visco2d_deck_types
   use visco2d_curve, only: curve_t
   use visco2d_time, only: time_stage_t
   use visco2d_dynamic_cards, only: dynamics_t, output_request_t, standard_gravity
-  use visco2d_contact_cards, only: plate_t, stop_at_tend
+  use visco2d_contact_cards, only: plate_t, pad_t, stop_at_tend
   use visco2d_bruise_cards, only: bruise_card_t
   use visco2d_mesh, only: mesh_t, edge_set_none
   implicit none
@@ -111,6 +111,7 @@ module visco2d_deck_types
     integer :: solver = solver_card_default       !< SOLVER BAND | PROFILE | CHOLMOD (0: the default)
     integer :: solver_line = 0
     type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
+    type(pad_t) :: pad                            !< PAD on the plate (visco2d_pad_mesh); pad%line = 0: none
     integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)
     integer :: stop_line = 0
     type(bruise_card_t), allocatable :: bruises(:) !< BRUISE cards (visco2d_bruise); none: no envelopes kept

@@ -1,0 +1,219 @@
+!> The mesh of a PAD card: a layer of one material between the body and the
+!> rigid plate, meshed as an r-z grid under the body and appended to the
+!> body's mesh (its nodes and elements numbered after the body's, so that
+!> they are the last ones in storage order; pad%first_node and
+!> pad%first_element mark them). The grid is uniform, with the body's
+!> element size at its pole, out to 0.4 of the body's radius (beyond any
+!> contact radius of a fruit drop) and graded by 1.2 beyond it out to the
+!> width; its rows grow by 1.2 downward from the same size at the top. The
+!> pad's bottom is held on the rigid plate (in z, and in r with
+!> BOTTOM=BONDED) by a support added to the deck's FIX list; its axis is
+!> held in r like every axis node. The contact of the body with the pad's
+!> top surface is visco2d_contact's (node to segment).
+module visco2d_pad_mesh
+  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_error, only: error_t
+  use visco2d_strings, only: itoa, rtoa
+  use visco2d_renumber, only: reverse_cuthill_mckee, half_bandwidth
+  use visco2d_deck_types, only: deck_t, fix_t, line_error, add_warning
+  implicit none
+  private
+
+  public :: append_pad, pad_grid_lines, is_pad_node, is_pad_element
+
+  !> Growth of the element size away from the impact point, in r and in depth.
+  real(dp), parameter :: growth = 1.2_dp
+  !> The uniform part of the grid: this fraction of the body's largest r.
+  real(dp), parameter :: uniform_fraction = 0.4_dp
+  !> Default width: this multiple of the body's largest r.
+  real(dp), parameter :: default_width = 1.5_dp
+  !> Largest number of grid lines in r or z (a size far too small for the pad).
+  integer, parameter :: max_lines = 2000
+
+contains
+
+  !> True for a node of the pad (node index in storage order).
+  pure logical function is_pad_node(deck, node)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: node
+    is_pad_node = deck%pad%first_node > 0 .and. node >= deck%pad%first_node
+  end function is_pad_node
+
+  !> True for an element of the pad.
+  pure logical function is_pad_element(deck, element)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: element
+    is_pad_element = deck%pad%first_element > 0 .and. element >= deck%pad%first_element
+  end function is_pad_element
+
+  !> Grid lines from 0 to `length`: steps of `size` up to `uniform`, then
+  !> growing by `growth`; the last step is stretched (or merged with the one
+  !> before, if it would be under half of it) to end exactly at `length`.
+  !> At least `least` steps.
+  pure function pad_grid_lines(length, size, uniform, least) result(lines)
+    real(dp), intent(in) :: length, size, uniform
+    integer, intent(in) :: least
+    real(dp), allocatable :: lines(:)
+    real(dp) :: buffer(0:max_lines), step
+    integer :: n, k
+    if (length <= least*size) then
+      lines = [(length*k/real(least, dp), k = 0, least)]
+      return
+    end if
+    buffer(0) = 0.0_dp
+    step = size
+    n = 0
+    do while (buffer(n) + step < length .and. n < max_lines - 1)
+      n = n + 1
+      buffer(n) = buffer(n - 1) + step
+      if (buffer(n) >= uniform) step = step*growth
+    end do
+    if (length - buffer(n) < 0.5_dp*(buffer(n) - buffer(max(n - 1, 0))) .and. n > least - 1 .and. n > 1) n = n - 1
+    n = n + 1
+    buffer(n) = length
+    lines = buffer(0:n)
+  end function pad_grid_lines
+
+  !> The pad of deck%pad appended to the body's mesh: its grid, material,
+  !> numbering after the body's, the bandwidth renumbering redone over both,
+  !> the bottom support; the surface and bottom node lists.
+  subroutine append_pad(deck, error)
+    type(deck_t), intent(inout) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp), allocatable :: r_lines(:), z_lines(:)
+    real(dp) :: reach, spacing, width, top
+    integer :: k, nr, nz, i, j, base_node, base_element, node_count, element_count
+    integer, allocatable :: position(:)
+    associate (pad => deck%pad, mesh => deck%mesh)
+    if (deck%geometry /= geometry_axisymmetric) then
+      call line_error(error, deck, pad%line, 'PAD needs GEOMETRY AXISYMMETRIC (a pad under a plane-strain body '// &
+                      'is not built)'); return
+    end if
+    call pad_material(deck, error); if (allocated(error)) return
+    reach = maxval(abs(mesh%xy(1, :)))
+    width = pad%width
+    if (width == 0.0_dp) width = default_width*reach
+    spacing = pad%size
+    if (spacing == 0.0_dp) spacing = pole_edge(deck)
+    if (width < reach) call add_warning(deck, pad%line, 'PAD', 'WIDTH = '//rtoa(width)//' m is less than the '// &
+      'body''s radius '//rtoa(reach)//' m: body nodes beyond the pad''s edge find nothing to touch')
+    if (spacing > 0.5_dp*min(width, pad%thickness*4.0_dp)) then
+      call line_error(error, deck, pad%line, 'SIZE = '//rtoa(spacing)//' m is too coarse for a pad '// &
+        rtoa(pad%thickness)//' m thick and '//rtoa(width)//' m wide (at most half the width and twice the '// &
+        'thickness)', merge('SIZE     ', 'THICKNESS', pad%size > 0.0_dp)); return
+    end if
+    r_lines = pad_grid_lines(width, spacing, uniform_fraction*reach, 2)
+    z_lines = pad_grid_lines(pad%thickness, spacing, 0.0_dp, 2)
+    nr = size(r_lines) - 1
+    nz = size(z_lines) - 1
+    top = deck%plate%z
+    base_node = mesh%nnode
+    base_element = mesh%nelem
+    node_count = (nr + 1)*(nz + 1)
+    element_count = nr*nz
+    call grow_mesh(deck, node_count, element_count)
+    do j = 0, nz                                          ! rows from the top surface down
+      do i = 0, nr
+        k = base_node + j*(nr + 1) + i + 1
+        mesh%xy(:, k) = [r_lines(i + 1), top - z_lines(j + 1)]
+        mesh%node_id(k) = mesh%node_id(base_node) + k - base_node
+      end do
+    end do
+    do j = 1, nz
+      do i = 1, nr                                        ! counter-clockwise in (r, z): row j lies below row j-1
+        k = base_element + (j - 1)*nr + i
+        mesh%connectivity(:, k) = base_node + [j*(nr + 1) + i, j*(nr + 1) + i + 1, (j - 1)*(nr + 1) + i + 1, &
+                                               (j - 1)*(nr + 1) + i]
+        mesh%element_id(k) = mesh%element_id(base_element) + k - base_element
+        mesh%element_line(k) = pad%line
+        mesh%element_material(k) = pad%material_index
+        mesh%element_material_name(k) = pad%material
+      end do
+    end do
+    pad%first_node = base_node + 1
+    pad%first_element = base_element + 1
+    pad%surface = [(base_node + i, i = 1, nr + 1)]
+    pad%bottom = [(base_node + nz*(nr + 1) + i, i = 1, nr + 1)]
+    mesh%equation = [(i, i = 1, mesh%nnode)]
+    mesh%half_bandwidth_before = half_bandwidth(mesh%connectivity, mesh%equation)
+    call reverse_cuthill_mckee(mesh%nnode, mesh%connectivity, position)
+    mesh%half_bandwidth = half_bandwidth(mesh%connectivity, position)
+    if (mesh%half_bandwidth < mesh%half_bandwidth_before) then
+      mesh%equation = position
+    else
+      mesh%half_bandwidth = mesh%half_bandwidth_before
+    end if
+    deck%fixes = [deck%fixes, fix_t(nodes=pad%bottom, fix_r=pad%bonded, fix_z=.true., line=pad%line)]
+    end associate
+  end subroutine append_pad
+
+  !> The pad's material by its MAT= id (a located error if there is none, or
+  !> if it has no density: the pad moves).
+  subroutine pad_material(deck, error)
+    type(deck_t), intent(inout) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    associate (pad => deck%pad)
+    pad%material_index = 0
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%id == pad%material) pad%material_index = k
+    end do
+    if (pad%material_index == 0) then
+      call line_error(error, deck, pad%line, 'the pad''s material '//pad%material//' is not defined by a MATERIAL '// &
+                      'card', 'MAT'); return
+    end if
+    if (deck%materials(pad%material_index)%density <= 0.0_dp) then
+      call line_error(error, deck, deck%materials(pad%material_index)%line, 'material '//pad%material// &
+        ' (the pad''s, PAD card on line '//itoa(pad%line)//') has no density: ANALYSIS DYNAMIC needs RHO= > 0', 'RHO')
+    end if
+    end associate
+  end subroutine pad_material
+
+  !> The body's element size at its contact pole: the shortest distance from
+  !> the lowest node (nearest the axis among equals) to a node of an element
+  !> it belongs to.
+  real(dp) function pole_edge(deck) result(edge)
+    type(deck_t), intent(in) :: deck
+    integer :: pole, e, k, node
+    associate (mesh => deck%mesh)
+    pole = 1
+    do node = 2, mesh%nnode
+      if (mesh%xy(2, node) < mesh%xy(2, pole) .or. &
+          (mesh%xy(2, node) == mesh%xy(2, pole) .and. abs(mesh%xy(1, node)) < abs(mesh%xy(1, pole)))) pole = node
+    end do
+    edge = huge(1.0_dp)
+    do e = 1, mesh%nelem
+      if (.not. any(mesh%connectivity(:, e) == pole)) cycle
+      do k = 1, 4
+        node = mesh%connectivity(k, e)
+        if (node /= pole) edge = min(edge, norm2(mesh%xy(:, node) - mesh%xy(:, pole)))
+      end do
+    end do
+    end associate
+  end function pole_edge
+
+  !> Room for `nodes` more nodes and `elements` more elements in the mesh.
+  subroutine grow_mesh(deck, nodes, elements)
+    type(deck_t), intent(inout) :: deck
+    integer, intent(in) :: nodes, elements
+    real(dp), allocatable :: xy(:, :)
+    integer, allocatable :: connectivity(:, :)
+    integer :: n, m
+    associate (mesh => deck%mesh)
+    n = mesh%nnode
+    m = mesh%nelem
+    allocate(xy(2, n + nodes), connectivity(4, m + elements))
+    xy(:, 1:n) = mesh%xy
+    connectivity(:, 1:m) = mesh%connectivity
+    call move_alloc(xy, mesh%xy)
+    call move_alloc(connectivity, mesh%connectivity)
+    mesh%node_id = [mesh%node_id, spread(0, 1, nodes)]
+    mesh%element_id = [mesh%element_id, spread(0, 1, elements)]
+    mesh%element_line = [mesh%element_line, spread(0, 1, elements)]
+    mesh%element_material = [mesh%element_material, spread(0, 1, elements)]
+    mesh%element_material_name = [mesh%element_material_name, spread(mesh%element_material_name(1), 1, elements)]
+    mesh%nnode = n + nodes
+    mesh%nelem = m + elements
+    end associate
+  end subroutine grow_mesh
+end module visco2d_pad_mesh
