@@ -12,6 +12,13 @@
 !>     come out exactly, lambda is the reaction (A u - f on the held rows),
 !>     and columns are reused: a node leaving and coming back costs no new
 !>     back-substitution.
+!>  1b. Multi-point constraints (a body node on a pad's surface segment,
+!>     u_c - w1 u_p1 - w2 u_p2 = value): the same, against an independent
+!>     dense solve of the saddle-point (KKT) system [A -E; E^T 0] by QR
+!>     (dgels), to 1e-10 relative (its condition number is ~1e3 here, both
+!>     methods backward stable); the constraints hold to round-off, and the
+!>     force is equal and opposite: the residual A u - f is lambda on the
+!>     body's equation and -w lambda on each partner, to 1e-10 of |f|.
 !>  2. Dynamics: the Table 1 impact (level 2) with STICK to maximum
 !>     deformation and with SLIP + RELEASE=YES to separation, run both ways
 !>     (solve_dynamic's refactor_contact). The contact decisions are the same
@@ -25,7 +32,9 @@ program test_capacitance
   use visco2d_banded, only: band_matrix_t, band_create, band_constrain, band_constrain_rhs, band_factor, band_solve, &
                             band_multiply
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_band, solver_profile, solver_cholmod, solver_name
-  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply
+  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, &
+                                 capacitance_partners
+  use visco2d_lapack, only: dgels
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
@@ -39,6 +48,8 @@ program test_capacitance
   call test_algebra(solver_band)
   call test_algebra(solver_profile)
   call test_algebra(solver_cholmod)
+  call test_partners(solver_band)
+  call test_partners(solver_cholmod)
   call test_dynamic('stick', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION')
   call test_dynamic('slip_release', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION')
   call test_summary('test_capacitance')
@@ -147,6 +158,102 @@ contains
     call capacitance_set(capacitance, factor, held, info)
     call check(name//': a returning equation reuses its column', capacitance%solves == 5)
   end subroutine test_algebra
+
+  !> Multi-point constraints on the factor of `solver` against a dense KKT solve.
+  subroutine test_partners(solver)
+    integer, intent(in) :: solver
+    integer, parameter :: n = 120, kd = 9, m = 3
+    integer, parameter :: held_rows(m) = [40, 41, 43], support_rows(3) = [1, 2, 57]
+    type(band_matrix_t) :: matrix
+    type(factor_t) :: factor
+    type(capacitance_t) :: capacitance
+    logical :: supports(n), held(n)
+    integer :: partner(2, n), i, j, k, info, rows, lwork
+    real(dp) :: weight(2, n), values(n), f(n), u(n), residual(n), expected(n)
+    real(dp), allocatable :: kkt(:, :), rhs(:), work(:)
+    character(:), allocatable :: name
+    name = 'partners ('//solver_name(solver)//')'
+    call make_matrix(n, kd, matrix)
+    do i = 1, n
+      f(i) = 2.0_dp*pseudo_random() - 1.0_dp
+      values(i) = 0.1_dp*(2.0_dp*pseudo_random() - 1.0_dp)
+    end do
+    supports = .false.
+    supports(support_rows) = .true.
+    values(1:2) = 0.0_dp
+    partner = 0
+    weight = 0.0_dp
+    partner(:, 40) = [90, 92]; weight(:, 40) = [0.3_dp, 0.7_dp]
+    partner(:, 41) = [92, 94]; weight(:, 41) = [0.6_dp, 0.4_dp]
+    held = .false.
+    held(held_rows) = .true.                          ! 43: a plain (rigid-plate) equation
+    call factor_compute(factor, matrix, supports, info, solver)
+    call capacitance_reset(capacitance, n)
+    call capacitance_partners(capacitance, partner, weight)
+    call capacitance_set(capacitance, factor, held, info)
+    call check(name//': C factors', info == 0)
+    u = f
+    call band_constrain_rhs(matrix, supports, values, u)
+    call factor_solve(factor, u)
+    call capacitance_apply(capacitance, values, u)
+    ! The reference: [A  -E; E^T 0] [u; lambda] = [f; values], E's columns the constraints (supports too).
+    rows = n + m + size(support_rows)
+    allocate(kkt(rows, rows), rhs(rows))
+    kkt = 0.0_dp
+    do j = 1, n
+      do i = j, min(n, j + kd)
+        kkt(i, j) = matrix%ab(1 + i - j, j)
+        kkt(j, i) = matrix%ab(1 + i - j, j)
+      end do
+    end do
+    rhs(1:n) = f
+    do k = 1, m + size(support_rows)
+      if (k <= m) then
+        i = held_rows(k)
+      else
+        i = support_rows(k - m)
+      end if
+      kkt(i, n + k) = -1.0_dp
+      kkt(n + k, i) = 1.0_dp
+      do j = 1, 2
+        if (partner(j, i) == 0) cycle
+        kkt(partner(j, i), n + k) = weight(j, i)
+        kkt(n + k, partner(j, i)) = -weight(j, i)
+      end do
+      rhs(n + k) = values(i)
+    end do
+    lwork = 64*rows
+    allocate(work(lwork))
+    call dgels('N', rows, rows, 1, kkt, rows, rhs, rows, work, lwork, info)
+    call check(name//': the KKT reference solves', info == 0)
+    call check(name//': same solution as the KKT solve (1e-10)', &
+               maxval(abs(u - rhs(1:n))) <= 1.0e-10_dp*maxval(abs(rhs(1:n))), &
+               'difference '//real_text(maxval(abs(u - rhs(1:n)))))
+    call check(name//': constraints hold to round-off', &
+               abs(u(40) - 0.3_dp*u(90) - 0.7_dp*u(92) - values(40)) <= 1.0e-14_dp*maxval(abs(u)) .and. &
+               abs(u(41) - 0.6_dp*u(92) - 0.4_dp*u(94) - values(41)) <= 1.0e-14_dp*maxval(abs(u)) .and. &
+               u(43) == values(43))
+    residual = band_multiply(matrix, u) - f
+    expected = 0.0_dp
+    do k = 1, m
+      i = held_rows(k)
+      expected(i) = capacitance%multiplier(k)
+      do j = 1, 2
+        if (partner(j, i) > 0) expected(partner(j, i)) = expected(partner(j, i)) - weight(j, i)*capacitance%multiplier(k)
+      end do
+    end do
+    call check(name//': equal and opposite forces (A u - f = lambda on the body, -w lambda on the pad)', &
+               maxval(abs(pack(residual - expected, .not. supports))) <= 1.0e-10_dp*maxval(abs(f)))
+    call check(name//': lambda matches the KKT multipliers', &
+               maxval(abs(capacitance%multiplier - rhs(n + 1:n + m))) <= 1.0e-10_dp*maxval(abs(rhs(n + 1:n + m))))
+  end subroutine test_partners
+
+  !> A number as text (for a failed check's detail).
+  function real_text(x) result(text)
+    real(dp), intent(in) :: x
+    character(len=24) :: text
+    write(text, '(es12.4)') x
+  end function real_text
 
   !> The Table 1 impact, level 2, both ways.
   subroutine test_dynamic(name, plate, stop_card)

@@ -88,13 +88,21 @@ contains
     type(capacitance_t), intent(in) :: capacitance
     real(dp), intent(in) :: x(:)
     integer, intent(in) :: c
+    value = x(c) - partner_part(capacitance, x, c)
+  end function constrained
+
+  !> sum_k w_k x(p_k) of equation c's constraint (0: a plain equation).
+  pure real(dp) function partner_part(capacitance, x, c) result(value)
+    type(capacitance_t), intent(in) :: capacitance
+    real(dp), intent(in) :: x(:)
+    integer, intent(in) :: c
     integer :: k
-    value = x(c)
+    value = 0.0_dp
     if (.not. allocated(capacitance%partner)) return
     do k = 1, 2
-      if (capacitance%partner(k, c) > 0) value = value - capacitance%weight(k, c)*x(capacitance%partner(k, c))
+      if (capacitance%partner(k, c) > 0) value = value + capacitance%weight(k, c)*x(capacitance%partner(k, c))
     end do
-  end function constrained
+  end function partner_part
 
   !> Hold the equations with held(c) (none of them a support of `factor`):
   !> compute the missing columns with `factor` and factor C. info > 0 if C
@@ -153,8 +161,7 @@ contains
     call dgemv('N', capacitance%n, capacitance%stored, 1.0_dp, capacitance%columns, capacitance%n, &
                capacitance%weights, 1, 1.0_dp, w, 1)           ! w += Z lambda, one pass over the columns
     do i = 1, m                                         ! exactly on the constraint, not to round-off
-      w(capacitance%held(i)) = values(capacitance%held(i)) + w(capacitance%held(i)) &
-                               - constrained(capacitance, w, capacitance%held(i))
+      w(capacitance%held(i)) = values(capacitance%held(i)) + partner_part(capacitance, w, capacitance%held(i))
     end do
   end subroutine capacitance_apply
 

@@ -1,0 +1,261 @@
+!> Verification of the cushioned plate (PAD card: src/input/visco2d_pad_mesh.f90,
+!> the node-to-segment contact of src/contact/visco2d_contact.f90 and
+!> visco2d_capacitance.f90) on the elastic sphere of Table 1 (E 18.11 MPa,
+!> nu 0.219, rho 756.85, R 36.6 mm, V 0.9982 m/s, g 9.8), level 1, DT 0.01 ms:
+!>
+!>  1. A pad 1000 times stiffer than the fruit gives the rigid-plate answer:
+!>     alpha_m and q_m within 0.5 % (the pad then compresses by ~1/1000 of
+!>     alpha: its own compliance is the only difference, well under 0.5 %).
+!>  2. Pads of decreasing stiffness (E_pad/E = 10, 1, 0.3, 0.1; 10 mm, SLIP,
+!>     RELEASE=YES, to separation): q_m falls and the contact lasts longer,
+!>     strictly, at every step down; alpha (the fruit's own deformation,
+!>     the approach less the pad's compression) falls too.
+!>  3. Energy: the books close on every run (kinetic + strain energy of
+!>     fruit and pad + contact loss = initial kinetic energy + gravity work):
+!>     balance_error_max_rel below 2 % (the rigid plate's own is ~0.1 %; a
+!>     node arrested on a moving surface is booked with its velocity
+!>     relative to the surface, an estimate: measured up to ~1 % here).
+!>  4. Hertz with the combined modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2:
+!>     on a thick, wide pad of the fruit's own material at V = 0.2 m/s
+!>     (a/R ~ 0.1), the largest total approach (alpha + pad compression)
+!>     over Hertz's alpha_m with E*, against the same ratio for the rigid
+!>     plate with E/(1 - nu^2): the pad's ratio follows the rigid plate's
+!>     to 3 % (the pad is a layer R thick, ~13 contact radii, on a frictionless
+!>     base, not a half-space; its mesh grows by 1.2 with depth: measured
+!>     +1.7 %). With equal materials Hertz splits the approach equally: the
+!>     fruit's alpha and the pad's compression agree to 3 % (measured 0.5 %).
+!>  5. No PAD without a PLATE; no PAD outside DYNAMIC; an unknown MAT=.
+!> Every number is printed in markdown tables. Decks are written to
+!> build/test-tmp/test_pad/.
+program test_pad
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, error_text
+  use visco2d_deck, only: deck_t, read_deck
+  use visco2d_dynamic, only: solve_dynamic
+  use visco2d_hertz, only: hertz_t, hertz_impact
+  use visco2d_record, only: record_t
+  use visco2d_expect, only: summary_value
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, history_column
+  implicit none
+
+  character(*), parameter :: folder = 'build/test-tmp/test_pad'
+  integer, parameter :: line_length = 100
+  real(dp), parameter :: young = 18.11e6_dp, poisson = 0.219_dp, density = 756.85_dp, radius = 0.0366_dp
+  character(*), parameter :: fruit = 'MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85'
+
+  type :: run_t
+    character(:), allocatable :: name
+    type(record_t) :: record
+    logical :: ok = .false.
+  end type run_t
+
+  call execute_command_line('mkdir -p '//folder)
+  call stiff_pad()
+  call softer_pads()
+  call hertz_combined()
+  call bad_pads()
+  call test_summary('test_pad')
+
+contains
+
+  !> The deck lines of the Table 1 sphere at `speed` with `plate`, `stop`, and a pad card ('' for none).
+  function impact_lines(level, speed, plate, stop_card, pad_material, pad) result(lines)
+    character(*), intent(in) :: level, speed, plate, stop_card, pad_material, pad
+    character(len=line_length), allocatable :: lines(:)
+    integer :: count
+    count = 10
+    if (len(pad) > 0) count = 12
+    allocate(lines(count))
+    lines(1:10) = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', fruit, &
+                   'MESH SPHERE R=0.0366 LEVEL='//level//' MAT=apple', 'INITIAL VZ=-'//speed//' AZ=-9.8', &
+                   'GRAVITY G=9.8', 'WILSON THETA=1.4', 'TIME DT=1e-5 TEND=40e-3', plate, stop_card]
+    if (len(pad) > 0) lines(11:12) = [character(len=line_length) :: pad_material, pad]
+  end function impact_lines
+
+  !> Write TITLE + body + END, read and run it (a failed check if it does not run).
+  function run_case(name, body) result(run)
+    character(*), intent(in) :: name
+    character(len=line_length), intent(in) :: body(:)
+    type(run_t) :: run
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    run%name = name
+    call read_deck(deck_file(name, body), deck, error)
+    if (.not. allocated(error)) call solve_dynamic(deck, run%record, error)
+    if (allocated(error)) then
+      call check('run_'//name, .false., error_text(error))
+      return
+    end if
+    run%ok = .true.
+  end function run_case
+
+  !> Write TITLE + body + END to the test folder; the file's path.
+  function deck_file(name, body) result(path)
+    character(*), intent(in) :: name
+    character(len=line_length), intent(in) :: body(:)
+    character(:), allocatable :: path
+    character(len=line_length), allocatable :: deck_lines(:)
+    path = folder//'/'//name//'.inp'
+    allocate(deck_lines(size(body) + 2))
+    deck_lines(1) = 'TITLE '//name
+    deck_lines(2:size(body) + 1) = body
+    deck_lines(size(body) + 2) = 'END'
+    call write_deck(path, deck_lines)
+  end function deck_file
+
+  !> A real summary value of a run (NaN, and a failed check, if absent).
+  real(dp) function value_of(run, key) result(x)
+    type(run_t), intent(in) :: run
+    character(*), intent(in) :: key
+    character(:), allocatable :: text
+    integer :: status
+    x = ieee_value(1.0_dp, ieee_quiet_nan)
+    text = summary_value(run%record, key)
+    if (len(text) == 0) then
+      call check(run%name//'_has_'//key, .false., 'no summary key '//key)
+      return
+    end if
+    read(text, *, iostat=status) x
+    if (status /= 0) call check(run%name//'_reads_'//key, .false., 'not a number: '//text)
+  end function value_of
+
+  !> A number in fixed notation with `digits` decimals.
+  function fx(x, digits) result(text)
+    real(dp), intent(in) :: x
+    integer, intent(in) :: digits
+    character(:), allocatable :: text
+    character(len=32) :: buffer
+    character(len=12) :: form
+    write(form, '(a,i0,a)') '(f0.', digits, ')'
+    write(buffer, form) x
+    text = trim(buffer)
+  end function fx
+
+  !> 1. A pad 1000 times stiffer than the fruit against the rigid plate.
+  subroutine stiff_pad()
+    type(run_t) :: rigid, pad
+    real(dp) :: alpha_error, q_error
+    rigid = run_case('rigid_stick', impact_lines('1', '0.9982', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION', '', ''))
+    pad = run_case('stiff_pad_stick', impact_lines('1', '0.9982', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION', &
+                   'MATERIAL stiff ELASTIC E=18.11e9 NU=0.3 RHO=1000', 'PAD THICKNESS=0.01 MAT=stiff'))
+    if (.not. (rigid%ok .and. pad%ok)) return
+    alpha_error = value_of(pad, 'alpha_max_mm')/value_of(rigid, 'alpha_max_mm') - 1.0_dp
+    q_error = value_of(pad, 'q_max_MPa')/value_of(rigid, 'q_max_MPa') - 1.0_dp
+    print '(a)', '| Table 1, level 1 | alpha_m (mm) | q_m (MPa) | F_m (N) | pad compression (mm) |'
+    print '(a)', '|---|---|---|---|---|'
+    print '(a)', '| rigid plate | '//fx(value_of(rigid, 'alpha_max_mm'), 4)//' | '// &
+      fx(value_of(rigid, 'q_max_MPa'), 4)//' | '//fx(value_of(rigid, 'force_max_N'), 2)//' | - |'
+    print '(a)', '| pad E = 1000 E_fruit, 10 mm | '//fx(value_of(pad, 'alpha_max_mm'), 4)//' | '// &
+      fx(value_of(pad, 'q_max_MPa'), 4)//' | '//fx(value_of(pad, 'force_max_N'), 2)//' | '// &
+      fx(value_of(pad, 'pad_compression_max_mm'), 5)//' |'
+    call check('stiff pad: alpha_m within 0.5 % of the rigid plate ('//fx(100*alpha_error, 3)//' %)', &
+               abs(alpha_error) <= 5.0e-3_dp)
+    call check('stiff pad: q_m within 0.5 % of the rigid plate ('//fx(100*q_error, 3)//' %)', abs(q_error) <= 5.0e-3_dp)
+    call check('stiff pad: compresses by less than 1/100 of alpha', &
+               value_of(pad, 'pad_compression_max_mm') < 0.01_dp*value_of(pad, 'alpha_max_mm'))
+  end subroutine stiff_pad
+
+  !> 2.-3. Pads of decreasing stiffness, to separation.
+  subroutine softer_pads()
+    character(len=8), parameter :: moduli(4) = [character(len=8) :: '181.1e6', '18.11e6', '5.433e6', '1.811e6']
+    real(dp), parameter :: ratios(4) = [10.0_dp, 1.0_dp, 0.3_dp, 0.1_dp]
+    type(run_t) :: runs(0:4)
+    real(dp) :: q(0:4), duration(0:4), alpha(0:4), balance(0:4)
+    integer :: k
+    character(len=24) :: label
+    runs(0) = run_case('rigid_separation', impact_lines('1', '0.9982', 'PLATE Z=0 SLIP RELEASE=YES', &
+                       'STOP AT=SEPARATION', '', ''))
+    do k = 1, 4
+      runs(k) = run_case('pad_'//trim(moduli(k)), impact_lines('1', '0.9982', 'PLATE Z=0 SLIP RELEASE=YES', &
+                         'STOP AT=SEPARATION', 'MATERIAL foam ELASTIC E='//trim(moduli(k))//' NU=0.3 RHO=100', &
+                         'PAD THICKNESS=0.01 MAT=foam'))
+    end do
+    if (.not. all(runs%ok)) return
+    print '(a)', ''
+    print '(a)', '| plate | alpha_m (mm) | q_m (MPa) | F_m (N) | contact (ms) | pad compression (mm) | restitution | '// &
+                 'balance error (rel.) |'
+    print '(a)', '|---|---|---|---|---|---|---|---|'
+    do k = 0, 4
+      alpha(k) = value_of(runs(k), 'alpha_max_mm')
+      q(k) = value_of(runs(k), 'q_max_MPa')
+      duration(k) = value_of(runs(k), 'contact_duration_ms')
+      balance(k) = value_of(runs(k), 'balance_error_max_rel')
+      if (k == 0) then
+        label = 'rigid'
+      else
+        write(label, '(a,f0.1,a)') 'pad E = ', ratios(k), ' E_fruit'
+      end if
+      print '(a)', '| '//trim(label)//' | '//fx(alpha(k), 4)//' | '//fx(q(k), 4)//' | '// &
+        fx(value_of(runs(k), 'force_max_N'), 2)//' | '//fx(duration(k), 3)//' | '// &
+        compression_text(runs(k), k > 0)//' | '// &
+        fx(value_of(runs(k), 'coefficient_of_restitution'), 4)//' | '//fx(balance(k), 5)//' |'
+    end do
+    do k = 1, 4
+      call check('softer pad '//char(48 + k)//': q_m falls', q(k) < q(k - 1))
+      call check('softer pad '//char(48 + k)//': the contact lasts longer', duration(k) > duration(k - 1))
+      call check('softer pad '//char(48 + k)//': the fruit deforms less', alpha(k) < alpha(k - 1))
+    end do
+    do k = 0, 4
+      call check('energy books close ('//runs(k)%name//', '//fx(100*balance(k), 3)//' %)', abs(balance(k)) < 0.02_dp)
+    end do
+  end subroutine softer_pads
+
+  !> The pad's compression of a run, or '-' for the rigid plate.
+  function compression_text(run, pad) result(text)
+    type(run_t), intent(in) :: run
+    logical, intent(in) :: pad
+    character(:), allocatable :: text
+    text = '-'
+    if (pad) text = fx(value_of(run, 'pad_compression_max_mm'), 4)
+  end function compression_text
+
+  !> 4. Hertz with the combined modulus on a thick pad of the fruit's material.
+  subroutine hertz_combined()
+    type(run_t) :: rigid, pad
+    type(hertz_t) :: hertz_rigid, hertz_pad
+    real(dp), allocatable :: alpha(:), compression(:)
+    real(dp) :: mass, combined, ratio_rigid, ratio_pad
+    rigid = run_case('hertz_rigid', impact_lines('2', '0.2', 'PLATE Z=0 SLIP', 'STOP AT=MAXDEFORMATION', '', ''))
+    pad = run_case('hertz_pad', impact_lines('2', '0.2', 'PLATE Z=0 SLIP', 'STOP AT=MAXDEFORMATION', &
+                   'MATERIAL flesh ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
+                   'PAD THICKNESS=0.0366 WIDTH=0.1 MAT=flesh BOTTOM=SLIP'))
+    if (.not. (rigid%ok .and. pad%ok)) return
+    mass = value_of(rigid, 'mass_kg')
+    hertz_rigid = hertz_impact(young, poisson, radius, mass, 0.2_dp)
+    combined = 1.0_dp/(2.0_dp*(1.0_dp - poisson**2)/young)           ! E* with E2 = E1
+    hertz_pad = hertz_impact(combined, 0.0_dp, radius, mass, 0.2_dp)   ! E*/(1 - 0^2) = E*
+    alpha = history_column(pad%record, 'alpha_mm')
+    compression = history_column(pad%record, 'pad_compression_mm')
+    ratio_rigid = value_of(rigid, 'alpha_max_mm')/(1.0e3_dp*hertz_rigid%alpha_max)
+    ratio_pad = maxval(alpha + compression)/(1.0e3_dp*hertz_pad%alpha_max)
+    print '(a)', ''
+    print '(a)', '| V = 0.2 m/s, level 2 | FE approach (mm) | Hertz alpha_m (mm) | ratio |'
+    print '(a)', '|---|---|---|---|'
+    print '(a)', '| rigid plate, E/(1 - nu^2) | '//fx(value_of(rigid, 'alpha_max_mm'), 5)//' | '// &
+      fx(1.0e3_dp*hertz_rigid%alpha_max, 5)//' | '//fx(ratio_rigid, 4)//' |'
+    print '(a)', '| pad of the same flesh, 36.6 mm thick, E* | '//fx(maxval(alpha + compression), 5)//' | '// &
+      fx(1.0e3_dp*hertz_pad%alpha_max, 5)//' | '//fx(ratio_pad, 4)//' |'
+    call check_close('Hertz with the combined modulus: the pad''s FE/Hertz ratio follows the rigid plate''s (3 %)', &
+                     ratio_pad, ratio_rigid, 0.03_dp)
+    print '(a)', 'fruit alpha_m '//fx(value_of(pad, 'alpha_max_mm'), 5)//' mm, pad compression '// &
+      fx(value_of(pad, 'pad_compression_max_mm'), 5)//' mm (Hertz, equal materials: equal shares)'
+    call check_close('Hertz with equal materials: the fruit and the pad share the approach (3 %)', &
+                     value_of(pad, 'alpha_max_mm'), value_of(pad, 'pad_compression_max_mm'), 0.03_dp)
+  end subroutine hertz_combined
+
+  !> 5. Decks a PAD cannot run.
+  subroutine bad_pads()
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    call read_deck(deck_file('no_plate', impact_lines('1', '1', 'OUTPUT EVERY=1', 'PROBE centre R=0 Z=0.0366', &
+                   'MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100', 'PAD THICKNESS=0.01 MAT=foam')), deck, error)
+    call check('a PAD needs a PLATE', allocated(error))
+    if (allocated(error)) call check_text_contains('a PAD needs a PLATE: says so', error_text(error), 'PAD needs a PLATE')
+    if (allocated(error)) deallocate(error)
+    call read_deck(deck_file('unknown_material', impact_lines('1', '1', 'PLATE Z=0', 'STOP AT=MAXDEFORMATION', &
+                   'MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100', 'PAD THICKNESS=0.01 MAT=rubber')), deck, error)
+    call check('an unknown pad material is an error', allocated(error))
+    if (allocated(error)) call check_text_contains('an unknown pad material: names it', error_text(error), 'RUBBER')
+  end subroutine bad_pads
+end program test_pad
