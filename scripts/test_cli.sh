@@ -56,6 +56,17 @@ MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2
 FIX BOTTOM RZ
 END
 EOF
+# A bad layered deck: the skin's material is not defined (SKINMAT= at column 30).
+cat > decks/bad_skin.inp <<'EOF'
+TITLE bad skin
+ANALYSIS STATIC
+MATERIAL flesh ELASTIC E=3e6 NU=0.3
+MATERIAL skin ELASTIC E=30e6 NU=0.3
+MESH SPHERE R=0.03 MAT=flesh SKINMAT=wood SKIN_LAYERS=2
+PRESSURE OUTER P=1e3
+FIX TOP Z
+END
+EOF
 # Small valid decks for the batch run.
 for name in first last; do
   cat > "decks/$name.inp" <<'EOF'
@@ -200,6 +211,16 @@ check bad_deck_stderr_clean "stderr holds more than the error message: $(first_l
 check bad_deck_no_case_folder "out/bad exists" test ! -e out/bad
 check bad_deck_no_hidden_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
   test -z "$(entries_matching out bad)"
+
+# The layered deck with an undefined skin material.
+"$exe" ../decks/bad_skin.inp > skin.out 2> skin.err
+check_rc bad_skin_deck_exit_1 1 $?
+check bad_skin_deck_located_error "stderr: $(first_lines skin.err)" \
+  grep -qF '../decks/bad_skin.inp:5:30: MESH: ' skin.err
+check bad_skin_deck_names_material "stderr: $(first_lines skin.err)" \
+  grep -qF 'uses material WOOD, which is not defined by a MATERIAL card' skin.err
+check bad_skin_deck_no_case_folder "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+  test -z "$(entries_matching out bad_skin)"
 
 # A deck that reads but fails at solve time.
 "$exe" ../decks/loose.inp > loose.out 2> loose.err

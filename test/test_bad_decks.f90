@@ -134,6 +134,46 @@ program test_bad_decks
   call expect_read_error('node_after_mesh_card', lines, 6, 1, 'NODE', &
                          'NODE cards cannot be combined with the MESH card on line 5')
 
+  ! ------------------------------------- layered fruit: SKINMAT=, SKIN_LAYERS=, COREMAT=
+  ! Deck of two materials, the MESH card on line 5 (MAT= at column 20, the
+  ! region field after it at column 30, SKIN_LAYERS after SKINMAT=skin at 43).
+  call expect_read_error('skinmat_undefined', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=wood'), 5, 30, 'MESH', &
+                         'uses material WOOD, which is not defined by a MATERIAL card')
+  call expect_read_error('coremat_undefined', layered('MESH SPHERE R=0.03 MAT=flesh COREMAT=wood'), 5, 30, 'MESH', &
+                         'element 1 uses material WOOD, which is not defined by a MATERIAL card')
+  call expect_read_error('coremat_undefined_spheroid', layered('MESH SPHEROID A=0.03 C=0.025 MAT=flesh COREMAT=wood'), &
+                         5, 40, 'MESH', 'element 1 uses material WOOD, which is not defined by a MATERIAL card')
+  call expect_read_error('skin_layers_without_skinmat', layered('MESH SPHERE R=0.03 MAT=flesh SKIN_LAYERS=2'), &
+                         5, 30, 'MESH', 'SKIN_LAYERS= needs SKINMAT=id (the skin''s material)')
+  call expect_read_error('skin_layers_with_coremat_only', &
+                         layered('MESH SPHERE R=0.03 MAT=flesh COREMAT=skin SKIN_LAYERS=3'), &
+                         5, 43, 'MESH', 'SKIN_LAYERS= needs SKINMAT=id (the skin''s material)')
+  call expect_read_error('skin_layers_eight', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=skin SKIN_LAYERS=8'), &
+                         5, 43, 'MESH', 'SKIN_LAYERS must be in 1..7 (of the 8 polar layers at level 1; '// &
+                         'level L has 8*2^(L-1)), got 8')
+  call expect_read_error('skin_layers_zero', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=skin SKIN_LAYERS=0'), &
+                         5, 43, 'MESH', 'SKIN_LAYERS must be in 1..7')
+  call expect_read_error('skin_layers_negative', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=skin SKIN_LAYERS=-3'), &
+                         5, 43, 'MESH', 'got -3')
+  call expect_read_error('skin_layers_not_integer', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=skin SKIN_LAYERS=2.5'), &
+                         5, 43, 'MESH', 'SKIN_LAYERS must be an integer, got "2.5"')
+  call expect_read_error('skinmat_no_value', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT= SKIN_LAYERS=1'), &
+                         5, 30, 'MESH', 'field SKINMAT has no value')
+  call expect_read_error('skinmat_twice', layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=skin SKINMAT=skin'), &
+                         5, 43, 'MESH', 'field SKINMAT given twice (first at column 30)')
+  call expect_read_error('skinmat_too_long', &
+                         layered('MESH SPHERE R=0.03 MAT=flesh SKINMAT=abcdefghijabcdefghijabcdefghijabc'), &
+                         5, 30, 'MESH', 'SKINMAT id longer than 32 characters')
+  call expect_read_error('coremat_too_long', &
+                         layered('MESH SPHERE R=0.03 MAT=flesh COREMAT=abcdefghijabcdefghijabcdefghijabc'), &
+                         5, 30, 'MESH', 'COREMAT id longer than 32 characters')
+  call expect_read_error('skinmat_without_mat', layered('MESH SPHERE R=0.03 SKINMAT=skin'), 5, 1, 'MESH', &
+                         'element 1 needs MAT=<id>: the deck defines several materials')
+  call expect_read_error('skinmat_on_rect', layered('MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR=2 NZ=2 MAT=flesh SKINMAT=skin'), &
+                         5, 51, 'MESH', 'unknown field SKINMAT')
+  call expect_read_error('coremat_on_ring', layered('MESH RING R0=0.01 R1=0.02 NR=2 NT=2 MAT=flesh COREMAT=skin'), &
+                         5, 47, 'MESH', 'unknown field COREMAT')
+
   ! ------------------------------------------------------------- supports and loads
   lines = square()
   lines(10) = 'FIX 1 X'
@@ -586,6 +626,15 @@ contains
     character(:), allocatable :: path
     path = folder//'/'//name//'.inp'
   end function deck_path
+
+  !> A static deck of two materials (flesh, skin) with `mesh` on line 5.
+  function layered(mesh) result(lines)
+    character(*), intent(in) :: mesh
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = [character(len=deck_line_length) :: 'TITLE layered', 'ANALYSIS STATIC', &
+      'MATERIAL flesh ELASTIC E=3e6 NU=0.3', 'MATERIAL skin ELASTIC E=30e6 NU=0.3', mesh, &
+      'PRESSURE OUTER P=1e3', 'FIX TOP Z', 'END']
+  end function layered
 
   !> read_deck must fail with `path:line[:column]: CARD: ...fragment...`.
   !> column = 0: the error must still carry the line, any column is accepted.

@@ -11,7 +11,7 @@
 !>    is fixed across levels); on the contact grid the level-L interface
 !>    nodes are level L+1's (the family refines uniformly).
 !> 2. The composite sphere under uniform external pressure p (STATIC,
-!>    axisymmetric, FIX TOP Z), legacy grid, level 5: a sphere of radius b of
+!>    axisymmetric, FIX TOP Z), legacy grid, levels 4, 5 and 6: a sphere of radius b of
 !>    material 1 inside a shell b..R of material 2 (10 times stiffer). The
 !>    exact (Lame) solution: u = C rho in the core, u = A rho + B/rho^2 in the
 !>    shell, with u and sigma_rho continuous at b and sigma_rho(R) = -p; the
@@ -20,6 +20,29 @@
 !>    measures the discretisation alone; the polygon's chords lie inside the
 !>    circles by at most rho dtheta^2/8 (the largest segment at level 5,
 !>    ~0.04 rad at the far pole: 2e-4 rho), far below the 0.5 % asked.
+!>    Measured (max over the mesh, / p for stresses, / |u(R)| for u):
+!>
+!>    | level | u       | Gauss-point sigma_rho | element-mean sigma (worst component) |
+!>    |-------|---------|-----------------------|--------------------------------------|
+!>    | 3     | 3.17 %  | 14.2 %                | 3.70 %                               |
+!>    | 4     | 0.94 %  | 7.04 %                | 2.10 %                               |
+!>    | 5     | 0.26 %  | 3.50 %                | 0.99 %                               |
+!>    | 6     | 0.073 % | 1.75 %                | 0.455 %                              |
+!>
+!>    u converges as h^2 (ratio 3.4-3.6 per level), stresses as h (ratio 2).
+!>    The Gauss-point error is the bilinear element's: its 2x2 Gauss points
+!>    are not its optimal stress points (the centroid is), and in the stiff
+!>    shell, where eps_rho /= eps_theta, a straight-sided element follows the
+!>    curved deformation with a strain varying linearly along its meridional
+!>    side, +-e at the Gauss points, cancelling at the centroid (element
+!>    means 0.55 % at level 5 off the axis against 3.5 %). It is not the
+!>    legacy grid's distortion (GRADE=0: 3.55 % at level 5), nor the
+!>    interface (3.4 % more than two layers from b), nor nu near 0.5: it
+!>    scales with lambda (nu = 0.2 in the shell: 1.9 %; FORMULATION BBAR:
+!>    1.1 %), and a homogeneous sphere is exact to 1e-10. The element means
+!>    meet the issue's 0.5 % at level 6 in every element (worst: the
+!>    elements on the axis at the far pole, where the graded segments are
+!>    longest; 0.15-0.3 % off the axis).
 program test_layered
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
@@ -34,6 +57,9 @@ program test_layered
   real(dp), parameter :: radius = 0.0366_dp
   integer :: level
   real(dp), allocatable :: previous(:, :)
+  !> The composite sphere's errors per level: nodal u / |u(R)|, Gauss-point
+  !> and element-mean stresses / p (worst component, every element).
+  real(dp) :: u_errors(4:6), gauss_errors(4:6), mean_errors(4:6)
   !> The composite sphere's exact solution: bulk and shear moduli of the core
   !> (1) and shell (2) materials, the interface radius b and the constants of
   !> u = C rho (core), A rho + B/rho^2 (shell).
@@ -46,7 +72,21 @@ program test_layered
   do level = 1, 3
     call regions('CONTACT', level, 3)
   end do
-  call composite_sphere(5, 2)
+  do level = 4, 6
+    call composite_sphere(level, 2, u_errors(level), gauss_errors(level), mean_errors(level))
+  end do
+  call check('Lame: displacements within 0.5 % of |u(R)| at level 5', u_errors(5) <= 5.0e-3_dp)
+  call check('Lame: displacements converge as h^2 (error ratio >= 3.4 per level, 4-5 and 5-6)', &
+             u_errors(4) >= 3.4_dp*u_errors(5) .and. u_errors(5) >= 3.4_dp*u_errors(6))
+  ! The Gauss-point stresses converge as h: bounded at level 6 by the measured
+  ! 1.75 % (not 0.5 %: see the header), halving per level.
+  call check('Lame: Gauss-point stresses within 1.8 % of p at level 6', gauss_errors(6) <= 1.8e-2_dp)
+  call check('Lame: Gauss-point stress error halves per level (ratio >= 1.9)', &
+             gauss_errors(4) >= 1.9_dp*gauss_errors(5) .and. gauss_errors(5) >= 1.9_dp*gauss_errors(6))
+  call check('Lame: element-mean stresses within 0.5 % of p in every element at level 6 (the issue''s bound)', &
+             mean_errors(6) <= 5.0e-3_dp)
+  call check('Lame: element-mean stress error shrinks per level (ratio >= 1.9)', &
+             mean_errors(4) >= 1.9_dp*mean_errors(5) .and. mean_errors(5) >= 1.9_dp*mean_errors(6))
   call test_summary('test_layered')
 
 contains
@@ -167,9 +207,12 @@ contains
     end associate
   end subroutine regions
 
-  !> The composite sphere under external pressure against Lame's solution.
-  subroutine composite_sphere(level, layers)
+  !> The composite sphere under external pressure against Lame's solution at
+  !> `level`: the worst nodal displacement error / |u(R)|, Gauss-point and
+  !> element-mean (the average of the 4 Gauss points) stress errors / p.
+  subroutine composite_sphere(level, layers, u_relative, gauss_relative, mean_relative)
     integer, intent(in) :: level, layers
+    real(dp), intent(out) :: u_relative, gauss_relative, mean_relative
     real(dp), parameter :: p = 1.0e6_dp, young(2) = [3.0e6_dp, 30.0e6_dp], poisson(2) = [0.3_dp, 0.35_dp]
     type(deck_t) :: deck
     type(static_solution_t) :: solution
@@ -178,7 +221,7 @@ contains
     character(len=8) :: text
     real(dp) :: centre(2), n(2), rho, u_fe(2), translation
     real(dp) :: u_error, u_scale, stress(3), exact(3), stress_error(3), core_error(3), worst(2)
-    real(dp) :: far_error(3), layer_depth, points(2, gauss_count)
+    real(dp) :: far_error(3), layer_depth, points(2, gauss_count), mean(3), mean_exact(3), mean_error(3)
     real(dp) :: hoop_inner, hoop_outer, exact_inner, exact_outer, rho_inner, rho_outer, weight_inner, weight_outer
     integer :: node, e, gp, k, top
 
@@ -191,7 +234,8 @@ contains
       'FIX TOP Z', 'END'])
     call read_deck(file, deck, error)
     if (.not. allocated(error)) call solve_static(deck, solution, error)
-    call check('Lame: the composite deck reads and solves', .not. allocated(error))
+    u_relative = huge(1.0_dp); gauss_relative = huge(1.0_dp); mean_relative = huge(1.0_dp)
+    call check('Lame: the composite deck reads and solves at level '//trim(text), .not. allocated(error))
     if (allocated(error)) then
       print '(a)', error_text(error)
       return
@@ -227,17 +271,21 @@ contains
         u_error = max(u_error, norm2(u_fe))
       end if
     end do
-    print '(2x, a, es10.3)', 'Lame: max |u - u_exact| / |u(R)| at nodes (radial and tangential) = ', u_error/u_scale
-    call check('Lame: displacements within 0.5 % of |u(R)|', u_error <= 5.0e-3_dp*u_scale)
+    print '(2x, a, i0, a, es10.3)', 'Lame level ', level, ': max |u - u_exact| / |u(R)| at nodes '// &
+      '(radial and tangential) = ', u_error/u_scale
+    u_relative = u_error/u_scale
 
     stress_error = 0.0_dp
     core_error = 0.0_dp
     far_error = 0.0_dp
+    mean_error = 0.0_dp
     layer_depth = radius*(1.0_dp - sphere_default_core(sphere_grid_legacy))/(8*2**(level - 1))
     hoop_inner = 0.0_dp; hoop_outer = 0.0_dp; exact_inner = 0.0_dp; exact_outer = 0.0_dp
     weight_inner = 0.0_dp; weight_outer = 0.0_dp
     do e = 1, mesh%nelem
       points = element_gauss_points(mesh%xy(:, mesh%connectivity(:, e)))
+      mean = 0.0_dp
+      mean_exact = 0.0_dp
       do gp = 1, gauss_count
         rho = norm2(points(:, gp) - centre)
         n = (points(:, gp) - centre)/rho
@@ -246,6 +294,8 @@ contains
         end associate
         k = mesh%element_material(e)
         exact = [radial_stress_exact(rho, k), hoop_exact_in(rho, k), hoop_exact_in(rho, k)]
+        mean = mean + stress/gauss_count
+        mean_exact = mean_exact + exact/gauss_count
         if (abs(rho - b) > 2*layer_depth) far_error = max(far_error, abs(stress - exact))
         if (rho > 1.05_dp*sphere_default_core(sphere_grid_legacy)*radius) then
           if (abs(stress(1) - exact(1)) > stress_error(1)) worst = [rho/radius, atan2(n(1), -n(2))*180/3.14159265_dp]
@@ -263,25 +313,21 @@ contains
           end if
         end if
       end do
+      mean_error = max(mean_error, abs(mean - mean_exact))
     end do
     print '(2x, a, 3es10.3)', 'Lame: max |sigma - exact| / p at Gauss points (rho-rho, meridional, hoop) = ', &
       stress_error/p
+    print '(2x, a, 3es10.3)', 'Lame: the same for the element means (every element) = ', mean_error/p
     print '(2x, a, 2f9.4)', 'Lame: worst sigma_rho at rho/R, angle from the contact pole (deg) = ', worst
     print '(2x, a, 3es10.3)', 'Lame: the same in the legacy core block and next to it (rho < 1.05 c R) = ', core_error/p
     print '(2x, a, 3es10.3)', 'Lame: the same more than two element layers from b = ', far_error/p
-    ! NOT the issue's 0.5 %: pointwise Gauss-point stresses in the stiff shell
-    ! are off by up to 3.5e-2 p (sigma_rho) and 1.9e-2 p (hoop) at level 5,
-    ! worst near the equator just outside b, and still 3.4e-2 p more than two
-    ! layers from b (the core block: 6e-5 p); the cause is not yet analysed.
-    ! Asked within 5 % so that a regression shows; the nodal displacements
-    ! (0.26 %) and the hoop jump (0.01 %) meet 0.5 %.
-    call check('Lame: stresses within 5 % of p at every Gauss point (interface layers included)', &
-               maxval(stress_error) <= 5.0e-2_dp*p)
+    gauss_relative = maxval(max(stress_error, core_error))/p
+    mean_relative = maxval(mean_error)/p
     hoop_inner = hoop_inner/weight_inner; exact_inner = exact_inner/weight_inner
     hoop_outer = hoop_outer/weight_outer; exact_outer = exact_outer/weight_outer
     print '(2x, a, 2f9.5, a, 2f9.5)', 'Lame: hoop/p next to b, flesh side (FE, exact) = ', hoop_inner/p, exact_inner/p, &
       '; skin side = ', hoop_outer/p, exact_outer/p
-    call check('Lame: the hoop-stress jump across b within 0.5 % of the exact one', &
+    call check('Lame: the hoop-stress jump across b within 0.5 % of the exact one at level '//trim(text), &
                abs((hoop_outer - hoop_inner) - (exact_outer - exact_inner)) <= 5.0e-3_dp*abs(exact_outer - exact_inner))
     end associate
   end subroutine composite_sphere
