@@ -401,6 +401,8 @@ contains
                     'outline point 2 (z = -1.0000E-03) is not above the contact pole')
     call check_card('upside_down', 'MESH OUTLINE 0 0.06 0.03 0.03 0 0', 5, &
                     'outline point 2 (z = 3.0000E-02) is not above the contact pole')
+    call check_card('repeated', 'MESH OUTLINE 0 0 0.02 0.005 0.03 0.02 0.03 0.02 0.025 0.045 0 0.06', 8, &
+                    'outline point 4 repeats point 3')
     call check_card('crossing', 'MESH OUTLINE 0 0 0.03 0.01 0.03 0.05 0.01 0.02 0.04 0.03 0 0.06', 6, &
                     'the outline crosses itself: the segment from point 2 to 3 crosses the segment from point 4 to 5')
     call check_card('not_star_shaped', 'MESH OUTLINE 0 0 0.03 0.02 0.005 0.02 0.005 0.024 0.03 0.024 0 0.05', 6, &

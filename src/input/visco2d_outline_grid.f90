@@ -38,7 +38,7 @@ contains
   !> `at_z` if the problem is the point's z rather than its r):
   !> fewer than 3 points, more than outline_max_points, an end off the axis,
   !> r < 0, an interior point on the axis, a point not above the contact pole
-  !> (the first point must be the body's lowest), a crossing, a polygon not
+  !> (the first point must be the body's lowest), a point repeated, a crossing, a polygon not
   !> star-shaped from the centre; then, of the interpolating spline, a
   !> radius not positive, a contact pole not convex, or a dip below the pole.
   subroutine outline_problem(r, z, problem, point, at_z)
@@ -88,6 +88,12 @@ contains
         return
       end if
     end do
+    do i = 2, n
+      point = i
+      if (r(i) == r(i - 1) .and. z(i) == z(i - 1)) then
+        problem = 'outline point '//itoa(i)//' repeats point '//itoa(i - 1); return
+      end if
+    end do
     outline%centre = 0.5_dp*(z(1) + z(n))
     do i = 1, n - 1
       if (polar_angle(r(i + 1), z(i + 1), outline%centre) > polar_angle(r(i), z(i), outline%centre)) cycle
@@ -127,8 +133,9 @@ contains
     end subroutine first_crossing
   end subroutine outline_problem
 
-  !> Problems of the interpolating spline of checked points: rho(phi) <= 0,
-  !> a contact pole that is not convex (its curvature (rho - rho'')/rho^2 at
+  !> Problems of the interpolating spline of checked points: rho(phi) <= 0
+  !> or beyond twice the points' largest rho (or not a number: points far
+  !> closer in angle than their neighbours make the spline swing), a contact pole that is not convex (its curvature (rho - rho'')/rho^2 at
   !> phi = 0, rho' = 0 there, not positive), or the spline below the contact
   !> pole (z < `lowest`) off the pole. Sampled samples_per_interval times
   !> per interval.
@@ -139,8 +146,9 @@ contains
     integer, intent(inout) :: point
     logical, intent(inout) :: at_z
     integer :: i, k
-    real(dp) :: phi, rho
-    if (outline%radius(1) - outline%second(1) <= 0.0_dp) then
+    real(dp) :: phi, rho, largest
+    largest = maxval(outline%radius)
+    if (.not. (outline%radius(1) - outline%second(1) > 0.0_dp)) then
       point = 2
       problem = 'the outline is not convex at the contact pole: its interpolating spline''s curvature there is '// &
         rtoa((outline%radius(1) - outline%second(1))/outline%radius(1)**2)//' 1/m (the pole must touch the '// &
@@ -155,6 +163,12 @@ contains
         if (rho <= 0.0_dp) then
           problem = 'the interpolated outline reaches the centre between points '//itoa(i)//' and '//itoa(i + 1)// &
                     ' (the points turn too sharply there: give more points)'
+          return
+        end if
+        if (.not. (rho <= 2.0_dp*largest)) then
+          problem = 'the interpolated outline swings out to '//rtoa(rho)//' m from the centre between points '// &
+            itoa(i)//' and '//itoa(i + 1)//', beyond twice the points'' largest distance '//rtoa(largest)// &
+            ' m (points much closer together than their neighbours, or turning too sharply: smooth them)'
           return
         end if
         if (outline%centre - rho*cos(phi) <= lowest) then
