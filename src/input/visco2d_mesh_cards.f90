@@ -1,5 +1,5 @@
 !> The mesh cards: legacy NODE and ELEMENT cards with generation, or a MESH
-!> generator card (SPHERE, SPHEROID, RECT, RING), read into a mesh_input_t with the
+!> generator card (SPHERE, SPHEROID, OUTLINE, RECT, RING), read into a mesh_input_t with the
 !> size of the mesh checked against the limits before it is generated.
 !> visco2d_mesh_build turns the input into a checked, numbered mesh_t.
 module visco2d_mesh_cards
@@ -7,14 +7,16 @@ module visco2d_mesh_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
-                           positional_real, positional_integer, positional_word, check_fields_used, field_column, has_field
+                           positional_real, positional_integer, positional_word, positional_count, check_fields_used, &
+                           field_column, has_field
   use visco2d_mesh_generator, only: spheroid_grid, rectangle_grid, ring_grid, sphere_default_grade, &
                                     sphere_default_core, sphere_grid_contact, sphere_grid_legacy, &
                                     spheroid_least_ratio, spheroid_largest_ratio, sphere_element_layer, &
                                     sphere_layer_count
+  use visco2d_outline_grid, only: outline_t, outline_problem, make_outline, outline_grid, outline_max_points
   use visco2d_budget, only: run_size_t, mesh_run_size, sphere_mesh_counts, grid_mesh_counts, memory_limit, &
                             bytes_text, count_text, max_mesh_entities
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: itoa, rtoa, to_upper
   use visco2d_mesh, only: name_length
   implicit none
   private
@@ -240,6 +242,9 @@ contains
   !> layers at level L, another material, COREMAT= the core block)
   !> MESH SPHEROID A=.. C=.. [LEVEL=1] [MAT=id] [GRID=..] [GRADE=b] [CORE=c]
   !> (the sphere grid stretched: equatorial semi-axis A, polar semi-axis C)
+  !> MESH OUTLINE [LEVEL=1] [MAT=id] [GRID=..] [GRADE=b] [CORE=c] r1 z1 r2 z2 ... rn zn
+  !> (the sphere grid mapped radially onto the outline through the points,
+  !> from the contact pole (r1 = 0, the lowest point) to the far pole (rn = 0))
   !> MESH RECT R0=.. R1=.. Z0=.. Z1=.. NR=.. NZ=.. [MAT=id]
   !> MESH RING R0=.. R1=.. NR=.. NT=.. [ANGLE=90] [MAT=id]   (plane-strain ring sector)
   subroutine read_mesh_card(input, deck, card, error)
@@ -256,19 +261,19 @@ contains
       call card_error(error, deck, card, 'a MESH card cannot be combined with NODE/ELEMENT cards or another MESH')
       return
     end if
-    call positional_word(deck, card, 1, 'mesh kind (SPHERE, SPHEROID, RECT or RING)', kind, error)
+    call positional_word(deck, card, 1, 'mesh kind (SPHERE, SPHEROID, OUTLINE, RECT or RING)', kind, error)
     if (allocated(error)) return
     call named_word(deck, card, 'MAT', material, error, default=''); if (allocated(error)) return
     select case (kind)
-    case ('SPHERE', 'SPHEROID')
-      call read_sphere_mesh(deck, card, kind == 'SPHEROID', xy, connectivity, edge_element, edge_side, edge_set, &
+    case ('SPHERE', 'SPHEROID', 'OUTLINE')
+      call read_sphere_mesh(deck, card, kind, xy, connectivity, edge_element, edge_side, edge_set, &
                             level, skin_material, skin_layers, core_material, error)
     case ('RECT')
       call read_rect_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
     case ('RING')
       call read_ring_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
     case default
-      call card_error(error, deck, card, 'mesh kind must be SPHERE, SPHEROID, RECT or RING, got "'//kind//'"', &
+      call card_error(error, deck, card, 'mesh kind must be SPHERE, SPHEROID, OUTLINE, RECT or RING, got "'//kind//'"', &
                       field_column(card, '1'))
     end select
     if (allocated(error)) return
@@ -285,7 +290,7 @@ contains
     input%element_line = [(card%line, i = 1, input%nelem)]
     allocate(input%material(input%nelem))
     input%material = material
-    if (kind == 'SPHERE' .or. kind == 'SPHEROID') then
+    if (kind == 'SPHERE' .or. kind == 'SPHEROID' .or. kind == 'OUTLINE') then
       do i = 1, input%nelem
         if (sphere_element_layer(level, i) == 0 .and. len(core_material) > 0) then
           input%material(i) = core_material
@@ -303,14 +308,14 @@ contains
     input%generator_column = card%column
   end subroutine read_mesh_card
 
-  !> MESH SPHERE or (`spheroid`) MESH SPHEROID: the fields checked, the grid
+  !> MESH SPHERE, SPHEROID or OUTLINE (`kind`): the fields checked, the grid
   !> generated; its level and the material regions (SKINMAT=, SKIN_LAYERS=,
   !> COREMAT=; '' where the field is absent) returned for the caller to assign.
-  subroutine read_sphere_mesh(deck, card, spheroid, xy, connectivity, edge_element, edge_side, edge_set, &
+  subroutine read_sphere_mesh(deck, card, kind, xy, connectivity, edge_element, edge_side, edge_set, &
                               level, skin_material, skin_layers, core_material, error)
     type(card_deck_t), intent(in) :: deck
     type(card_t), intent(inout) :: card
-    logical, intent(in) :: spheroid
+    character(*), intent(in) :: kind
     real(dp), allocatable, intent(out) :: xy(:, :)
     integer, allocatable, intent(out) :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
     integer, intent(out) :: level, skin_layers
@@ -320,11 +325,17 @@ contains
     integer :: grid
     integer(int64) :: nodes, elements, least_width
     character(:), allocatable :: grid_name, usage
-    if (spheroid) then
+    real(dp), allocatable :: r(:), z(:)
+    type(outline_t) :: outline
+    if (kind == 'SPHEROID') then
       usage = 'MESH SPHEROID A=.. C=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c] '// &
               '[SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id]'
       call named_real(deck, card, 'A', equatorial, error); if (allocated(error)) return
       call named_real(deck, card, 'C', polar, error); if (allocated(error)) return
+    else if (kind == 'OUTLINE') then
+      usage = 'MESH OUTLINE [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c] '// &
+              '[SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id] r1 z1 r2 z2 ... rn zn'
+      call read_outline_points(deck, card, r, z, error); if (allocated(error)) return
     else
       usage = 'MESH SPHERE R=.. [LEVEL=L] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c] '// &
               '[SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id]'
@@ -348,7 +359,7 @@ contains
     call check_fields_used(deck, card, error, usage)
     if (allocated(error)) return
     call check_regions(); if (allocated(error)) return
-    if (spheroid) then
+    if (kind == 'SPHEROID') then
       call check_semi_axis(equatorial, 'A'); if (allocated(error)) return
       call check_semi_axis(polar, 'C'); if (allocated(error)) return
       if (.not. (polar/equatorial >= spheroid_least_ratio .and. polar/equatorial <= spheroid_largest_ratio)) then
@@ -356,7 +367,7 @@ contains
           rtoa(spheroid_largest_ratio)//'] (the range on which the stretched sphere grid is validated), got C/A = '// &
           rtoa(polar/equatorial), field_column(card, 'C')); return
       end if
-    else
+    else if (kind == 'SPHERE') then
       call check_semi_axis(equatorial, 'R'); if (allocated(error)) return
     end if
     if (level < 1 .or. level > 7) then
@@ -376,10 +387,15 @@ contains
                       field_column(card, 'CORE')); return
     end if
     call sphere_mesh_counts(level, nodes, elements, least_width)
-    call check_generated_size(deck, card, trim(merge('SPHEROID', 'SPHERE  ', spheroid)), nodes, elements, least_width, &
-                              'LEVEL', error)
+    call check_generated_size(deck, card, kind, nodes, elements, least_width, 'LEVEL', error)
     if (allocated(error)) return
-    call spheroid_grid(equatorial, polar, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
+    if (kind == 'OUTLINE') then
+      call make_outline(r, z, outline)
+      call outline_grid(outline, level, grade, core, grid, xy, connectivity, edge_element, edge_side, edge_set)
+    else
+      call spheroid_grid(equatorial, polar, level, grade, core, grid, xy, connectivity, edge_element, edge_side, &
+                         edge_set)
+    end if
   contains
     !> SKINMAT=, SKIN_LAYERS= and COREMAT=: ids of at most 32 characters; the
     !> skin 1 to 7 of the 8 level-1 layers (at least one layer of flesh).
@@ -409,6 +425,54 @@ contains
       end if
     end subroutine check_semi_axis
   end subroutine read_sphere_mesh
+
+  !> The points r1 z1 ... rn zn of MESH OUTLINE (the positional values after
+  !> OUTLINE, in m): read, and checked as an outline (`outline_problem`),
+  !> with an error at the point's r field (at its z field for a z problem);
+  !> refused in a deck whose GEOMETRY is PLANESTRAIN (a body of revolution).
+  subroutine read_outline_points(deck, card, r, z, error)
+    type(card_deck_t), intent(in) :: deck
+    type(card_t), intent(inout) :: card
+    real(dp), allocatable, intent(out) :: r(:), z(:)
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: values, n, i, point
+    logical :: at_z
+    character(:), allocatable :: problem
+    do i = 1, deck%count
+      if (deck%cards(i)%keyword /= 'GEOMETRY' .or. positional_count(deck%cards(i)) < 1) cycle
+      if (to_upper(deck%cards(i)%tokens(deck%cards(i)%positions(1))%value) /= 'PLANESTRAIN') cycle
+      call card_error(error, deck, card, 'MESH OUTLINE is a body of revolution: it needs GEOMETRY AXISYMMETRIC '// &
+        '(the GEOMETRY card on line '//itoa(deck%cards(i)%line)//' says PLANESTRAIN)', field_column(card, '1'))
+      return
+    end do
+    values = positional_count(card) - 1
+    if (mod(values, 2) /= 0) then
+      call card_error(error, deck, card, 'the outline''s points come in pairs r z (m), got '//itoa(values)// &
+        ' values: the last point has no z', field_column(card, itoa(values + 1))); return
+    end if
+    n = values/2
+    if (n > outline_max_points) then
+      call card_error(error, deck, card, 'the outline has '//itoa(n)//' points, more than '// &
+        itoa(outline_max_points), field_column(card, '1')); return
+    end if
+    allocate(r(n), z(n))
+    do i = 1, n
+      call positional_real(deck, card, 2*i, 'r of point '//itoa(i)//' (m)', r(i), error); if (allocated(error)) return
+      call positional_real(deck, card, 2*i + 1, 'z of point '//itoa(i)//' (m)', z(i), error)
+      if (allocated(error)) return
+      if (max(abs(r(i)), abs(z(i))) > max_coordinate) then
+        call card_error(error, deck, card, 'point '//itoa(i)//' is out of range: coordinates must be in [-'// &
+          rtoa(max_coordinate)//', '//rtoa(max_coordinate)//'] m', field_column(card, itoa(2*i))); return
+      end if
+    end do
+    call outline_problem(r, z, problem, point, at_z)
+    if (len(problem) == 0) return
+    if (point == 0) then
+      call card_error(error, deck, card, 'the outline '//problem, field_column(card, '1'))
+    else
+      call card_error(error, deck, card, problem, field_column(card, itoa(2*point + merge(1, 0, at_z))))
+    end if
+  end subroutine read_outline_points
 
   !> MESH RECT: the fields checked, the grid generated.
   subroutine read_rect_mesh(deck, card, xy, connectivity, edge_element, edge_side, edge_set, error)
