@@ -28,6 +28,7 @@ module visco2d_bruise
   use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, deviatoric_part
   use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
   use visco2d_strings, only: itoa
+  use visco2d_pad_mesh, only: is_pad_element
   implicit none
   private
 
@@ -123,11 +124,12 @@ contains
     bruise%failure_time = never
     bruise%rule = 0
     do e = 1, mesh%nelem
-      ! The card naming the element's material, else the card without MAT=.
+      ! The card naming the element's material, else the card without MAT=
+      ! (not for a PAD's element: the pad is assessed only by name).
       do k = 1, size(deck%bruises)
         if (deck%bruises(k)%material == deck%materials(mesh%element_material(e))%id) then
           bruise%rule(e) = k
-        else if (len(deck%bruises(k)%material) == 0 .and. bruise%rule(e) == 0) then
+        else if (len(deck%bruises(k)%material) == 0 .and. bruise%rule(e) == 0 .and. .not. is_pad_element(deck, e)) then
           bruise%rule(e) = k
         end if
       end do
