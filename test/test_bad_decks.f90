@@ -520,6 +520,44 @@ program test_bad_decks
   call expect_read_error('plate_unknown_field', lines, 7, 11, 'PLATE', &
                          'unknown field FOO (expected: PLATE Z=.. [STICK | SLIP] [RELEASE=YES|NO])')
 
+  ! ------------------------------------------------------- PAD (a deformable layer on the plate)
+  lines = pad_impact('PAD MAT=foam')
+  call expect_read_error('pad_without_thickness', lines, 10, 1, 'PAD', 'missing field THICKNESS=')
+
+  lines = pad_impact('PAD THICKNESS=0.01')
+  call expect_read_error('pad_without_material', lines, 10, 1, 'PAD', 'missing field MAT=')
+
+  lines = pad_impact('PAD THICKNESS=-0.01 MAT=foam')
+  call expect_read_error('pad_thickness_negative', lines, 10, 5, 'PAD', 'THICKNESS')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam BOTTOM=GLUED')
+  call expect_read_error('pad_bottom_unknown', lines, 10, 29, 'PAD', 'BOTTOM must be BONDED or SLIP, got "GLUED"')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam FOO=1')
+  call expect_read_error('pad_unknown_field', lines, 10, 29, 'PAD', 'unknown field FOO')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam')
+  call expect_read_error('pad_twice', [lines(1:10), lines(10:)], 11, 1, 'PAD', &
+                         'only one PAD card is allowed (first on line 10)')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=rubber')
+  call expect_read_error('pad_material_undefined', lines, 10, 20, 'PAD', &
+                         'the pad''s material RUBBER is not defined by a MATERIAL card')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam')
+  lines(9) = 'MATERIAL foam ELASTIC E=1e6 NU=0.3'
+  call expect_read_error('pad_material_without_density', lines, 9, 0, 'MATERIAL', 'has no density')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam SIZE=0.05')
+  call expect_read_error('pad_size_too_coarse', lines, 10, 29, 'PAD', 'is too coarse for a pad')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam')
+  call expect_read_error('pad_without_plate', [lines(1:6), lines(8:)], 9, 0, 'PAD', 'PAD needs a PLATE card')
+
+  lines = press()
+  call expect_read_error('pad_in_static', [lines(1:7), 'MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100', &
+                         'PAD THICKNESS=0.01 MAT=foam', lines(8:)], 9, 0, 'PAD', 'PAD needs ANALYSIS DYNAMIC')
+
   ! The contact decks themselves are valid and parse to the intended settings.
   call expect_valid_contact()
 
@@ -527,6 +565,21 @@ program test_bad_decks
   call test_summary('test_bad_decks')
 
 contains
+
+  !> The impact deck with a pad: the mesh named MAT=apple (line 5), a foam
+  !> material on line 9, `pad` on line 10, TIME on 11, END on 12.
+  function pad_impact(pad) result(deck_lines)
+    character(*), intent(in) :: pad
+    character(len=deck_line_length), allocatable :: deck_lines(:)
+    character(len=deck_line_length), allocatable :: base(:)
+    base = impact()
+    base(5) = 'MESH SPHERE R=0.0381 LEVEL=1 MAT=apple'
+    allocate(deck_lines(12))
+    deck_lines(1:8) = base(1:8)
+    deck_lines(9) = 'MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100'
+    deck_lines(10) = pad
+    deck_lines(11:12) = base(9:10)
+  end function pad_impact
 
   !> The contact decks parse: STICK, RELEASE=NO and STOP AT=MAXDEFORMATION by
   !> default with a plate in DYNAMIC; SLIP RELEASE=YES with STOP AT=SEPARATION;

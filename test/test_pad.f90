@@ -10,6 +10,11 @@
 !>     RELEASE=YES, to separation): q_m falls and the contact lasts longer,
 !>     strictly, at every step down; alpha (the fruit's own deformation,
 !>     the approach less the pad's compression) falls too.
+!>  2b. Equal and opposite: the impulse of the contact force on the fruit,
+!>     the time integral of force_N (trapezoidal over every step), equals the
+!>     fruit's change of momentum M (V_in + V_out) plus the weight's impulse
+!>     M g t_c over the contact, to 1 % (measured within 0.1 %): the force
+!>     booked on the fruit is the force that stops and returns it.
 !>  3. Energy: the books close on every run (kinetic + strain energy of
 !>     fruit and pad + contact loss = initial kinetic energy + gravity work):
 !>     balance_error_max_rel below 2 % (the rigid plate's own is ~0.1 %; a
@@ -199,7 +204,27 @@ contains
     do k = 0, 4
       call check('energy books close ('//runs(k)%name//', '//fx(100*balance(k), 3)//' %)', abs(balance(k)) < 0.02_dp)
     end do
+    do k = 0, 4
+      call check_impulse(runs(k))
+    end do
   end subroutine softer_pads
+
+  !> The impulse of force_N over the run against the fruit's momentum change and its weight's impulse.
+  subroutine check_impulse(run)
+    type(run_t), intent(in) :: run
+    real(dp), allocatable :: t(:), force(:)
+    real(dp) :: impulse, momentum, mass
+    t = history_column(run%record, 't_s')
+    force = history_column(run%record, 'force_N')
+    if (size(t) < 2 .or. size(force) /= size(t)) return
+    impulse = sum(0.5_dp*(force(2:) + force(:size(t) - 1))*(t(2:) - t(:size(t) - 1)))
+    mass = value_of(run, 'mass_kg')
+    momentum = mass*(value_of(run, 'impact_velocity_m_s') + value_of(run, 'rebound_velocity_m_s')) + &
+               mass*9.8_dp*1.0e-3_dp*value_of(run, 'contact_duration_ms')
+    print '(a)', run%name//': impulse '//fx(impulse*1.0e3_dp, 4)//' mN s, momentum change + weight '// &
+      fx(momentum*1.0e3_dp, 4)//' mN s'
+    call check_close('impulse of the contact force = momentum change ('//run%name//', 1 %)', impulse, momentum, 0.01_dp)
+  end subroutine check_impulse
 
   !> The pad's compression of a run, or '-' for the rigid plate.
   function compression_text(run, pad) result(text)

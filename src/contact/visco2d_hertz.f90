@@ -50,7 +50,7 @@ contains
   !> of one material: E and nu are the material's instantaneous values (its
   !> elastic constants for an elastic material), R = half the pole-to-pole height.
   !> Left out, with the key hertz_reference saying why, when it would mean
-  !> nothing: V not small against the bar wave speed sqrt(E/rho) (Hertz's
+  !> nothing: a PAD under the body; V not small against the bar wave speed sqrt(E/rho) (Hertz's
   !> theory is quasi-static; this also keeps V^2 from overflowing), a value
   !> that is not a finite number, a maximum approach alpha_m below the
   !> round-off of the node positions (geometry_tolerance R; V = 4.9e-324 m/s
@@ -63,6 +63,11 @@ contains
     type(hertz_t) :: hertz
     real(dp) :: radius, wave_speed
     if (.not. allocated(deck%mesh%source)) return
+    if (deck%pad%line > 0) then
+      call record_put(record, 'hertz_reference', 'none: the body lands on a PAD, not on the rigid plate (for a '// &
+                      'thick pad, Hertz with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2: doc/method.md)')
+      return
+    end if
     if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1) return
     if (speed == 0.0_dp) then
       call record_put(record, 'hertz_reference', 'none: the body touched the plate at rest (V = 0)')
