@@ -551,6 +551,9 @@ program test_bad_decks
   lines = pad_impact('PAD THICKNESS=0.01 MAT=foam SIZE=0.05')
   call expect_read_error('pad_size_too_coarse', lines, 10, 29, 'PAD', 'is too coarse for a pad')
 
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam SIZE=1e-6')
+  call expect_read_error('pad_size_too_fine', lines, 10, 29, 'PAD', 'is too fine: the pad would need more than 2000')
+
   lines = pad_impact('PAD THICKNESS=0.01 MAT=foam')
   call expect_read_error('pad_without_plate', [lines(1:6), lines(8:)], 9, 0, 'PAD', 'PAD needs a PLATE card')
 

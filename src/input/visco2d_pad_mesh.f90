@@ -56,7 +56,8 @@ contains
   !> Grid lines from 0 to `length`: steps of `size` up to `uniform`, then
   !> growing by `growth`; the last step is stretched (or merged with the one
   !> before, if it would be under half of it) to end exactly at `length`.
-  !> At least `least` steps.
+  !> At least `least` steps; none (an empty result) if more than
+  !> max_lines would be needed.
   pure function pad_grid_lines(length, size, uniform, least) result(lines)
     real(dp), intent(in) :: length, size, uniform
     integer, intent(in) :: least
@@ -70,7 +71,11 @@ contains
     buffer(0) = 0.0_dp
     step = size
     n = 0
-    do while (buffer(n) + step < length .and. n < max_lines - 1)
+    do while (buffer(n) + step < length)
+      if (n == max_lines - 1) then
+        allocate(lines(0))
+        return
+      end if
       n = n + 1
       buffer(n) = buffer(n - 1) + step
       if (buffer(n) >= uniform) step = step*growth
@@ -102,6 +107,10 @@ contains
     if (width == 0.0_dp) width = default_width*reach
     spacing = pad%size
     if (spacing == 0.0_dp) spacing = pole_edge(deck)
+    if (pad%size > 0.0_dp .and. pad%size < 0.5_dp*pole_edge(deck)) call add_warning(deck, pad%line, 'PAD', &
+      'SIZE = '//rtoa(pad%size)//' m is under half the body''s element size at its pole ('//rtoa(pole_edge(deck))// &
+      ' m): each body node then loads the finer pad surface like a point and indents it locally (large local '// &
+      'strains, too much compression); leave SIZE out to put the pad''s nodes under the body''s')
     if (width < reach) call add_warning(deck, pad%line, 'PAD', 'WIDTH = '//rtoa(width)//' m is less than the '// &
       'body''s radius '//rtoa(reach)//' m: body nodes beyond the pad''s edge find nothing to touch')
     if (spacing > 0.5_dp*min(width, pad%thickness*4.0_dp)) then
@@ -115,6 +124,10 @@ contains
       r_lines = matched_lines(deck, width, uniform_fraction*reach)
     end if
     z_lines = pad_grid_lines(pad%thickness, spacing, 0.0_dp, 2)
+    if (size(r_lines) == 0 .or. size(z_lines) == 0) then
+      call line_error(error, deck, pad%line, 'SIZE = '//rtoa(spacing)//' m is too fine: the pad would need more '// &
+                      'than '//itoa(max_lines)//' grid lines across its width or thickness', 'SIZE'); return
+    end if
     nr = size(r_lines) - 1
     nz = size(z_lines) - 1
     top = deck%plate%z
@@ -167,13 +180,22 @@ contains
     real(dp), allocatable :: lines(:), tail(:)
     real(dp), allocatable :: r(:)
     integer :: n
-    r = boundary_radii(deck, matched)
+    r = boundary_radii(deck, min(matched, width))
     n = size(r)
     if (n < 2) then
       lines = pad_grid_lines(width, width/10.0_dp, 0.0_dp, 2)
       return
     end if
+    if (width - r(n) <= 0.5_dp*(r(n) - r(n - 1))) then     ! the pad ends within the matched part
+      r(n) = width
+      lines = r
+      return
+    end if
     tail = pad_grid_lines(width - r(n), (r(n) - r(n - 1))*growth, 0.0_dp, 1)
+    if (size(tail) == 0) then
+      allocate(lines(0))
+      return
+    end if
     lines = [r, r(n) + tail(2:)]
   end function matched_lines
 
