@@ -29,7 +29,12 @@
 !>     base, not a half-space; its mesh grows by 1.2 with depth: measured
 !>     +1.7 %). With equal materials Hertz splits the approach equally: the
 !>     fruit's alpha and the pad's compression agree to 3 % (measured 0.5 %).
-!>  5. No PAD without a PLATE; no PAD outside DYNAMIC; an unknown MAT=.
+!>  5. STATIC: the sphere (level 2) pressed onto the plate by its top node
+!>     (FIX TOP Z UZ=-0.5 mm): a pad 1000 times stiffer gives the rigid
+!>     plate's force and alpha within 0.5 % (measured 0.05 %); a pad of the
+!>     fruit's flesh takes a smaller force at the same travel. A body held
+!>     by the pad alone is refused with the reason (it needs its own FIX).
+!>  6. No PAD without a PLATE; an unknown MAT=.
 !> Every number is printed in markdown tables. Decks are written to
 !> build/test-tmp/test_pad/.
 program test_pad
@@ -38,6 +43,7 @@ program test_pad
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
+  use visco2d_static_contact, only: solve_static_contact
   use visco2d_hertz, only: hertz_t, hertz_impact
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
@@ -59,6 +65,7 @@ program test_pad
   call stiff_pad()
   call softer_pads()
   call hertz_combined()
+  call static_pads()
   call bad_pads()
   call test_summary('test_pad')
 
@@ -269,7 +276,81 @@ contains
                      value_of(pad, 'alpha_max_mm'), value_of(pad, 'pad_compression_max_mm'), 0.03_dp)
   end subroutine hertz_combined
 
-  !> 5. Decks a PAD cannot run.
+  !> The static deck: the sphere pressed 0.5 mm by its top node, with `pad` lines (none: the rigid plate).
+  function static_lines(pad_material, pad) result(lines)
+    character(*), intent(in) :: pad_material, pad
+    character(len=line_length), allocatable :: lines(:)
+    integer :: count
+    count = 6
+    if (len(pad) > 0) count = 8
+    allocate(lines(count))
+    lines(1:6) = [character(len=line_length) :: 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', fruit, &
+                  'MESH SPHERE R=0.0366 LEVEL=2 MAT=apple', 'PLATE Z=0 SLIP', 'FIX TOP Z UZ=-0.0005']
+    if (len(pad) > 0) lines(7:8) = [character(len=line_length) :: pad_material, pad]
+  end function static_lines
+
+  !> 5. Static indentation on a pad.
+  subroutine static_pads()
+    type(deck_t) :: deck
+    type(record_t) :: rigid, stiff, flesh
+    type(error_t), allocatable :: error
+    real(dp) :: force(3), alpha(3)
+    call run_static('static_rigid', static_lines('', ''), rigid)
+    call run_static('static_stiff', static_lines('MATERIAL stiff ELASTIC E=18.11e9 NU=0.3 RHO=1000', &
+                    'PAD THICKNESS=0.01 MAT=stiff'), stiff)
+    call run_static('static_flesh', static_lines('MATERIAL flesh ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
+                    'PAD THICKNESS=0.02 MAT=flesh'), flesh)
+    force = [record_real(rigid, 'force_N'), record_real(stiff, 'force_N'), record_real(flesh, 'force_N')]
+    alpha = [record_real(rigid, 'alpha_mm'), record_real(stiff, 'alpha_mm'), record_real(flesh, 'alpha_mm')]
+    print '(a)', ''
+    print '(a)', '| STATIC, top pressed 0.5 mm | force (N) | alpha (mm) | pad compression (mm) |'
+    print '(a)', '|---|---|---|---|'
+    print '(a)', '| rigid plate | '//fx(force(1), 4)//' | '//fx(alpha(1), 5)//' | - |'
+    print '(a)', '| pad 1000 E, 10 mm | '//fx(force(2), 4)//' | '//fx(alpha(2), 5)//' | '// &
+      fx(record_real(stiff, 'pad_compression_mm'), 6)//' |'
+    print '(a)', '| pad of flesh, 20 mm | '//fx(force(3), 4)//' | '//fx(alpha(3), 5)//' | '// &
+      fx(record_real(flesh, 'pad_compression_mm'), 5)//' |'
+    call check_close('static stiff pad: the rigid plate''s force (0.5 %)', force(2), force(1), 5.0e-3_dp)
+    call check_close('static stiff pad: the rigid plate''s alpha (0.5 %)', alpha(2), alpha(1), 5.0e-3_dp)
+    call check('static flesh pad: a smaller force at the same travel', force(3) < force(1))
+    call read_deck(deck_file('static_unsupported', [character(len=line_length) :: 'ANALYSIS STATIC', &
+                   'GEOMETRY AXISYMMETRIC', fruit, 'MESH SPHERE R=0.0366 LEVEL=1 MAT=apple', 'PLATE Z=0 SLIP', &
+                   'GRAVITY G=100', 'MATERIAL flesh ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
+                   'PAD THICKNESS=0.02 MAT=flesh']), deck, error)
+    if (.not. allocated(error)) then
+      block
+        type(record_t) :: record
+        call solve_static_contact(deck, record, error)
+      end block
+    end if
+    call check('static: a body held by the pad alone is refused', allocated(error))
+    if (allocated(error)) call check_text_contains('static: the refusal says why', error_text(error), &
+                                                   'needs supports of its own')
+  end subroutine static_pads
+
+  !> Read and run a static contact deck (a failed check if it does not run).
+  subroutine run_static(name, body, record)
+    character(*), intent(in) :: name
+    character(len=line_length), intent(in) :: body(:)
+    type(record_t), intent(out) :: record
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    call read_deck(deck_file(name, body), deck, error)
+    if (.not. allocated(error)) call solve_static_contact(deck, record, error)
+    if (allocated(error)) call check('run_'//name, .false., error_text(error))
+  end subroutine run_static
+
+  !> A real summary value of a record (NaN, and a failed check, if absent).
+  real(dp) function record_real(record, key) result(x)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    type(run_t) :: run
+    run%name = key
+    run%record = record
+    x = value_of(run, key)
+  end function record_real
+
+  !> 6. Decks a PAD cannot run.
   subroutine bad_pads()
     type(deck_t) :: deck
     type(error_t), allocatable :: error

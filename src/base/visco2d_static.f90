@@ -54,13 +54,16 @@ module visco2d_static
 contains
 
   !> Solve the static problem of a deck. `extra_fixed` / `extra_values`
-  !> prescribe further displacements (the contact extension's plate nodes).
-  subroutine solve_static(deck, solution, error, extra_fixed, extra_values)
+  !> prescribe further displacements (the contact extension's plate nodes);
+  !> `given` is a displacement solved by the caller, of which only the
+  !> reactions, energies, strains and stresses are computed.
+  subroutine solve_static(deck, solution, error, extra_fixed, extra_values, given)
     type(deck_t), intent(in) :: deck
     type(static_solution_t), intent(out) :: solution
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: extra_fixed(:)
     real(dp), intent(in), optional :: extra_values(:)
+    real(dp), intent(in), optional :: given(:)   !< the displacement (band order), solved elsewhere: fields only
     type(band_matrix_t) :: stiffness
     type(factor_t) :: factor
     real(dp), allocatable :: shear(:), bulk(:), load(:), u(:), zero(:)
@@ -78,14 +81,18 @@ contains
       zero = merge(extra_values, zero, extra_fixed)
       fixed = fixed .or. extra_fixed
     end if
-    u = load
-    call band_constrain_rhs(stiffness, fixed, zero, u)
-    call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
-    if (info > 0) then
-      call singular_error(deck, info, error)
-      return
+    if (present(given)) then                       ! a constrained solve done by the caller (a PAD's contact)
+      u = given
+    else
+      u = load
+      call band_constrain_rhs(stiffness, fixed, zero, u)
+      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
+      if (info > 0) then
+        call singular_error(deck, info, error)
+        return
+      end if
+      call factor_solve(factor, u)
     end if
-    call factor_solve(factor, u)
     if (.not. all(ieee_is_finite(u))) then
       call not_finite_error(deck, 'the static displacement', error)
       return

@@ -36,7 +36,7 @@ module visco2d_contact
   public :: contact_t, hertz_t
   public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
   public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
-  public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression
+  public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression, contact_partner_equations
 
   !> The state of contact with the plate.
   type :: contact_t
@@ -165,6 +165,34 @@ contains
         field(node_dof(deck%mesh, contact%partner(k, node), component))
     end do
   end function contact_partner_sum
+
+  !> The constraint of each body equation that may touch a pad, by equation:
+  !> the pad surface equations under its node in the same direction and
+  !> their weights (0: none; supported ones left out: they do not move).
+  subroutine contact_partner_equations(deck, contact, supports, partner, weight)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    logical, intent(in) :: supports(:)
+    integer, intent(out) :: partner(:, :)
+    real(dp), intent(out) :: weight(:, :)
+    integer :: i, node, c, k, equation, other
+    partner = 0
+    weight = 0.0_dp
+    if (.not. contact%pad) return
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      do c = 1, 2
+        equation = node_dof(deck%mesh, node, c)
+        do k = 1, 2
+          if (contact%partner(k, node) == 0) cycle
+          other = node_dof(deck%mesh, contact%partner(k, node), c)
+          if (supports(other)) cycle
+          partner(k, equation) = other
+          weight(k, equation) = contact%weight(k, node)
+        end do
+      end do
+    end do
+  end subroutine contact_partner_equations
 
   !> The pad's compression at the axis, -u_z of its surface there (m; 0 without a pad).
   pure real(dp) function pad_compression(deck, contact, u) result(compression)

@@ -11,10 +11,14 @@ module visco2d_static_contact
   use visco2d_assembly, only: node_dof, band_vector, assemble_stiffness, external_load, gravity_load, &
                               support_mask, prescribed_displacement
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many, solver_of_card
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many, factor_solve, solver_of_card
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress, singular_message
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
+  use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_partners, capacitance_set, &
+                                 capacitance_apply
+  use visco2d_pad_mesh, only: is_pad_node
+  use visco2d_contact, only: contact_partner_equations, contact_partner_sum, pad_compression
   use visco2d_contact, only: contact_t, contact_create, contact_count, contact_force, contact_gap, &
                              contact_pressure, contact_radius, volume_weights
   implicit none
@@ -56,6 +60,11 @@ module visco2d_static_contact
     real(dp), allocatable :: load(:)             !< loads and gravity
     real(dp), allocatable :: prescribed(:)       !< prescribed support displacements
     logical, allocatable :: supports(:)          !< supported equations
+    !> With a PAD: the held equations are multi-point constraints (visco2d_contact),
+    !> imposed by a capacitance system on the factor of S with the supports only.
+    logical :: pad = .false.
+    type(factor_t) :: factor
+    type(capacitance_t) :: capacitance
   end type held_system_t
 
 contains
@@ -93,6 +102,7 @@ contains
     real(dp), allocatable :: u(:), reaction(:), pressure(:), weight(:)
     logical, allocatable :: held(:)
     real(dp) :: q, surface(4)
+    integer :: node
 
     associate (mesh => deck%mesh)
     call contact_create(deck, contact)
@@ -100,7 +110,11 @@ contains
     if (allocated(error)) return
     ! The final state, solved again from the final set for its stresses.
     held = static_held(deck, contact, path%state)
-    call solve_static(deck, solution, error, held, path%values)
+    if (contact%pad) then                               ! the path's own constrained solution at full load
+      call solve_static(deck, solution, error, given=path%base + path%rate)
+    else
+      call solve_static(deck, solution, error, held, path%values)
+    end if
     if (allocated(error)) return
     u = band_vector(mesh, solution%displacement)
     reaction = band_vector(mesh, solution%reaction)
@@ -120,7 +134,14 @@ contains
     call record_put_integer(record, 'contact_nodes', contact_count(contact))
     if (contact%stick) call record_put_integer(record, 'contact_sliding_nodes', count(path%state == node_sliding))
     call record_put_real(record, 'force_N', contact_force(deck, contact, reaction))
-    call record_put_real(record, 'alpha_mm', -1.0e3_dp*dot_product(weight(2::2), u(2::2))/sum(weight(2::2)))
+    if (contact%pad) then                               ! the body's mean u_z, less the pad's compression
+      do node = 1, mesh%nnode
+        if (is_pad_node(deck, node)) weight(node_dof(mesh, node, 1):node_dof(mesh, node, 2)) = 0.0_dp
+      end do
+    end if
+    call record_put_real(record, 'alpha_mm', -1.0e3_dp*(dot_product(weight(2::2), u(2::2))/sum(weight(2::2)) &
+                                                        + pad_compression(deck, contact, u)))
+    if (contact%pad) call record_put_real(record, 'pad_compression_mm', 1.0e3_dp*pad_compression(deck, contact, u))
     call record_put_real(record, 'q_MPa', 1.0e-6_dp*q)
     surface = node_stress(mesh, solution%stress, contact%pole)
     call record_put_real(record, 'q_surface_MPa', -1.0e-6_dp*surface(2))
@@ -154,7 +175,8 @@ contains
       node = contact%candidates(i)
       if (mesh%xy(2, node) - contact%z_plate <= contact%tolerance) call path_touch(deck, contact, path, node)
     end do
-    call held_system_create(deck, system)
+    call held_system_create(deck, contact, system, error)
+    if (allocated(error)) return
     limit = 50 + 10*size(contact%candidates)
     do event = 1, limit
       held = static_held(deck, contact, path%state)
@@ -323,7 +345,8 @@ contains
 
   !> Put a node on the plate where the path has it: u_z = Z - z; with STICK
   !> also u_r held at its present value, unless the node was freed from
-  !> sticking at this load factor (then it slides).
+  !> sticking at this load factor (then it slides). On a pad the same values
+  !> hold relative to the surface under the node (the gap is 0).
   subroutine path_touch(deck, contact, path, node)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(inout) :: contact
@@ -336,7 +359,8 @@ contains
     if (.not. contact%stick .or. path%freed_here(node)) return
     path%state(node) = node_stuck
     r = node_dof(deck%mesh, node, 1)
-    path%values(r) = path%base(r) + path%load_factor*path%rate(r)
+    path%values(r) = path%base(r) + path%load_factor*path%rate(r) &
+                     - contact_partner_sum(deck, contact, path%base + path%load_factor*path%rate, node, 1)
   end subroutine path_touch
 
   !> The equations held by the plate on the static path: u_z of every contact
@@ -357,17 +381,36 @@ contains
   end function static_held
 
   !> The stiffness S and the full load R (loads and gravity) of a static
-  !> contact problem, assembled once for the whole path.
-  subroutine held_system_create(deck, system)
+  !> contact problem, assembled once for the whole path; with a pad, S
+  !> factored once with the supports and the pad's constraints set.
+  subroutine held_system_create(deck, contact, system, error)
     type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
     type(held_system_t), intent(out) :: system
-    real(dp), allocatable :: shear(:), bulk(:)
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: shear(:), bulk(:), weight(:, :)
+    integer, allocatable :: partner(:, :)
+    integer :: info
     shear = deck%materials(deck%mesh%element_material)%shear
     bulk = deck%materials(deck%mesh%element_material)%bulk
     call assemble_stiffness(deck, shear, bulk, system%stiffness)
     system%load = external_load(deck, 0.0_dp) + gravity_load(deck)
     system%supports = support_mask(deck)
     system%prescribed = prescribed_displacement(deck, 0.0_dp)
+    system%pad = contact%pad
+    if (.not. system%pad) return
+    call factor_compute(system%factor, system%stiffness, system%supports, info, solver_of_card(deck%solver))
+    if (info > 0) then
+      call set_error(error, singular_message(deck, info)//'; with a PAD in STATIC the body needs supports of '// &
+        'its own (e.g. FIX TOP Z UZ=-0.001 to press it down): the pad''s contact is imposed on the stiffness '// &
+        'factored with the FIX supports only, so a body held by the pad alone is free there', &
+        file=deck%cards%file, line=deck%pad%line, card='PAD')
+      return
+    end if
+    allocate(partner(2, size(system%load)), weight(2, size(system%load)))
+    call contact_partner_equations(deck, contact, system%supports, partner, weight)
+    call capacitance_reset(system%capacitance, size(system%load))
+    call capacitance_partners(system%capacitance, partner, weight)
   end subroutine held_system_create
 
   !> With the supports and the `held` equations fixed: u_1, the response to
@@ -376,7 +419,7 @@ contains
   !> reactions S u - R. The state at load factor lambda is u_0 + lambda u_1.
   subroutine held_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(in) :: system
+    type(held_system_t), intent(inout) :: system
     logical, intent(in) :: held(:)
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:), reaction_base(:), reaction_rate(:)
@@ -385,6 +428,10 @@ contains
     real(dp), allocatable :: rhs(:, :)
     logical, allocatable :: fixed(:)
     integer :: info
+    if (system%pad) then
+      call pad_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
+      return
+    end if
     fixed = system%supports .or. held
     call factor_compute(factor, system%stiffness, fixed, info, solver_of_card(deck%solver))
     if (info > 0) then
@@ -402,6 +449,35 @@ contains
     reaction_rate = band_multiply(system%stiffness, rate) - system%load
     reaction_base = band_multiply(system%stiffness, base)
   end subroutine held_system_solve
+
+  !> held_system_solve with a pad: the held equations are constraints
+  !> u_c - sum w u_p = value imposed by the capacitance system on S's factor
+  !> with the supports (visco2d_capacitance): u_1 from the load and the
+  !> prescribed supports (held values 0), u_0 from the held values alone.
+  subroutine pad_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
+    type(deck_t), intent(in) :: deck
+    type(held_system_t), intent(inout) :: system
+    logical, intent(in) :: held(:)
+    real(dp), intent(in) :: values(:)
+    real(dp), allocatable, intent(out) :: base(:), rate(:), reaction_base(:), reaction_rate(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: info
+    call capacitance_set(system%capacitance, system%factor, held .and. .not. system%supports, info)
+    if (info > 0) then
+      call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(info)// &
+                     ' of the held set)', file=deck%cards%file, line=deck%pad%line, card='PAD')
+      return
+    end if
+    rate = system%load
+    call band_constrain_rhs(system%stiffness, system%supports, system%prescribed, rate)
+    call factor_solve(system%factor, rate)
+    call capacitance_apply(system%capacitance, spread(0.0_dp, 1, size(values)), rate)
+    allocate(base(size(values)))
+    base = 0.0_dp
+    call capacitance_apply(system%capacitance, values, base)
+    reaction_rate = band_multiply(system%stiffness, rate) - system%load
+    reaction_base = band_multiply(system%stiffness, base)
+  end subroutine pad_system_solve
 
   !> The final static state must be one in which no free node is through the
   !> plate (beyond the tolerance) and every contact node pushes (to round-off).

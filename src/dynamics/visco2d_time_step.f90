@@ -41,7 +41,7 @@ module visco2d_time_step
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms
   use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
-                             contact_gap
+                             contact_gap, contact_partner_equations
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, &
                                  capacitance_partners
   use visco2d_pad_mesh, only: is_pad_node
@@ -153,26 +153,14 @@ contains
   subroutine pad_constraints(stepper, deck)
     type(stepper_t), intent(inout) :: stepper
     type(deck_t), intent(in) :: deck
-    integer :: i, node, c, k, r, equation, partner
-    associate (contact => stepper%contact, mesh => deck%mesh)
+    integer :: node, r
+    associate (mesh => deck%mesh)
     stepper%by_refactoring = .false.
     do node = 1, mesh%nnode
       if (is_pad_node(deck, node)) stepper%pad(node_dof(mesh, node, 1):node_dof(mesh, node, 2)) = .true.
     end do
     stepper%gravity = merge(0.0_dp, stepper%gravity, stepper%pad)
-    do i = 1, size(contact%candidates)
-      node = contact%candidates(i)
-      do c = 1, 2
-        equation = node_dof(mesh, node, c)
-        do k = 1, 2
-          if (contact%partner(k, node) == 0) cycle
-          partner = node_dof(mesh, contact%partner(k, node), c)
-          if (stepper%supports(partner)) cycle
-          stepper%partner(k, equation) = partner
-          stepper%partner_weight(k, equation) = contact%weight(k, node)
-        end do
-      end do
-    end do
+    call contact_partner_equations(deck, stepper%contact, stepper%supports, stepper%partner, stepper%partner_weight)
     do r = 1, size(stepper%points)
       call capacitance_partners(stepper%points(r)%capacitance, stepper%partner, stepper%partner_weight)
     end do

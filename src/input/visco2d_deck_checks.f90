@@ -104,9 +104,9 @@ contains
       call line_error(error, deck, deck%pad%line, 'PAD needs a PLATE card: the pad lies on the rigid plate, '// &
                       'its top surface at the PLATE card''s Z'); return
     end if
-    if (deck%pad%line > 0 .and. deck%analysis /= analysis_dynamic) then
-      call line_error(error, deck, deck%pad%line, 'PAD needs ANALYSIS DYNAMIC (this deck is '// &
-                      analysis_name(deck%analysis)//'; the static contact solver has the rigid plate only)'); return
+    if (deck%pad%line > 0 .and. deck%analysis == analysis_quasistatic) then
+      call line_error(error, deck, deck%pad%line, 'PAD needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no '// &
+                      'contact search)'); return
     end if
     if (deck%stop_line == 0) then
       if (deck%plate%line > 0 .and. deck%analysis == analysis_dynamic) deck%stop_at = stop_at_max_deformation

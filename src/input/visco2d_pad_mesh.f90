@@ -22,7 +22,7 @@ module visco2d_pad_mesh
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_renumber, only: reverse_cuthill_mckee, half_bandwidth, sort_integers
   use visco2d_mesh, only: side_nodes
-  use visco2d_deck_types, only: deck_t, fix_t, line_error, add_warning
+  use visco2d_deck_types, only: deck_t, fix_t, line_error, add_warning, analysis_dynamic
   implicit none
   private
 
@@ -281,9 +281,11 @@ contains
       call line_error(error, deck, pad%line, 'the pad''s material '//pad%material//' is not defined by a MATERIAL '// &
                       'card', 'MAT'); return
     end if
-    if (deck%materials(pad%material_index)%density <= 0.0_dp) then
+    if (deck%materials(pad%material_index)%density <= 0.0_dp .and. &
+        (deck%analysis == analysis_dynamic .or. deck%gravity_line > 0)) then
       call line_error(error, deck, deck%materials(pad%material_index)%line, 'material '//pad%material// &
-        ' (the pad''s, PAD card on line '//itoa(pad%line)//') has no density: ANALYSIS DYNAMIC needs RHO= > 0', 'RHO')
+        ' (the pad''s, PAD card on line '//itoa(pad%line)//') has no density: '// &
+        trim(merge('ANALYSIS DYNAMIC', 'GRAVITY         ', deck%analysis == analysis_dynamic))//' needs RHO= > 0', 'RHO')
     end if
     end associate
   end subroutine pad_material
