@@ -551,6 +551,16 @@ program test_bad_decks
   lines = pad_impact('PAD THICKNESS=0.01 MAT=foam SIZE=0.05')
   call expect_read_error('pad_size_too_coarse', lines, 10, 29, 'PAD', 'is too coarse for a pad')
 
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam COVER=0.001')
+  call expect_read_error('pad_cover_without_material', lines, 10, 29, 'PAD', 'COVER= (the top layer''s thickness) and')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam COVER=0.01 COVERMAT=foam')
+  call expect_read_error('pad_cover_too_thick', lines, 10, 29, 'PAD', 'COVER must be less than THICKNESS')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam COVER=0.001 COVERMAT=belt')
+  call expect_read_error('pad_cover_material_undefined', lines, 10, 41, 'PAD', &
+                         'the cover''s material BELT is not defined by a MATERIAL card')
+
   lines = pad_impact('PAD THICKNESS=0.01 MAT=foam SIZE=1e-6')
   call expect_read_error('pad_size_too_fine', lines, 10, 29, 'PAD', 'is too fine: the pad would need more than 2000')
 

@@ -29,6 +29,10 @@
 !>     base, not a half-space; its mesh grows by 1.2 with depth: measured
 !>     +1.7 %). With equal materials Hertz splits the approach equally: the
 !>     fruit's alpha and the pad's compression agree to 3 % (measured 0.5 %).
+!>  4b. A thin pad on a thick one (COVER=, COVERMAT=): a 1 mm cover of the
+!>     pad's own material gives the plain pad's alpha, q and F within 2 %
+!>     (only the rows' spacing differs: measured within 0.1 %); a stiff
+!>     cover (a 50 MPa belt on a 5.4 MPa foam) spreads the load: q lower.
 !>  5. STATIC: the sphere (level 2) pressed onto the plate by its top node
 !>     (FIX TOP Z UZ=-0.5 mm): a pad 1000 times stiffer gives the rigid
 !>     plate's force and alpha within 0.5 % (measured 0.05 %); a pad of the
@@ -65,6 +69,7 @@ program test_pad
   call stiff_pad()
   call softer_pads()
   call hertz_combined()
+  call covered_pads()
   call static_pads()
   call bad_pads()
   call test_summary('test_pad')
@@ -275,6 +280,40 @@ contains
     call check_close('Hertz with equal materials: the fruit and the pad share the approach (3 %)', &
                      value_of(pad, 'alpha_max_mm'), value_of(pad, 'pad_compression_max_mm'), 0.03_dp)
   end subroutine hertz_combined
+
+  !> 4b. A cover on the pad.
+  subroutine covered_pads()
+    type(run_t) :: plain, same, stiff
+    character(*), parameter :: foam = 'MATERIAL foam ELASTIC E=5.433e6 NU=0.3 RHO=100'
+    character(*), parameter :: belt = 'MATERIAL belt ELASTIC E=50e6 NU=0.45 RHO=1200'
+    character(len=line_length), allocatable :: lines(:)
+    character(*), parameter :: keys(3) = [character(len=12) :: 'alpha_max_mm', 'q_max_MPa', 'force_max_N']
+    integer :: k
+    plain = run_case('cover_none', impact_lines('1', '0.9982', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION', &
+                     foam, 'PAD THICKNESS=0.01 MAT=foam'))
+    same = run_case('cover_same', impact_lines('1', '0.9982', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION', &
+                    foam, 'PAD THICKNESS=0.01 MAT=foam COVER=0.001 COVERMAT=foam'))
+    lines = impact_lines('1', '0.9982', 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION', foam, &
+                         'PAD THICKNESS=0.01 MAT=foam COVER=0.001 COVERMAT=belt')
+    stiff = run_case('cover_belt', [character(len=line_length) :: lines, belt])
+    if (.not. (plain%ok .and. same%ok .and. stiff%ok)) return
+    print '(a)', ''
+    print '(a)', '| 10 mm pad, E = 0.3 E_fruit | alpha_m (mm) | q_m (MPa) | F_m (N) | pad compression (mm) |'
+    print '(a)', '|---|---|---|---|---|'
+    print '(a)', '| no cover | '//fx(value_of(plain, 'alpha_max_mm'), 4)//' | '//fx(value_of(plain, 'q_max_MPa'), 4)// &
+      ' | '//fx(value_of(plain, 'force_max_N'), 2)//' | '//fx(value_of(plain, 'pad_compression_max_mm'), 4)//' |'
+    print '(a)', '| 1 mm cover of the same foam | '//fx(value_of(same, 'alpha_max_mm'), 4)//' | '// &
+      fx(value_of(same, 'q_max_MPa'), 4)//' | '//fx(value_of(same, 'force_max_N'), 2)//' | '// &
+      fx(value_of(same, 'pad_compression_max_mm'), 4)//' |'
+    print '(a)', '| 1 mm belt, 50 MPa | '//fx(value_of(stiff, 'alpha_max_mm'), 4)//' | '// &
+      fx(value_of(stiff, 'q_max_MPa'), 4)//' | '//fx(value_of(stiff, 'force_max_N'), 2)//' | '// &
+      fx(value_of(stiff, 'pad_compression_max_mm'), 4)//' |'
+    do k = 1, size(keys)
+      call check_close('a cover of the pad''s own material: '//trim(keys(k))//' of the plain pad (2 %)', &
+                       value_of(same, trim(keys(k))), value_of(plain, trim(keys(k))), 0.02_dp)
+    end do
+    call check('a stiff cover spreads the load: q_m lower', value_of(stiff, 'q_max_MPa') < value_of(plain, 'q_max_MPa'))
+  end subroutine covered_pads
 
   !> The static deck: the sphere pressed 0.5 mm by its top node, with `pad` lines (none: the rigid plate).
   function static_lines(pad_material, pad) result(lines)

@@ -6,6 +6,7 @@ module visco2d_contact_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
   use visco2d_ranges, only: length_range, pad_length_range
+  use visco2d_strings, only: short_real
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, positional_word, &
                            check_fields_used, has_field, field_column
   implicit none
@@ -26,8 +27,11 @@ module visco2d_contact_cards
     integer :: line = 0           !< 0: no plate
   end type plate_t
 
-  !> PAD THICKNESS=.. MAT=id [WIDTH=..] [SIZE=..] [BOTTOM=BONDED|SLIP]: a
-  !> deformable layer of material MAT between the body and the rigid plate.
+  !> PAD THICKNESS=.. MAT=id [COVER=.. COVERMAT=id] [WIDTH=..] [SIZE=..]
+  !> [BOTTOM=BONDED|SLIP]: a deformable layer of material MAT between the
+  !> body and the rigid plate, with COVER= a top layer of that thickness
+  !> (within THICKNESS) of material COVERMAT, bonded to it (a thin pad on a
+  !> thick one: a cover sheet on foam, a belt on its backing).
   !> Its top surface is the PLATE card's Z (where the body touches); it rests
   !> on the rigid plate at Z - THICKNESS. The pad's nodes and elements follow
   !> the body's in the mesh (visco2d_pad_mesh fills in the mesh part).
@@ -37,8 +41,11 @@ module visco2d_contact_cards
     real(dp) :: size = 0.0_dp        !< m, element size at the impact point; 0: the body's pole edge
     logical :: bonded = .true.       !< BOTTOM=BONDED: bottom held in r and z; SLIP: in z only
     character(:), allocatable :: material    !< MAT= id
+    real(dp) :: cover = 0.0_dp       !< m, COVER=: the top layer's thickness (0: none)
+    character(:), allocatable :: cover_material   !< COVERMAT= id ('' without a cover)
     integer :: line = 0              !< 0: no pad
     integer :: material_index = 0    !< into deck%materials (once the mesh has the pad)
+    integer :: cover_index = 0       !< the cover's material, into deck%materials
     integer :: first_node = 0        !< the pad's nodes are first_node..nnode (0: no pad)
     integer :: first_element = 0     !< the pad's elements are first_element..nelem
     integer, allocatable :: surface(:)   !< the top surface's nodes, by increasing r
@@ -54,7 +61,8 @@ contains
     type(pad_t), intent(inout) :: pad
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable :: word
-    character(len=*), parameter :: form = 'PAD THICKNESS=.. MAT=id [WIDTH=..] [SIZE=..] [BOTTOM=BONDED|SLIP]'
+    character(len=*), parameter :: form = 'PAD THICKNESS=.. MAT=id [COVER=.. COVERMAT=id] [WIDTH=..] [SIZE=..] '// &
+                                          '[BOTTOM=BONDED|SLIP]'
     if (.not. has_field(card, 'THICKNESS')) then
       call card_error(error, cards, card, 'missing field THICKNESS= (expected: '//form//')'); return
     end if
@@ -70,6 +78,22 @@ contains
     call named_word(cards, card, 'MAT', pad%material, error); if (allocated(error)) return
     if (len(pad%material) > 32) then
       call card_error(error, cards, card, 'MAT id longer than 32 characters', field_column(card, 'MAT')); return
+    end if
+    call named_real(cards, card, 'COVER', pad%cover, error, default=0.0_dp, range=pad_length_range)
+    if (allocated(error)) return
+    call named_word(cards, card, 'COVERMAT', pad%cover_material, error, default=''); if (allocated(error)) return
+    if (has_field(card, 'COVER') .neqv. has_field(card, 'COVERMAT')) then
+      call card_error(error, cards, card, 'COVER= (the top layer''s thickness) and COVERMAT= (its material) go '// &
+        'together', field_column(card, trim(merge('COVER   ', 'COVERMAT', has_field(card, 'COVER'))))); return
+    end if
+    if (len(pad%cover_material) > 32) then
+      call card_error(error, cards, card, 'COVERMAT id longer than 32 characters', field_column(card, 'COVERMAT'))
+      return
+    end if
+    if (pad%cover >= pad%thickness) then
+      call card_error(error, cards, card, 'COVER must be less than THICKNESS (the cover lies within the pad), got '// &
+        'COVER = '//short_real(pad%cover)//' m, THICKNESS = '//short_real(pad%thickness)//' m', &
+        field_column(card, 'COVER')); return
     end if
     call named_word(cards, card, 'BOTTOM', word, error, default='BONDED'); if (allocated(error)) return
     select case (word)

@@ -123,7 +123,7 @@ contains
     else
       r_lines = matched_lines(deck, width, uniform_fraction*reach)
     end if
-    z_lines = pad_grid_lines(pad%thickness, spacing, 0.0_dp, 2)
+    z_lines = depth_lines(pad%thickness, pad%cover, spacing)
     if (size(r_lines) == 0 .or. size(z_lines) == 0) then
       call line_error(error, deck, pad%line, 'SIZE = '//rtoa(spacing)//' m is too fine: the pad would need more '// &
                       'than '//itoa(max_lines)//' grid lines across its width or thickness', 'SIZE'); return
@@ -150,8 +150,13 @@ contains
                                                (j - 1)*(nr + 1) + i]
         mesh%element_id(k) = mesh%element_id(base_element) + k - base_element
         mesh%element_line(k) = pad%line
-        mesh%element_material(k) = pad%material_index
-        mesh%element_material_name(k) = pad%material
+        if (z_lines(j + 1) <= pad%cover*(1.0_dp + 1.0e-9_dp)) then    ! row j lies within the cover
+          mesh%element_material(k) = pad%cover_index
+          mesh%element_material_name(k) = pad%cover_material
+        else
+          mesh%element_material(k) = pad%material_index
+          mesh%element_material_name(k) = pad%material
+        end if
       end do
     end do
     pad%first_node = base_node + 1
@@ -266,6 +271,31 @@ contains
     end do
   end subroutine sort_reals
 
+  !> Depths of the pad's rows from its top: without a cover, steps of
+  !> `spacing` growing by `growth` (pad_grid_lines); with one, at least 2
+  !> equal rows of at most `spacing` through the cover, then rows growing
+  !> from the cover's row height down to `thickness`. Empty if too many.
+  function depth_lines(thickness, cover, spacing) result(lines)
+    real(dp), intent(in) :: thickness, cover, spacing
+    real(dp), allocatable :: lines(:), below(:)
+    integer :: n, k
+    if (cover <= 0.0_dp) then
+      lines = pad_grid_lines(thickness, spacing, 0.0_dp, 2)
+      return
+    end if
+    n = max(2, ceiling(cover/spacing - 1.0e-9_dp))
+    if (n > max_lines/2) then
+      allocate(lines(0))
+      return
+    end if
+    below = pad_grid_lines(thickness - cover, min(spacing, cover/n)*growth, 0.0_dp, 1)
+    if (size(below) == 0) then
+      allocate(lines(0))
+      return
+    end if
+    lines = [(cover*k/real(n, dp), k = 0, n), cover + below(2:)]
+  end function depth_lines
+
   !> The pad's material by its MAT= id (a located error if there is none, or
   !> if it has no density: the pad moves).
   subroutine pad_material(deck, error)
@@ -280,6 +310,22 @@ contains
     if (pad%material_index == 0) then
       call line_error(error, deck, pad%line, 'the pad''s material '//pad%material//' is not defined by a MATERIAL '// &
                       'card', 'MAT'); return
+    end if
+    pad%cover_index = 0
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%id == pad%cover_material) pad%cover_index = k
+    end do
+    if (pad%cover > 0.0_dp .and. pad%cover_index == 0) then
+      call line_error(error, deck, pad%line, 'the cover''s material '//pad%cover_material//' is not defined by a '// &
+                      'MATERIAL card', 'COVERMAT'); return
+    end if
+    if (pad%cover > 0.0_dp) then
+      if (deck%materials(pad%cover_index)%density <= 0.0_dp .and. &
+          (deck%analysis == analysis_dynamic .or. deck%gravity_line > 0)) then
+        call line_error(error, deck, deck%materials(pad%cover_index)%line, 'material '//pad%cover_material// &
+          ' (the pad''s cover, PAD card on line '//itoa(pad%line)//') has no density: RHO= > 0 is needed', 'RHO')
+        return
+      end if
     end if
     if (deck%materials(pad%material_index)%density <= 0.0_dp .and. &
         (deck%analysis == analysis_dynamic .or. deck%gravity_line > 0)) then
