@@ -31,6 +31,7 @@ module visco2d_static
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
                                   viscoelastic_state_create, element_terms
   use visco2d_constitutive, only: history_stresses, commit_history
+  use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot
   implicit none
@@ -234,7 +235,8 @@ contains
     character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
 
     associate (mesh => deck%mesh)
-    call put_field_summary(solution%displacement, solution%stress, record)
+    call put_field_summary(solution%displacement(:, :body_nodes(deck)), solution%stress(:, :, :body_elements(deck)), &
+                           record)
     ! Energies and reactions on the energy_basis (whole body in axisymmetry).
     associate (factor => whole_body_factor(deck%geometry))
     call record_put(record, 'energy_basis', energy_basis(deck%geometry))

@@ -67,6 +67,8 @@ module visco2d_impact
     integer, allocatable :: pole_corners(:, :) !< (corner, element) pairs at the pole (node_corners)
     logical :: pad = .false.                  !< on a PAD: alpha is the approach less the pad's compression
     real(dp) :: pad_compression = 0.0_dp, pad_compression_max = 0.0_dp, t_pad_compression_max = 0.0_dp
+    !> the largest compressive -sigma_z at a Gauss point of the pad, Pa, and when
+    real(dp) :: pad_stress = 0.0_dp, pad_stress_max = 0.0_dp, t_pad_stress_max = 0.0_dp
   end type impact_t
 
 contains
@@ -223,6 +225,10 @@ contains
     call keep_max(m%q_surface, m%q_surface_max, m%t_q_surface_max)
     call keep_max(m%force, m%force_max, m%t_force_max)
     call keep_max(m%pad_compression, m%pad_compression_max, m%t_pad_compression_max)
+    if (m%pad) then
+      m%pad_stress = -minval(stress(2, :, deck%pad%first_element:))
+      call keep_max(m%pad_stress, m%pad_stress_max, m%t_pad_stress_max)
+    end if
     call keep_max(m%accel_centre, m%accel_max, m%t_accel_max)
     do k = 1, size(m%sensor)
       if (deck%probes(k)%radius > 0.0_dp) call keep_max(m%sensor(k), m%sensor_max(k), m%t_sensor_max(k))
@@ -443,6 +449,8 @@ contains
       if (m%pad) then
         call record_put_real(record, 'pad_compression_max_mm', 1.0e3_dp*m%pad_compression_max)
         call record_put_real(record, 't_pad_compression_max_ms', 1.0e3_dp*m%t_pad_compression_max)
+        call record_put_real(record, 'pad_stress_z_max_MPa', 1.0e-6_dp*m%pad_stress_max)
+        call record_put_real(record, 't_pad_stress_z_max_ms', 1.0e3_dp*m%t_pad_stress_max)
       end if
       call record_put_real(record, 'accel_center_max_g', m%accel_max/g_unit)
       call record_put_real(record, 't_accel_center_max_ms', 1.0e3_dp*m%t_accel_max)

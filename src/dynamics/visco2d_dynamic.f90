@@ -64,6 +64,7 @@ module visco2d_dynamic
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_surface_stress
   use visco2d_integrators, only: mass_coefficient, energy_overshoot, stability_advice
   use visco2d_dynamic_state, only: dynamic_state_t
+  use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
                                solve_supports, contact_repeat, commit_substep
   use visco2d_energy_book, only: energy_book_t, energy_growth_limit, book_start, book_substep, book_contact_loss, &
@@ -148,6 +149,16 @@ contains
     call log_snapshot(measures%log, deck, record, 'final', step_count, state)
     call put_summary(stepper, deck, record, state, step_count, measures)
   end subroutine solve_dynamic
+
+  !> The body's nodal displacements (2, body nodes) of a vector in band order:
+  !> the field keys are the body's, not a PAD's.
+  function body_displacement(deck, u) result(displacement)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: u(:)
+    real(dp), allocatable :: displacement(:, :)
+    displacement = nodal_field(deck%mesh, u)
+    displacement = displacement(:, :body_nodes(deck))
+  end function body_displacement
 
   !> The state at t = 0: u = 0, the INITIAL / DROP velocity on the free
   !> equations, and the acceleration from equilibrium M a = R(0) + G - F(0)
@@ -440,10 +451,12 @@ contains
     ! end_ keys. Without an impact they describe the end state.
     if (at_alpha_max%kept) then
       call record_put(record, 'field_keys_at', 'maximum deformation')
-      call put_field_summary(nodal_field(mesh, at_alpha_max%u), at_alpha_max%stress, record)
-      call put_field_summary(nodal_field(mesh, state%u), state%stress, record, prefix='end_')
+      call put_field_summary(body_displacement(deck, at_alpha_max%u), at_alpha_max%stress(:, :, :body_elements(deck)), &
+                             record)
+      call put_field_summary(body_displacement(deck, state%u), state%stress(:, :, :body_elements(deck)), record, &
+                             prefix='end_')
     else
-      call put_field_summary(nodal_field(mesh, state%u), state%stress, record)
+      call put_field_summary(body_displacement(deck, state%u), state%stress(:, :, :body_elements(deck)), record)
     end if
     call put_probe_summary(deck, nodal_field(mesh, state%u), state%stress, record)
     do k = 1, size(deck%probes)

@@ -26,7 +26,7 @@ module visco2d_pad_mesh
   implicit none
   private
 
-  public :: append_pad, pad_grid_lines, is_pad_node, is_pad_element
+  public :: append_pad, pad_grid_lines, is_pad_node, is_pad_element, body_nodes, body_elements
 
   !> Growth of the element size away from the impact point, in r and in depth.
   real(dp), parameter :: growth = 1.2_dp
@@ -52,6 +52,20 @@ contains
     integer, intent(in) :: element
     is_pad_element = deck%pad%first_element > 0 .and. element >= deck%pad%first_element
   end function is_pad_element
+
+  !> The body's nodes are 1..body_nodes (all of them without a pad).
+  pure integer function body_nodes(deck)
+    type(deck_t), intent(in) :: deck
+    body_nodes = deck%mesh%nnode
+    if (deck%pad%first_node > 0) body_nodes = deck%pad%first_node - 1
+  end function body_nodes
+
+  !> The body's elements are 1..body_elements (all of them without a pad).
+  pure integer function body_elements(deck)
+    type(deck_t), intent(in) :: deck
+    body_elements = deck%mesh%nelem
+    if (deck%pad%first_element > 0) body_elements = deck%pad%first_element - 1
+  end function body_elements
 
   !> Grid lines from 0 to `length`: steps of `size` up to `uniform`, then
   !> growing by `growth`; the last step is stretched (or merged with the one
