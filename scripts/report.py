@@ -226,7 +226,9 @@ def envelope_data(case):
     if gauss_r is not None and gauss_z is not None:
         bruised = bruise.get("bruised", np.zeros_like(envelope)) > 0
         data["bruised_points"] = (gauss_r[bruised] * 1e3, gauss_z[bruised] * 1e3)
-        k = np.unravel_index(int(np.argmax(envelope)), envelope.shape)
+        # the maximum over the assessed flesh (a PAD's elements are not assessed), else everywhere
+        searched = np.where(assessed, envelope, -np.inf) if assessed.any() else envelope
+        k = np.unravel_index(int(np.argmax(searched)), envelope.shape)
         data["peak"] = (gauss_r[k] * 1e3, gauss_z[k] * 1e3, envelope[k] * factor)
     else:
         k = int(np.argmax(data["nodal"]))
@@ -386,7 +388,10 @@ def numbers_text(case, data):
         if s("bruise_susceptibility_cm3_per_J") is not None:
             lines.append(f"susceptibility {s('bruise_susceptibility_cm3_per_J'):.4g} cm³/J")
         r_peak, z_peak, value = data["peak"]
-        depth = z_peak - case["nodes"][:, 1].min() * 1e3
+        # below the body's lowest point; on a PAD (its nodes lie lower) that is the pad's top, the plate's z
+        on_pad = s("pad_compression_max_mm") is not None and s("plate_z_m") is not None
+        lowest = s("plate_z_m") if on_pad else case["nodes"][:, 1].min()
+        depth = z_peak - lowest * 1e3
         lines.append(f"envelope max {value:.3g} {data['unit']}")
         radial = "r" if case["geometry"].upper().startswith("AXI") else "x"
         lines.append(f"  at {radial} = {r_peak:.3g} mm, depth {depth:.3g} mm")

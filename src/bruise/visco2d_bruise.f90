@@ -28,7 +28,7 @@ module visco2d_bruise
   use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, deviatoric_part
   use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
   use visco2d_strings, only: itoa
-  use visco2d_pad_mesh, only: is_pad_element
+  use visco2d_pad_mesh, only: is_pad_element, body_nodes, body_elements
   implicit none
   private
 
@@ -50,7 +50,7 @@ module visco2d_bruise
     integer, allocatable :: rule(:)              !< (nelem) the deck's BRUISE card for the element; 0: none
     real(dp), allocatable :: volume(:, :)        !< (gauss_count, nelem) m^3 (per metre in plane strain)
     real(dp), allocatable :: point(:, :, :)      !< (2, gauss_count, nelem) undeformed r, z of the Gauss points, m
-    real(dp) :: pole_z = 0.0_dp                  !< z of the lowest node (the undeformed contact pole), m
+    real(dp) :: pole_z = 0.0_dp                  !< z of the body's lowest node (the undeformed contact pole), m
   end type bruise_t
 
 contains
@@ -140,7 +140,7 @@ contains
       bruise%volume(:, e) = factor                      ! |J| r (|J| in plane strain), Gauss weights 1
       if (deck%geometry == geometry_axisymmetric) bruise%volume(:, e) = 2.0_dp*pi*factor
     end do
-    bruise%pole_z = minval(mesh%xy(2, :))
+    bruise%pole_z = minval(mesh%xy(2, :body_nodes(deck)))         ! the body's, not a PAD's
     end associate
     bruise%active = .true.
   end subroutine bruise_start
@@ -253,12 +253,13 @@ contains
       end do
     end function extra_volume
 
-    !> envelope_<measure>_max_<unit>, its r, z, depth below the pole and time.
+    !> envelope_<measure>_max_<unit>, its r, z, depth below the pole and time
+    !> (over the body: a PAD's elements are left out).
     subroutine put_envelope_maximum(m)
       integer, intent(in) :: m
       integer :: at(2)
       character(:), allocatable :: prefix
-      at = maxloc(bruise%envelope(m, :, :))
+      at = maxloc(bruise%envelope(m, :, :body_elements(deck)))
       prefix = 'envelope_'//trim(measure_names(m))
       call record_put_real(record, prefix//'_max_'//unit_key(m), bruise%envelope(m, at(1), at(2)))
       call record_put_real(record, prefix//'_r_mm', 1.0e3_dp*bruise%point(1, at(1), at(2)))
