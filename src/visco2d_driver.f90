@@ -77,6 +77,10 @@ contains
         trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
       if (deck%analysis == analysis_dynamic) print '(a)', '  stop at         '//stop_name(deck%stop_at)
     end if
+    if (deck%pad%first_node > 0) print '(a)', '  pad             '//rtoa(deck%pad%thickness)//' m of '//deck%pad%material// &
+      ', top at z = '//rtoa(deck%plate%z)//' m, '//itoa(deck%mesh%nnode - deck%pad%first_node + 1)//' nodes, '// &
+      itoa(deck%mesh%nelem - deck%pad%first_element + 1)//' elements, bottom '// &
+      trim(merge('BONDED', 'SLIP  ', deck%pad%bonded))
     scales = time_scales(deck)
     if (scales%contact_duration > 0.0_dp) print '(a)', '  contact time    '//rtoa(scales%contact_duration)// &
       ' s (Hertz, eqs. [43]-[44]): '//rtoa(scales%contact_duration/deck%stages(1)%dt)//' steps of the first DT'
