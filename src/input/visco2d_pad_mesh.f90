@@ -186,9 +186,25 @@ contains
     else
       mesh%half_bandwidth = mesh%half_bandwidth_before
     end if
-    deck%fixes = [deck%fixes, fix_t(nodes=pad%bottom, fix_r=pad%bonded, fix_z=.true., line=pad%line)]
+    call add_bottom_support(deck)
     end associate
   end subroutine append_pad
+
+  !> The pad's bottom held on the rigid plate: a support appended to the
+  !> deck's FIX list (z; r too with BOTTOM=BONDED), located at the PAD card.
+  subroutine add_bottom_support(deck)
+    type(deck_t), intent(inout) :: deck
+    type(fix_t), allocatable :: fixes(:)
+    integer :: n
+    n = size(deck%fixes)
+    allocate(fixes(n + 1))
+    fixes(1:n) = deck%fixes
+    fixes(n + 1)%nodes = deck%pad%bottom
+    fixes(n + 1)%fix_r = deck%pad%bonded
+    fixes(n + 1)%fix_z = .true.
+    fixes(n + 1)%line = deck%pad%line
+    call move_alloc(fixes, deck%fixes)
+  end subroutine add_bottom_support
 
   !> Grid lines in r: the r of the body's boundary nodes below its centre
   !> out to `matched`, then steps growing by `growth` from the last one out
