@@ -219,7 +219,21 @@ contains
     do k = 0, 4
       call check_impulse(runs(k))
     end do
+    call check('the softest pad''s large strain is reported at its PAD card', any_warning(runs(4)%record, &
+               ': PAD: the largest principal strain in the pad'))
   end subroutine softer_pads
+
+  !> True if a run warning of the record contains `fragment`.
+  logical function any_warning(record, fragment)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: fragment
+    integer :: k
+    any_warning = .false.
+    if (.not. allocated(record%warnings)) return
+    do k = 1, size(record%warnings)
+      if (index(record%warnings(k)%text, fragment) > 0) any_warning = .true.
+    end do
+  end function any_warning
 
   !> The impulse of force_N over the run against the fruit's momentum change and its weight's impulse.
   subroutine check_impulse(run)

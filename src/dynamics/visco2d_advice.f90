@@ -39,6 +39,7 @@ module visco2d_advice
   use visco2d_deck, only: deck_t, warning_t, analysis_dynamic, initial_velocity
   use visco2d_record, only: record_t, record_warn
   use visco2d_contact, only: hertz_impact, hertz_t
+  use visco2d_pad_mesh, only: body_nodes, body_elements
   implicit none
   private
 
@@ -86,14 +87,14 @@ contains
     real(dp) :: speed, height, radius
     integer :: pole_element
     if (deck%analysis /= analysis_dynamic .or. deck%mesh%nelem == 0) return
-    height = maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :))
+    height = maxval(deck%mesh%xy(2, :body_nodes(deck))) - minval(deck%mesh%xy(2, :body_nodes(deck)))   ! not a PAD's
     pole_element = first_contact_element(deck)
     scales%wave_speed = wave_speed(deck, max(pole_element, 1))
     if (scales%wave_speed > 0.0_dp) scales%body_transit = height/scales%wave_speed
     if (deck%plate%line == 0 .or. pole_element == 0) return
     if (scales%wave_speed > 0.0_dp) scales%pole_transit = smallest_side(deck, pole_element)/scales%wave_speed
     if (.not. allocated(deck%mesh%source)) return
-    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1) return
+    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1 .or. deck%pad%line > 0) return
     associate (velocity => initial_velocity(deck))
     speed = -velocity(2)                                 ! toward the plate below
     end associate
@@ -222,14 +223,14 @@ contains
     end do
   end function smallest_side
 
-  !> The mass of the whole body, kg: rho times each element's volume (Pappus:
-  !> 2 pi r_centroid A in axisymmetry, A per metre in plane strain).
+  !> The mass of the whole body (not a PAD), kg: rho times each element's
+  !> volume (Pappus: 2 pi r_centroid A in axisymmetry, A per metre in plane strain).
   real(dp) function body_mass(deck)
     type(deck_t), intent(in) :: deck
     real(dp) :: area, moment, x(4), y(4)
     integer :: e, k, next
     body_mass = 0.0_dp
-    do e = 1, deck%mesh%nelem
+    do e = 1, body_elements(deck)
       x = deck%mesh%xy(1, deck%mesh%connectivity(:, e))
       y = deck%mesh%xy(2, deck%mesh%connectivity(:, e))
       area = 0.0_dp
@@ -250,26 +251,32 @@ contains
   end function body_mass
   !> After a dynamic run: warnings (into the record, counted) when the
   !> deformation is beyond the small-strain, small-displacement model: a
-  !> principal strain above strain_warning_level, or for a generated sphere
-  !> on the plate an approach alpha_max above approach_warning_level of R.
-  subroutine deformation_warnings(deck, record, strain)
+  !> principal strain above strain_warning_level (`strain`: the largest over
+  !> the body's elements, `pad_strain` over a PAD's, each located at its
+  !> material's card), or for a generated sphere on the plate an approach
+  !> alpha_max above approach_warning_level of R.
+  subroutine deformation_warnings(deck, record, strain, pad_strain)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
-    real(dp), intent(in) :: strain
+    real(dp), intent(in) :: strain, pad_strain
     real(dp) :: alpha, radius
     integer :: ios, k, line
     if (strain > strain_warning_level) then
       line = 0
       if (allocated(deck%materials)) then
-        if (size(deck%materials) > 0) line = deck%materials(1)%line
+        if (size(deck%materials) > 0) line = deck%materials(deck%mesh%element_material(1))%line
       end if
       call record_warn(record, 'the largest principal strain reached '//rtoa(100.0_dp*strain)//' % (above '// &
         rtoa(100.0_dp*strain_warning_level)//' %): beyond the small-strain model, stresses and displacements '// &
         'are only indicative', file=deck%cards%file, line=line, card='MATERIAL')
     end if
+    if (pad_strain > strain_warning_level) call record_warn(record, 'the largest principal strain in the pad ('// &
+      deck%pad%material//') reached '//rtoa(100.0_dp*pad_strain)//' % (above '// &
+      rtoa(100.0_dp*strain_warning_level)//' %): beyond the small-strain, linear pad model (a foam buckles '// &
+      'and densifies); its results are only indicative', file=deck%cards%file, line=deck%pad%line, card='PAD')
     if (deck%plate%line == 0 .or. .not. allocated(deck%mesh%source)) return
     if (deck%mesh%source /= 'SPHERE') return
-    radius = 0.5_dp*(maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :)))
+    radius = 0.5_dp*(maxval(deck%mesh%xy(2, :body_nodes(deck))) - minval(deck%mesh%xy(2, :body_nodes(deck))))
     do k = 1, record%nsummary
       if (trim(record%summary(k)%key) /= 'alpha_max_mm' .and. trim(record%summary(k)%key) /= 'alpha_largest_mm') cycle
       read(record%summary(k)%value, *, iostat=ios) alpha

@@ -441,11 +441,17 @@ contains
     call bruise_report(measures%bruise, deck, record)
     ! Beyond the small-strain model: the largest principal strain at the end
     ! and at maximum deformation, and the approach against the radius.
+    associate (body => body_elements(deck))
     if (at_alpha_max%kept) then
-      call deformation_warnings(deck, record, max(largest_strain(state%strain), largest_strain(at_alpha_max%strain)))
+      call deformation_warnings(deck, record, max(largest_strain(state%strain(:, :, :body)), &
+                                                  largest_strain(at_alpha_max%strain(:, :, :body))), &
+                                max(largest_strain(state%strain(:, :, body + 1:)), &
+                                    largest_strain(at_alpha_max%strain(:, :, body + 1:))))
     else
-      call deformation_warnings(deck, record, largest_strain(state%strain))
+      call deformation_warnings(deck, record, largest_strain(state%strain(:, :, :body)), &
+                                largest_strain(state%strain(:, :, body + 1:)))
     end if
+    end associate
     ! The field keys of an impact describe the impact: the state at maximum
     ! deformation; the end state (after the rebound, or at TEND) has its own
     ! end_ keys. Without an impact they describe the end state.
