@@ -28,7 +28,8 @@ module visco2d_capacitance
   implicit none
   private
 
-  public :: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, capacitance_partners
+  public :: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, capacitance_partners, &
+            constraint_sum
 
   !> The kept columns of S~^-1 and the factored capacitance matrix of the
   !> current set of held equations.
@@ -96,13 +97,22 @@ contains
     type(capacitance_t), intent(in) :: capacitance
     real(dp), intent(in) :: x(:)
     integer, intent(in) :: c
+    value = 0.0_dp
+    if (allocated(capacitance%partner)) value = constraint_sum(capacitance%partner, capacitance%weight, x, c)
+  end function partner_part
+
+  !> sum_k weight(k, c) x(partner(k, c)) over the partners of equation c
+  !> (partner 0: none): the other end of its multi-point constraint.
+  pure real(dp) function constraint_sum(partner, weight, x, c) result(value)
+    integer, intent(in) :: partner(:, :)
+    real(dp), intent(in) :: weight(:, :), x(:)
+    integer, intent(in) :: c
     integer :: k
     value = 0.0_dp
-    if (.not. allocated(capacitance%partner)) return
     do k = 1, 2
-      if (capacitance%partner(k, c) > 0) value = value + capacitance%weight(k, c)*x(capacitance%partner(k, c))
+      if (partner(k, c) > 0) value = value + weight(k, c)*x(partner(k, c))
     end do
-  end function partner_part
+  end function constraint_sum
 
   !> Hold the equations with held(c) (none of them a support of `factor`):
   !> compute the missing columns with `factor` and factor C. info > 0 if C

@@ -21,15 +21,13 @@
 !> Hertz reference, eqs. [43]-[45], is visco2d_hertz (hertz_t and
 !> hertz_impact are re-exported here).
 module visco2d_contact
-  use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric, geometry_tolerance
   use visco2d_deck, only: deck_t
-  use visco2d_mesh, only: side_nodes
-  use visco2d_renumber, only: sort_integers
+  use visco2d_mesh, only: boundary_sides
   use visco2d_element, only: element_lumped_mass
   use visco2d_assembly, only: node_dof, scatter_add
   use visco2d_hertz, only: hertz_t, hertz_impact
-  use visco2d_pad_mesh, only: is_pad_element
+  use visco2d_pad_mesh, only: body_elements
   implicit none
   private
 
@@ -65,39 +63,21 @@ contains
   subroutine contact_create(deck, contact)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(out) :: contact
-    integer(int64), allocatable :: keys(:)
-    integer, allocatable :: order(:), pairs(:, :)
+    integer, allocatable :: sides(:, :)
     logical, allocatable :: boundary(:)
-    integer :: e, side, a, b, i, count, nedge
-    logical :: unique
+    integer :: a, b, i, nedge
     associate (mesh => deck%mesh)
     contact%z_plate = deck%plate%z
     contact%stick = deck%plate%stick
     contact%release = deck%plate%release
     contact%tolerance = geometry_tolerance*mesh%size
-    allocate(keys(4*mesh%nelem), pairs(2, 4*mesh%nelem))
-    count = 0
-    do e = 1, mesh%nelem
-      if (is_pad_element(deck, e)) cycle                ! the pad is what the body touches
-      do side = 1, 4
-        call side_nodes(mesh, e, side, a, b)
-        count = count + 1
-        pairs(:, count) = [min(a, b), max(a, b)]
-        keys(count) = int(pairs(1, count), int64)*int(mesh%nnode + 1, int64) + int(pairs(2, count), int64)
-      end do
-    end do
-    keys = keys(1:count)                                ! the body's sides only, with a pad
-    call sort_integers(keys, order)
-    allocate(contact%edges(2, count), boundary(mesh%nnode))
+    sides = boundary_sides(mesh, body_elements(deck))   ! the body's: a pad is what it touches
+    allocate(contact%edges(2, size(sides, 2)), boundary(mesh%nnode))
     boundary = .false.
     nedge = 0
-    do i = 1, count
-      unique = .true.
-      if (i > 1) unique = keys(order(i)) /= keys(order(i - 1))
-      if (i < count) unique = unique .and. keys(order(i)) /= keys(order(i + 1))
-      if (.not. unique) cycle
-      a = pairs(1, order(i))
-      b = pairs(2, order(i))
+    do i = 1, size(sides, 2)
+      a = sides(1, i)
+      b = sides(2, i)
       if (deck%geometry == geometry_axisymmetric .and. mesh%xy(1, a) == 0.0_dp .and. mesh%xy(1, b) == 0.0_dp) cycle
       nedge = nedge + 1
       contact%edges(:, nedge) = [a, b]

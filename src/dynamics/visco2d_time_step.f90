@@ -43,7 +43,7 @@ module visco2d_time_step
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
                              contact_gap, contact_partner_equations
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, &
-                                 capacitance_partners
+                                 capacitance_partners, constraint_sum
   use visco2d_pad_mesh, only: is_pad_node
   use visco2d_timers, only: timer_start, timer_stop, phase_solve, phase_constitutive, phase_contact, &
                             phase_factorization
@@ -172,11 +172,7 @@ contains
     type(stepper_t), intent(in) :: stepper
     real(dp), intent(in) :: x(:)
     integer, intent(in) :: c
-    integer :: k
-    total = 0.0_dp
-    do k = 1, 2
-      if (stepper%partner(k, c) > 0) total = total + stepper%partner_weight(k, c)*x(stepper%partner(k, c))
-    end do
+    total = constraint_sum(stepper%partner, stepper%partner_weight, x, c)
   end function partner_sum
 
   !> Eq. [35] for row r and time step dt: S~ = (1 - alpha_f) S_h + c M, S_h

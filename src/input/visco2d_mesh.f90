@@ -4,14 +4,16 @@
 !> generator card) and checked, numbered and renumbered by
 !> visco2d_mesh_build.
 module visco2d_mesh
+  use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp, geometry_tolerance
+  use visco2d_renumber, only: sort_integers
   use visco2d_mesh_generator, only: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, &
                                     edge_set_bottom, edge_set_top, edge_set_name
   implicit none
   private
 
   public :: mesh_t, name_length
-  public :: node_set, edge_set_code, node_index, side_nodes
+  public :: node_set, edge_set_code, node_index, side_nodes, boundary_sides
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
@@ -49,6 +51,42 @@ contains
     a = mesh%connectivity(side, e)
     b = mesh%connectivity(mod(side, 4) + 1, e)
   end subroutine side_nodes
+
+  !> The boundary sides of elements 1..last: the sides that belong to one of
+  !> those elements only, as node pairs (smaller index first), in the order
+  !> of their sort key.
+  function boundary_sides(mesh, last) result(edges)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: last
+    integer, allocatable :: edges(:, :)
+    integer(int64), allocatable :: keys(:)
+    integer, allocatable :: order(:), pairs(:, :)
+    integer :: e, side, a, b, i, count, nedge
+    allocate(keys(4*last), pairs(2, 4*last))
+    count = 0
+    do e = 1, last
+      do side = 1, 4
+        call side_nodes(mesh, e, side, a, b)
+        count = count + 1
+        pairs(:, count) = [min(a, b), max(a, b)]
+        keys(count) = int(pairs(1, count), int64)*int(mesh%nnode + 1, int64) + int(pairs(2, count), int64)
+      end do
+    end do
+    call sort_integers(keys, order)
+    allocate(edges(2, count))
+    nedge = 0
+    do i = 1, count
+      if (i > 1) then
+        if (keys(order(i)) == keys(order(i - 1))) cycle
+      end if
+      if (i < count) then
+        if (keys(order(i)) == keys(order(i + 1))) cycle
+      end if
+      nedge = nedge + 1
+      edges(:, nedge) = pairs(:, order(i))
+    end do
+    edges = edges(:, 1:nedge)
+  end function boundary_sides
 
   !> Edge-set code of a name (AXIS, INNER, OUTER, BOTTOM, TOP), 0 if unknown.
   pure integer function edge_set_code(name) result(code)

@@ -20,7 +20,7 @@ module visco2d_mesh_build
   implicit none
   private
 
-  public :: build_mesh
+  public :: build_mesh, bandwidth_numbering
 
   !> Smallest size (bounding-box diagonal) of a mesh, m: lengths are in metres.
   real(dp), parameter :: min_mesh_size = 1.0e-9_dp
@@ -71,7 +71,15 @@ contains
     end if
     mesh%source = input%source
 
-    ! Bandwidth: input order against reverse Cuthill-McKee; keep the better.
+    call bandwidth_numbering(mesh)
+  end subroutine build_mesh
+
+  !> Bandwidth: input order against reverse Cuthill-McKee; keep the better
+  !> (mesh%equation, mesh%half_bandwidth and the input order's half_bandwidth_before).
+  subroutine bandwidth_numbering(mesh)
+    type(mesh_t), intent(inout) :: mesh
+    integer, allocatable :: order(:)
+    integer :: i
     mesh%equation = [(i, i = 1, mesh%nnode)]
     mesh%half_bandwidth_before = half_bandwidth(mesh%connectivity, mesh%equation)
     call reverse_cuthill_mckee(mesh%nnode, mesh%connectivity, order)
@@ -81,7 +89,7 @@ contains
     else
       mesh%half_bandwidth = mesh%half_bandwidth_before
     end if
-  end subroutine build_mesh
+  end subroutine bandwidth_numbering
 
   !> Column of a field (see field_column) of the card on deck line `line`
   !> (cards are in line order); 0 if no card is on that line.

@@ -19,9 +19,8 @@ module visco2d_pad_mesh
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_error, only: error_t
   use visco2d_strings, only: itoa, rtoa
-  use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_renumber, only: reverse_cuthill_mckee, half_bandwidth, sort_integers
-  use visco2d_mesh, only: side_nodes
+  use visco2d_mesh_build, only: bandwidth_numbering
+  use visco2d_mesh, only: boundary_sides
   use visco2d_deck_types, only: deck_t, fix_t, line_error, add_warning, analysis_dynamic
   implicit none
   private
@@ -109,7 +108,6 @@ contains
     real(dp), allocatable :: r_lines(:), z_lines(:)
     real(dp) :: reach, spacing, width, top
     integer :: k, nr, nz, i, j, base_node, base_element, node_count, element_count
-    integer, allocatable :: position(:)
     associate (pad => deck%pad, mesh => deck%mesh)
     if (deck%geometry /= geometry_axisymmetric) then
       call line_error(error, deck, pad%line, 'PAD needs GEOMETRY AXISYMMETRIC (a pad under a plane-strain body '// &
@@ -177,15 +175,7 @@ contains
     pad%first_element = base_element + 1
     pad%surface = [(base_node + i, i = 1, nr + 1)]
     pad%bottom = [(base_node + nz*(nr + 1) + i, i = 1, nr + 1)]
-    mesh%equation = [(i, i = 1, mesh%nnode)]
-    mesh%half_bandwidth_before = half_bandwidth(mesh%connectivity, mesh%equation)
-    call reverse_cuthill_mckee(mesh%nnode, mesh%connectivity, position)
-    mesh%half_bandwidth = half_bandwidth(mesh%connectivity, position)
-    if (mesh%half_bandwidth < mesh%half_bandwidth_before) then
-      mesh%equation = position
-    else
-      mesh%half_bandwidth = mesh%half_bandwidth_before
-    end if
+    call bandwidth_numbering(mesh)                      ! over both bodies
     call add_bottom_support(deck)
     end associate
   end subroutine append_pad
@@ -240,32 +230,16 @@ contains
     type(deck_t), intent(in) :: deck
     real(dp), intent(in) :: limit
     real(dp), allocatable :: r(:)
-    integer(int64), allocatable :: keys(:)
-    integer, allocatable :: order(:), pairs(:, :)
+    integer, allocatable :: sides(:, :)
     logical, allocatable :: boundary(:)
     real(dp) :: middle, tolerance
-    integer :: e, side, a, b, i, count, node
+    integer :: i, node
     associate (mesh => deck%mesh)
-    allocate(keys(4*mesh%nelem), pairs(2, 4*mesh%nelem), boundary(mesh%nnode))
-    count = 0
-    do e = 1, mesh%nelem
-      do side = 1, 4
-        call side_nodes(mesh, e, side, a, b)
-        count = count + 1
-        pairs(:, count) = [min(a, b), max(a, b)]
-        keys(count) = int(pairs(1, count), int64)*int(mesh%nnode + 1, int64) + int(pairs(2, count), int64)
-      end do
-    end do
-    call sort_integers(keys, order)
+    sides = boundary_sides(mesh, mesh%nelem)
+    allocate(boundary(mesh%nnode))
     boundary = .false.
-    do i = 1, count
-      if (i > 1) then
-        if (keys(order(i)) == keys(order(i - 1))) cycle
-      end if
-      if (i < count) then
-        if (keys(order(i)) == keys(order(i + 1))) cycle
-      end if
-      boundary(pairs(:, order(i))) = .true.
+    do i = 1, size(sides, 2)
+      boundary(sides(:, i)) = .true.
     end do
     middle = 0.5_dp*(minval(mesh%xy(2, :)) + maxval(mesh%xy(2, :)))
     tolerance = 1.0e-9_dp*mesh%size
