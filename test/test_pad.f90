@@ -42,7 +42,6 @@
 !> Every number is printed in markdown tables. Decks are written to
 !> build/test-tmp/test_pad/.
 program test_pad
-  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
@@ -50,8 +49,8 @@ program test_pad
   use visco2d_static_contact, only: solve_static_contact
   use visco2d_hertz, only: hertz_t, hertz_impact
   use visco2d_record, only: record_t
-  use visco2d_expect, only: summary_value
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, history_column
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, history_column, &
+                             summary_real
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_pad'
@@ -125,16 +124,7 @@ contains
   real(dp) function value_of(run, key) result(x)
     type(run_t), intent(in) :: run
     character(*), intent(in) :: key
-    character(:), allocatable :: text
-    integer :: status
-    x = ieee_value(1.0_dp, ieee_quiet_nan)
-    text = summary_value(run%record, key)
-    if (len(text) == 0) then
-      call check(run%name//'_has_'//key, .false., 'no summary key '//key)
-      return
-    end if
-    read(text, *, iostat=status) x
-    if (status /= 0) call check(run%name//'_reads_'//key, .false., 'not a number: '//text)
+    x = summary_real(run%record, key)
   end function value_of
 
   !> A number in fixed notation with `digits` decimals.
@@ -353,16 +343,16 @@ contains
                     'PAD THICKNESS=0.01 MAT=stiff'), stiff)
     call run_static('static_flesh', static_lines('MATERIAL flesh ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
                     'PAD THICKNESS=0.02 MAT=flesh'), flesh)
-    force = [record_real(rigid, 'force_N'), record_real(stiff, 'force_N'), record_real(flesh, 'force_N')]
-    alpha = [record_real(rigid, 'alpha_mm'), record_real(stiff, 'alpha_mm'), record_real(flesh, 'alpha_mm')]
+    force = [summary_real(rigid, 'force_N'), summary_real(stiff, 'force_N'), summary_real(flesh, 'force_N')]
+    alpha = [summary_real(rigid, 'alpha_mm'), summary_real(stiff, 'alpha_mm'), summary_real(flesh, 'alpha_mm')]
     print '(a)', ''
     print '(a)', '| STATIC, top pressed 0.5 mm | force (N) | alpha (mm) | pad compression (mm) |'
     print '(a)', '|---|---|---|---|'
     print '(a)', '| rigid plate | '//fx(force(1), 4)//' | '//fx(alpha(1), 5)//' | - |'
     print '(a)', '| pad 1000 E, 10 mm | '//fx(force(2), 4)//' | '//fx(alpha(2), 5)//' | '// &
-      fx(record_real(stiff, 'pad_compression_mm'), 6)//' |'
+      fx(summary_real(stiff, 'pad_compression_mm'), 6)//' |'
     print '(a)', '| pad of flesh, 20 mm | '//fx(force(3), 4)//' | '//fx(alpha(3), 5)//' | '// &
-      fx(record_real(flesh, 'pad_compression_mm'), 5)//' |'
+      fx(summary_real(flesh, 'pad_compression_mm'), 5)//' |'
     call check_close('static stiff pad: the rigid plate''s force (0.5 %)', force(2), force(1), 5.0e-3_dp)
     call check_close('static stiff pad: the rigid plate''s alpha (0.5 %)', alpha(2), alpha(1), 5.0e-3_dp)
     call check('static flesh pad: a smaller force at the same travel', force(3) < force(1))
@@ -393,15 +383,6 @@ contains
     if (allocated(error)) call check('run_'//name, .false., error_text(error))
   end subroutine run_static
 
-  !> A real summary value of a record (NaN, and a failed check, if absent).
-  real(dp) function record_real(record, key) result(x)
-    type(record_t), intent(in) :: record
-    character(*), intent(in) :: key
-    type(run_t) :: run
-    run%name = key
-    run%record = record
-    x = value_of(run, key)
-  end function record_real
 
   !> 6. Decks a PAD cannot run.
   subroutine bad_pads()
