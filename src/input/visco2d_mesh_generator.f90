@@ -5,6 +5,7 @@
 !> checks and numbers them.
 module visco2d_mesh_generator
   use visco2d_kinds, only: dp, pi
+  use visco2d_roots, only: increasing_root
   implicit none
   private
 
@@ -399,8 +400,7 @@ contains
     integer, intent(in) :: surface(0:)
     real(dp), intent(inout) :: xy(:, :)
     real(dp), allocatable :: base(:, :), direction(:, :), weight(:), angle(:)
-    real(dp) :: low, high, middle, target
-    integer :: n, i, iteration
+    integer :: n, i
     n = ubound(surface, 1)
     allocate(base(2, 0:n), direction(2, 0:n), weight(0:n), angle(0:n))
     do i = 0, n
@@ -415,24 +415,7 @@ contains
       weight(i) = 0.5_dp*((angle(i) - angle(i - 1))**2 + (angle(i + 1) - angle(i))**2)*sin(0.5_dp*angle(i))**2
     end do
     weight(n) = (angle(n) - angle(n - 1))**2    ! the mirror segment beyond the far pole is its twin
-    target = 4.0_dp*pi*radius**3/3.0_dp
-    low = 0.0_dp
-    high = 1.0_dp
-    do iteration = 1, 60                         ! a bracket (c = 1 suffices for every GRADE and CORE)
-      if (revolved_volume(high) >= target) exit
-      low = high
-      high = 2.0_dp*high
-    end do
-    do iteration = 1, 200
-      middle = 0.5_dp*(low + high)
-      if (middle <= low .or. middle >= high) exit
-      if (revolved_volume(middle) < target) then
-        low = middle
-      else
-        high = middle
-      end if
-    end do
-    call place(middle)
+    call place(increasing_root(revolved_volume, 4.0_dp*pi*radius**3/3.0_dp))   ! c = 1 brackets every GRADE, CORE
   contains
     subroutine place(factor)
       real(dp), intent(in) :: factor

@@ -9,6 +9,7 @@
 module visco2d_outline_grid
   use visco2d_kinds, only: dp, pi
   use visco2d_strings, only: itoa, rtoa
+  use visco2d_roots, only: increasing_root
   use visco2d_mesh_generator, only: sphere_grid, sphere_grid_contact, edge_set_outer
   implicit none
   private
@@ -357,31 +358,7 @@ contains
     !> Surface node i at (1 + lambda excess_i) rho_i / (1 + excess_i) of its
     !> mapped distance, lambda found by bisection (the volume increases with it).
     subroutine restore_outline_volume()
-      real(dp) :: low, high, middle, target
-      integer :: iteration
-      target = outline_volume(outline)
-      low = 0.0_dp
-      high = 1.0_dp
-      do iteration = 1, 60
-        if (surface_volume(low) <= target) exit
-        high = low
-        low = low - 2.0_dp**iteration
-      end do
-      do iteration = 1, 60
-        if (surface_volume(high) >= target) exit
-        low = high
-        high = 2.0_dp*high
-      end do
-      do iteration = 1, 200
-        middle = 0.5_dp*(low + high)
-        if (middle <= low .or. middle >= high) exit
-        if (surface_volume(middle) < target) then
-          low = middle
-        else
-          high = middle
-        end if
-      end do
-      call place(middle)
+      call place(increasing_root(surface_volume, outline_volume(outline)))
     end subroutine restore_outline_volume
 
     subroutine place(lambda)
