@@ -256,3 +256,8 @@ batch expand "$root/inputs/examples/apple_drop.inp" --param height=0.5 -o exampl
 check_ok example_template_expands $? example.log
 "$exe" check example/decks/apple_drop__height=0.5.inp > example_check.log 2>&1
 check_ok example_deck_checks $? example_check.log
+batch expand "$root/inputs/examples/apple_drop_on_pad.inp" --param height=0.2 --param pad_t=0.01 --param pad_e=2e6 \
+  -o example_pad > example_pad.log 2>&1
+check_ok example_pad_template_expands $? example_pad.log
+"$exe" check "example_pad/decks/apple_drop_on_pad__height=0.2__pad_t=0.01__pad_e=2e6.inp" > example_pad_check.log 2>&1
+check_ok example_pad_deck_checks $? example_pad_check.log
