@@ -19,14 +19,26 @@
 !>    zeta = z/a, a and p0 = 3F/(2 pi a^2) from the FE's own plate force F.
 !>    Tolerance 5 %: the finite sphere loaded by its weight adds a stress of
 !>    order F/(pi R^2) ~ 2.5 % of the maximum; the 2 x 2 Gauss points sample
-!>    a flat peak (measured: -3.0 % at level 4, -2.4 % at level 3). The depth of
-!>    the maximum is within one element height h at the pole (h = 0.093 a at
-!>    level 4): the peak is flat, so its location is set by the Gauss rows.
-!>    The bruise volume (threshold 0.3 MPa) converges with the mesh level
-!>    (h halves per level): measured 0.0503, 0.0950, 0.1058 cm^3 at levels
-!>    2, 3, 4, differences in ratio 4.2, an observed order 2.1 (Gauss-point
-!>    stresses are superconvergent). Checked: the volume grows with the level
-!>    and the ratio of successive differences exceeds 2 (order > 1).
+!>    a flat peak (measured on the default contact grid: -2.4 % at level 4,
+!>    -1.9 % at level 3; legacy grid -3.0 %, -2.4 %). The peak is flat, so
+!>    the depth of its maximum is set by the Gauss rows: it is within the
+!>    height h of the axis element it lies in, plus 5 % of Hertz's depth for
+!>    the finite sphere's offset (the 5 % of the value above). Measured on
+!>    the contact grid, levels 2-5: 1.98, 2.06, 2.10, 2.03 mm against Hertz's
+!>    1.93 mm (+2.9, +7.1, +9.2, +5.3 %; h there 0.74, 0.38, 0.19, 0.093 mm:
+!>    the offset does not shrink with h below ~0.1 mm, level 5 run offline);
+!>    legacy grid level 4: 2.15 mm, h 0.37 mm. (The check used the pole
+!>    element's height, the same as h on the uniform legacy grid; on the
+!>    graded contact grid the pole element, 0.17 mm at level 4, is smaller.)
+!>    The bruise volume (threshold 0.3 MPa; a sum of Gauss-point volumes
+!>    above it) converges with the mesh level (h halves per level): measured
+!>    on the contact grid 0.1334, 0.1100, 0.1170 cm^3 at levels 2, 3, 4 and
+!>    0.1178 at level 5 (offline): level 2 overshoots, then it approaches
+!>    from below, successive differences in ratio 3.3 and 8.6. On the legacy
+!>    grid it grew, 0.0503, 0.0950, 0.1058 (ratio 4.2), and "grows with the
+!>    level" was checked too; it is not a property of the contact grid.
+!>    Checked: the ratio of successive differences, in size, exceeds 2
+!>    (order > 1).
 !> 3. Dynamic impact (MESH SPHERE LEVEL=2, SLIP, V = 0.3, 1, 2 m/s) with a
 !>    MAXSHEAR threshold of 0.2 MPa (Hertz's 0.31 q_m is 0.17 MPa at 0.3 m/s):
 !>    no bruise below onset, a bruise that grows with the speed, the extra
@@ -233,15 +245,16 @@ contains
     p0 = 3.0_dp*force/(2.0_dp*pi*a**2)
     tau = summary_real(record, 'envelope_max_shear_max_Pa')
     depth = 1.0e-3_dp*summary_real(record, 'envelope_max_shear_depth_mm')
-    h = pole_element_height(deck)
+    h = axis_element_height(deck, depth)
     print '(a, es12.5, a, es12.5, a, f7.3, a)', '# Hertz: FE max shear ', tau, ' Pa, Hertz ', ratio*p0, ' Pa (', &
       100*(tau/(ratio*p0) - 1), ' %)'
     print '(a, f7.4, a, f7.4, a, f7.4, a, f6.3)', '# Hertz: FE depth ', 1e3*depth, ' mm, Hertz ', 1e3*zeta*a, &
-      ' mm, element height ', 1e3*h, ' mm; a/R = ', a/radius
+      ' mm, axis element height there ', 1e3*h, ' mm; a/R = ', a/radius
     call check_close('hertz_max_shear_envelope_within_5_percent', tau, ratio*p0, 0.05_dp)
-    call check('hertz_max_shear_depth_within_one_element', abs(depth - zeta*a) <= h, &
+    call check('hertz_max_shear_depth_within_its_element_and_5_percent', abs(depth - zeta*a) <= h + 0.05_dp*zeta*a, &
                'depth '//exact_text(depth)//' m, Hertz '//exact_text(zeta*a)//' m, h '//exact_text(h)//' m')
-    call check('hertz_max_shear_near_axis', 1.0e-3_dp*summary_real(record, 'envelope_max_shear_r_mm') < h, &
+    call check('hertz_max_shear_near_axis', 1.0e-3_dp*summary_real(record, 'envelope_max_shear_r_mm') < &
+               pole_element_height(deck), &
                'r of the maximum is not within an element of the axis')
   end subroutine hertz_indentation
 
@@ -252,12 +265,10 @@ contains
     do level = 2, 4
       volume(level) = hertz_volume(level)
     end do
-    ratio = (volume(3) - volume(2))/max(volume(4) - volume(3), tiny(1.0_dp))
+    ratio = (volume(3) - volume(2))/sign(max(abs(volume(4) - volume(3)), tiny(1.0_dp)), volume(4) - volume(3))
     print '(a, 3es12.4, a, f6.2, a, f5.2)', '# bruise volume, levels 2-4: ', volume, ' cm^3; difference ratio ', ratio, &
-      ', observed order ', log(ratio)/log(2.0_dp)
-    call check('convergence_volume_grows_with_level', volume(2) < volume(3) .and. volume(3) < volume(4), &
-               exact_text(volume(2))//', '//exact_text(volume(3))//', '//exact_text(volume(4)))
-    call check('convergence_order_above_1', ratio > 2.0_dp, 'difference ratio '//exact_text(ratio))
+      ', observed order ', log(abs(ratio))/log(2.0_dp)
+    call check('convergence_order_above_1', abs(ratio) > 2.0_dp, 'difference ratio '//exact_text(ratio))
   end subroutine volume_convergence
 
   !> Bruise volume (MAXSHEAR 0.3 MPa) of the Hertz deck at a mesh level, cm^3.
@@ -272,6 +283,19 @@ contains
     call run('hertz_level_'//itoa(level), deck_lines, record)
     volume = summary_real(record, 'bruise_volume_cm3')
   end function hertz_volume
+
+  !> Height of the axis element whose nodes bracket `depth` below the pole
+  !> (the lowest node on the axis): its two nodes on the axis.
+  real(dp) function axis_element_height(deck, depth) result(h)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: depth
+    real(dp), allocatable :: z(:)
+    real(dp) :: lowest, below
+    z = pack(deck%mesh%xy(2, :), abs(deck%mesh%xy(1, :)) < 1.0e-12_dp)
+    lowest = minval(z)
+    below = maxval(z, z <= lowest + depth)
+    h = minval(z, z > below) - below
+  end function axis_element_height
 
   !> Height of the element at the pole: the two lowest nodes on the axis.
   real(dp) function pole_element_height(deck) result(h)

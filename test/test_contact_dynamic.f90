@@ -1,6 +1,8 @@
 !> Verification of impact on a rigid plate: Wilson-theta (theta = 1.4) with
 !> the PLATE card (src/contact/visco2d_contact.f90, the contact part of
-!> src/dynamics/visco2d_dynamic.f90), on the paper's sphere (MESH SPHERE, R = 36.6 mm).
+!> src/dynamics/visco2d_dynamic.f90), on the paper's sphere (MESH SPHERE, R = 36.6 mm),
+!> on the default contact grid; where a bound was first set on the legacy
+!> grid (GRID=LEGACY) its comment gives both grids' measured numbers.
 !>
 !>  1. Convergence, elastic sphere of Table 1 (E 18.11 MPa, nu 0.219,
 !>     rho 756.85, V 0.9982 m/s, g 9.8): alpha_m, t_alpha, q_max, force_max
@@ -42,7 +44,7 @@
 !> For an elastic body dissipated_J is round-off: the integrator's own loss
 !> appears in balance_error_J (section 2).
 !> Every number is printed in markdown tables. Decks are written to
-!> build/test-tmp/test_contact_dynamic/. Release run time ~45 s; the longer
+!> build/test-tmp/test_contact_dynamic/. Release run time ~7 s; the longer
 !> study (level 5, dt to 1.25e-6) is scripts/convergence_table1.py.
 program test_contact_dynamic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -115,7 +117,7 @@ contains
     lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC']
     if (present(formulation)) call add(lines, 'FORMULATION '//formulation)
     call add(lines, 'MATERIAL apple ELASTIC E=18.11e6 NU='//nu//' RHO=756.85')
-    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY')   ! the grid the bounds were set on
+    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
     call add(lines, 'INITIAL VZ=-0.9982 AZ=-9.8')
     call add(lines, 'GRAVITY G=9.8')
     call add(lines, 'WILSON THETA=1.4')
@@ -235,6 +237,17 @@ contains
       if (n(i) /= n(i - 1) .and. abs(t(i) - t0) <= half_width + 1.0e-9_dp) near = .true.
     end do
   end function ring_change_near
+
+  !> The largest |f(i) - f(i-1)| over the steps i within half_width of t0
+  !> where the contact set changes (n(i) /= n(i-1)); 0 if there is none.
+  real(dp) function ring_jump_near(t, n, f, t0, half_width) result(jump)
+    real(dp), intent(in) :: t(:), n(:), f(:), t0, half_width
+    integer :: i
+    jump = 0.0_dp
+    do i = 2, size(t)
+      if (n(i) /= n(i - 1) .and. abs(t(i) - t0) <= half_width + 1.0e-9_dp) jump = max(jump, abs(f(i) - f(i - 1)))
+    end do
+  end function ring_jump_near
 
   !> Contact-set chatter: the number of releases (decreases of the contact-node
   !> count) before t_end, and the number of increases after the first release.
@@ -508,9 +521,13 @@ contains
                abs(alpha(3) - alpha(2)) >= 2.0_dp*abs(alpha(4) - alpha(3)), 'p(1,2,3) = '//fx(p_mesh(1), 3)// &
                ', p(2,3,4) = '//fx(p_mesh(2), 3))
     ! With p >= 1 the level-4 change is at most half the level 2->3 change
-    ! (1.8 %, measured): level 3 must be within 1 % of level 4.
-    call check_close('table1_mesh_level3_within_1pc_of_level4', alpha(3), alpha(4), 0.01_dp)
-    ! The plate force is a whole-body quantity too (M (g - alpha'')): same bound.
+    ! (0.146 % on the contact grid, measured; 1.8 % on the legacy grid, where
+    ! the bound was 1 %): level 3 must be within 0.1 % of level 4 (measured
+    ! 0.023 %; the legacy grid's level 3 was 0.39 % off).
+    call check_close('table1_mesh_level3_within_0.1pc_of_level4', alpha(3), alpha(4), 0.001_dp)
+    ! The plate force is a whole-body quantity too (M (g - alpha'')), but its
+    ! peak carries the ringing of the contact (levels 1-4: 197.9, 192.8, 192.4,
+    ! 193.3 N, not monotone): held to the 1 % of the legacy grid (measured 0.44 %).
     call check_close('table1_mesh_force_level3_within_1pc_of_level4', force(3), force(4), 0.01_dp)
 
     print '(a)', ''
@@ -548,12 +565,24 @@ contains
     call check('table1_dt_alpha_changes_shrink', abs(alpha_dt(2) - alpha_dt(1)) > abs(alpha_dt(3) - alpha_dt(2)) .and. &
                abs(alpha_dt(3) - alpha_dt(2)) > abs(alpha_dt(4) - alpha_dt(3)), 'p = '//fx(p_dt(1), 3)//', '// &
                fx(p_dt(2), 3))
-    ! The paper's dt = 1e-5 does not limit the accuracy: with p >= 1 its error
-    ! is at most 2 |alpha(5e-6) - alpha(1e-5)|, which must stay below a tenth
-    ! of the level-3 mesh error (at least |alpha_4 - alpha_3|).
+    ! The paper's dt = 1e-5 cannot decide the mesh checks above. With p >= 1
+    ! its error is at most bound_dt = 2 |alpha(5e-6) - alpha(1e-5)| (2.5e-4 mm,
+    ! 0.024 %, measured; offline down to dt = 1.25e-6 alpha_m grows by 2.0e-4
+    ! mm at level 3 and 1.75e-4 mm at level 4, the same sign, so the level 3->4
+    ! change moves from -2.38e-4 to -2.64e-4 mm). On the legacy grid this bound
+    ! was below a tenth of the level-3 mesh error |alpha_4 - alpha_3| (4.1e-3
+    ! mm); the contact grid's level 3 is 17 times closer (2.4e-4 mm, 0.023 %),
+    ! as close in space as dt = 1e-5 is in time, so a tenth cannot hold there.
+    ! What must hold: the halving of the changes survives the whole dt error
+    ! added to the level 3->4 change (errors of one sign, each at most
+    ! bound_dt, move a difference by at most bound_dt).
     bound_dt = 2.0_dp*abs(alpha_dt(4) - alpha_dt(3))
-    call check('table1_dt_error_below_tenth_of_mesh_error', bound_dt < 0.1_dp*abs(alpha(4) - alpha(3)), &
-               'dt bound '//ex(bound_dt)//' mm, mesh change '//ex(abs(alpha(4) - alpha(3)))//' mm')
+    call check('table1_dt_error_cannot_decide_the_mesh_halving', &
+               abs(alpha(3) - alpha(2)) >= 2.0_dp*(abs(alpha(4) - alpha(3)) + bound_dt), &
+               'dt bound '//ex(bound_dt)//' mm, mesh changes '//ex(abs(alpha(3) - alpha(2)))//', '// &
+               ex(abs(alpha(4) - alpha(3)))//' mm')
+    print '(a)', 'dt = 1e-5 error bound 2 |alpha(5e-6) - alpha(1e-5)| = '//ex(bound_dt)//' mm against the level'// &
+                 ' 3 -> 4 mesh change '//ex(abs(alpha(4) - alpha(3)))//' mm'
   end subroutine test_convergence
 
   ! ---------------------------------------------------------------- 2. restitution
@@ -716,7 +745,7 @@ contains
     do level = 3, 4
       lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
                'MATERIAL apple VISCOELASTIC K=13.5e6 RHO=757', 'PRONY G=3.91e6 BETA=203']
-      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY')   ! the grid the bounds were set on
+      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
       call add(lines, 'DROP HEIGHT=0.05')
       call add(lines, 'GRAVITY G=9.8')
       call add(lines, 'WILSON THETA=1.4')
@@ -757,11 +786,21 @@ contains
       call check(tag//'_q_peaks_before_alpha_beyond_resolution', t_alpha(level) - t_q(level) > resolution(level), &
                  't_alpha - t_q = '//fx(t_alpha(level) - t_q(level), 3)//' ms, resolution '// &
                  fx(resolution(level), 3)//' ms')
-      ! The q peak is smooth, not a ring arrival: the contact set is constant
-      ! within 2 steps of it, the run went on past it, and the independent
-      ! recovery (-sigma_z extrapolated to the pole) peaks at the same step (2 dt).
-      call check(tag//'_q_peak_not_at_a_ring_arrival', .not. ring_change_near(run%t, run%n, t_q(level), &
-                 2*run%dt_ms) .and. t_q(level) < value_of(run, 't_stop_ms') - 2*run%dt_ms)
+      ! The q peak is smooth, not a ring arrival: where a ring joins within 2
+      ! steps of it, q changes at that arrival by less than 0.1 % of q_max
+      ! (near a smooth peak a step changes q by under 1e-4 q_max here: 7e-5 q_max
+      ! the step before it; an arrival's jump reaches 15-17 % of q, section 5).
+      ! On the contact grid at
+      ! level 4 ring 18 joins at the peak step itself (1.55 ms), where q rises
+      ! by 3.0e-5 MPa (2e-5 q_max) after +9.3e-5 MPa the step before, a plateau
+      ! it does not shape; on the legacy grid no ring joined within 2 steps.
+      ! The run went on past the peak, and the independent recovery (-sigma_z
+      ! extrapolated to the pole) peaks at the same step (2 dt).
+      print '(a)', tag//': largest q change at a ring arrival within 2 dt of t_q: '// &
+        ex(ring_jump_near(run%t, run%n, run%q, t_q(level), 2*run%dt_ms))//' MPa'
+      call check(tag//'_q_peak_not_at_a_ring_arrival', &
+                 ring_jump_near(run%t, run%n, run%q, t_q(level), 2*run%dt_ms) < 1.0e-3_dp*maxval(run%q) .and. &
+                 t_q(level) < value_of(run, 't_stop_ms') - 2*run%dt_ms)
       call check_close(tag//'_q_surface_peaks_with_q', value_of(run, 't_q_surface_max_ms'), t_q(level), 0.0_dp, &
                        2*run%dt_ms + 1.0e-9_dp)
       end associate
@@ -987,11 +1026,16 @@ contains
     call check('release_bbar_nu'//trim(nus(1))//'_no_early_release', early(1) == 0, itoa(early(1))//' early releases')
 
     ! BBAR does not lock: alpha_m follows Hertz's (1 - nu^2) scaling from
-    ! nu = 0.49 to 0.4999 (-0.52 %) to 1 % (the level-3 mesh error of alpha_m
-    ! itself is ~0.5 %, section 1; locking would stiffen by tens of %).
-    call check_close('nu0.4999_bbar_alpha_follows_hertz_scaling', alpha(2)/alpha(1), hertz_ratio, 0.01_dp)
-    ! STANDARD locks: much stiffer (alpha_m at least 20 % smaller).
-    call check('nu0.4999_standard_locks', alpha(3) < 0.8_dp*alpha(2), 'ratio '//fx(alpha(3)/alpha(2), 4))
+    ! nu = 0.49 to 0.4999 (-0.52 %) to 0.5 % (measured 0.05 %; the level-3
+    ! mesh error of alpha_m itself is 0.02 % on the contact grid, section 1,
+    ! and was ~0.5 % on the legacy grid, where the bound was 1 %).
+    call check_close('nu0.4999_bbar_alpha_follows_hertz_scaling', alpha(2)/alpha(1), hertz_ratio, 0.005_dp)
+    ! STANDARD locks: much stiffer, alpha_m at least 10 % below BBAR's (measured
+    ! at levels 2, 3, 4 on the contact grid: -26.8, -13.3, -6.5 %, halving per
+    ! level where BBAR's alpha_m changes by 0.5 and 0.08 %: an error of another
+    ! order; on the legacy grid, whose distorted pole elements lock harder,
+    ! -50.8, -41.0, -28.3 %, and the bound was 20 %).
+    call check('nu0.4999_standard_locks', alpha(3) < 0.9_dp*alpha(2), 'ratio '//fx(alpha(3)/alpha(2), 4))
     ! The run stopped at the true maximum deformation, not early on a spike:
     ! stop reason, t_stop one step after t_alpha, and t_alpha as for nu = 0.49 (2 dt).
     call check_text_contains('nu0.4999_bbar_stop_reason', summary_value(runs(2)%record, 'stop_reason'), &
@@ -1016,9 +1060,10 @@ contains
     ! too: at t + dt it carried the stiff dilatational modes a touching node
     ! excites (90.7 MPa at the first step, then -26, +24, -18 ... MPa against
     ! q = 2.5 MPa). Now it peaks with alpha (2 dt), never pulls (>= -5 % of q_max),
-    ! and reads q_max to 10 % (the Gauss-point extrapolation at the pole reads
-    ! 4-6 % below the reaction projection: 0.96 statically at this nu, 0.94 at
-    ! nu = 0.219 in section 1's runs).
+    ! and reads q_max to 5 % (the Gauss-point extrapolation at the pole reads
+    ! 3 % below the reaction projection on the contact grid: 0.974 and 0.970
+    ! here, 0.971 at nu = 0.219 in section 1's level-3 run; on the legacy
+    ! grid 4-8 % below, and the bound was 10 %).
     do k = 1, 2
       tag = 'nu'//trim(nus(k))//'_bbar_q_surface'
       associate (run => runs(k))
@@ -1028,7 +1073,7 @@ contains
         ', smallest q_surface '//fx(minval(q_surface), 4)//' MPa'
       call check_close(tag//'_max_at_alpha_max', value_of(run, 't_q_surface_max_ms'), t_alpha(k), 0.0_dp, &
                        2*run%dt_ms + 1.0e-9_dp)
-      call check_close(tag//'_max_reads_q_max', value_of(run, 'q_surface_max_MPa'), value_of(run, 'q_max_MPa'), 0.1_dp)
+      call check_close(tag//'_max_reads_q_max', value_of(run, 'q_surface_max_MPa'), value_of(run, 'q_max_MPa'), 0.05_dp)
       call check(tag//'_never_tensile', minval(q_surface) >= -0.05_dp*value_of(run, 'q_max_MPa'), &
                  fx(minval(q_surface), 4))
       end associate

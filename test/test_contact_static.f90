@@ -20,21 +20,24 @@
 !>    radius, duration, the energy identity (2/5) F_m alpha_m = 1/2 M V^2,
 !>    Hertz's q_m = 3 F_m/(2 pi a^2), and the time constant 1.4716 against the
 !>    exact integral int_0^1 dx/sqrt(1 - x^(5/2)) = (2/5) B(2/5, 1/2)).
-!> 3. Static indentation of the Table-1 sphere (MESH SPHERE levels 3, 4)
-!>    pressed on the plate by GRAVITY G = F/M, a_H/R from 0.03 to 0.25, against
-!>    Hertz at the same force. Measured, not assumed (see the tables): the
-!>    centroid of the finite sphere approaches less than Hertz's alpha (the
-!>    approach of distant points of two half-spaces), by an amount linear in
-!>    a/R (level 4: -0.57 a/R - 0.005, residuals 0.15 %).
+!> 3. Static indentation of the Table-1 sphere (MESH SPHERE levels 3, 4, the
+!>    default contact grid) pressed on the plate by GRAVITY G = F/M, a_H/R
+!>    from 0.03 to 0.25, against Hertz at the same force. Measured, not
+!>    assumed (see the tables): the centroid of the finite sphere approaches
+!>    less than Hertz's alpha (the approach of distant points of two
+!>    half-spaces), by an amount linear in a/R (level 4: -0.59 a/R + 0.001,
+!>    residuals 0.39 %; the legacy grid gave -0.57 a/R - 0.005, 0.15 %).
 !> 4. The energy argument: the dynamic Table-1 impact's peak lies on the static
 !>    curve (0.8 %), int F d(alpha) along the dynamic history equals
 !>    1/2 M V^2 + M g alpha_m (momentum), and the static curve integrated to
-!>    alpha_m gives the same energy (0.2-0.3 %; against 1/2 M V^2 alone it is
-!>    2.2 % high: gravity's work M g alpha_m is 2 % of it).
+!>    alpha_m gives the same energy (0.06-0.26 %; legacy grid 0.16-0.27 %;
+!>    against 1/2 M V^2 alone it is 1.8-2.1 % high: gravity's work M g
+!>    alpha_m is 2 % of it).
 !>
-!> (Level 5, 22801 nodes, is not run here: one static solve takes ~70 s.
-!> Measured once with this program's press() at F = 193 N: alpha = 1.043108 mm
-!> (level 4: 1.041725), 30 contact nodes, q_H = 2.1608 MPa; (a_H - r_out)/h = 0.47.)
+!> (Level 5, 22801 nodes, is not run here: one static solve takes ~18 s.
+!> Measured once offline, the deck of press() at F = 193 N: alpha = 1.043955 mm
+!> (levels 3, 4: 1.044351, 1.044498), 32 contact nodes, q_MPa = 2.1351
+!> (q_H = 2.1608). On the legacy grid: 1.043108 mm (level 4: 1.041725).)
 program test_contact_static
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use visco2d_kinds, only: dp, pi
@@ -369,7 +372,7 @@ contains
     file = folder//'/impact_'//itoa(levels(k))//'.inp'
     call write_deck(file, [character(len=80) :: &
       'TITLE Table-1 elastic impact', 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(levels(k))//' GRID=LEGACY', &
+      'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(levels(k)), &
       'PLATE Z=0 SLIP', 'INITIAL VZ=-0.9982 AZ=-9.8', 'GRAVITY G=9.8', 'TIME DT=1e-5 TEND=3e-3', 'END'])
     call read_deck(file, deck, error)
     if (.not. allocated(error)) call solve_dynamic(deck, record, error)
@@ -505,14 +508,16 @@ contains
       ! ... and is below 3 % at a/R = 0.03 (4 contact nodes on level 4).
       call check(tag//': |alpha/alpha_H - 1| < 3 % at a/R = 0.03', abs(dev(1)) < 0.03_dp, exact_text(dev(1)))
       call check(tag//': at least 4 contact nodes at a/R = 0.03', nodes(1) >= 4, itoa(nodes(1)))
-      ! Linear in a/R: on level 4 the seven loads lie on a line to 0.15 % (measured);
-      ! the bound 0.5 % guards that, and the intercept (the deviation extrapolated to
-      ! a/R = 0, where Hertz is exact) is zero to within the mesh error, which at
-      ! 193 N is ~0.7 % between levels 3 and 4 (below): |intercept| < 1 %.
+      ! Linear in a/R: on level 4 the seven loads lie on a line to 0.39 % (measured;
+      ! 0.15 % on the legacy grid); the bound 0.5 % guards that, and the intercept
+      ! (the deviation extrapolated to a/R = 0, where Hertz is exact) is zero to
+      ! within the mesh error (at 193 N 0.014 % between levels 3 and 4, below; it
+      ! was 0.7 % on the legacy grid, and the bound 1 %) and the line's own
+      ! scatter (0.5 %): |intercept| < 0.5 % (measured +0.06 %; legacy -0.5 %).
       call check(tag//': alpha/alpha_H - 1 is linear in a/R (max residual < 0.5 %)', residual < 0.005_dp, &
                  exact_text(residual))
-      call check(tag//': the line through the deviations passes within 1 % of 0 at a/R = 0', &
-                 abs(intercept) < 0.01_dp, exact_text(intercept))
+      call check(tag//': the line through the deviations passes within 0.5 % of 0 at a/R = 0', &
+                 abs(intercept) < 0.005_dp, exact_text(intercept))
     end if
 
     ! 4b. The dynamic peak on the static curve: the static alpha at the dynamic peak force.
@@ -683,7 +688,7 @@ contains
     print '(a)', ''
     print '(a)', '| quantity | level 3 | level 4 |'
     print '(a)', '|---|---|---|'
-    print '(a, 2(f10.6, a))', '| alpha at F = 193 N (mm) [level 5, offline: 1.0431] | ', 1.0e3_dp*static_alpha_193(1), &
+    print '(a, 2(f10.6, a))', '| alpha at F = 193 N (mm) [level 5, offline: 1.0440] | ', 1.0e3_dp*static_alpha_193(1), &
       ' | ', 1.0e3_dp*static_alpha_193(2), ' |'
     print '(a, 2(sp, f9.4, a))', '| alpha/alpha_H - 1 at 193 N (a_H/R = 0.178) | ', dev_193(1), ' | ', dev_193(2), ' |'
     print '(a, 2(sp, f9.4, a, ss, i0, a))', '| alpha/alpha_H - 1 at a_H/R = 0.03 (contact nodes) | ', smallest_dev(1), &
@@ -714,11 +719,14 @@ contains
     print '(a, sp, f9.4, a)', '| interpolation error of the static integral (level-4 sampling on level 3, %) | ', &
       100.0_dp*interpolation_change, ' | |'
 
-    ! Levels 3 and 4 agree to 1 % at 193 N (measured 0.72 %; level 5, run once
-    ! offline, is 0.13 % above level 4: the error falls ~5x per level).
-    call check_close('static: alpha at 193 N, level 3 = level 4 within 1 %', static_alpha_193(1), static_alpha_193(2), &
-                     0.01_dp)
-    call check('static: alpha grows from level 3 to level 4 (the coarser mesh is stiffer)', &
-               static_alpha_193(2) > static_alpha_193(1))
+    ! Levels 3 and 4 agree to 0.1 % at 193 N (measured 0.014 %; level 5, run
+    ! once offline, is 0.052 % below level 4: converged to the jitter of the
+    ! discrete contact edge). On the legacy grid they differed by 0.72 % (the
+    ! bound was 1 %) and alpha grew with the level (level 5 0.13 % above level
+    ! 4: the coarser mesh was stiffer), which was checked too; on the contact
+    ! grid alpha goes up 0.014 % from level 3 to 4 and down 0.052 % to level 5,
+    ! so that ordering is not a property of it and is no longer checked.
+    call check_close('static: alpha at 193 N, level 3 = level 4 within 0.1 %', static_alpha_193(1), &
+                     static_alpha_193(2), 0.001_dp)
   end subroutine convergence
 end program test_contact_static

@@ -18,8 +18,8 @@
 !>    is 1.0986 at nu = 0, 1.0468 at nu = 0.219, 1.0028 at nu = 0.45 and 1 at
 !>    nu = 1/2. An incremental no-slip contact stiffens by exactly that
 !>    bonded increment, so this is the "known small amount". The sphere's
-!>    patch (B-bar elements, nodes within 2.5 mm of the pole) approaches it
-!>    with the mesh.
+!>    patch (B-bar elements, nodes within 2.5 mm of the pole; the default
+!>    contact grid) converges to it with the mesh.
 !> 3. Regression decks: a flat block that the one-shot STICK iteration could
 !>    not settle; a block in which a stuck node freed at zero force would go
 !>    through the plate and so slides; a disc resting flat on the plate
@@ -225,29 +225,41 @@ contains
   !> Section 2.
   subroutine patch_ratios()
     real(dp), parameter :: nus(3) = [0.0_dp, 0.219_dp, 0.45_dp]
-    real(dp) :: ratio(3, 3:4), exact, standard
+    real(dp) :: ratio(3, 2:4), exact, standard
     integer :: i, level
     do i = 1, size(nus)
       exact = log(3.0_dp - 4.0_dp*nus(i))*(1.0_dp - nus(i))/(1.0_dp - 2.0_dp*nus(i))
-      do level = 3, 4
+      do level = 2, 4
         ratio(i, level) = patch_ratio(level, nus(i), 'BBAR')
         call check('patch level '//itoa(level)//' nu = '//exact_text(nus(i))//': bonded is stiffer (exact)', &
                    ratio(i, level) > 1.0_dp, exact_text(ratio(i, level)))
       end do
-      ! Toward the half-space value with the mesh (measured, B-bar, 2.5 mm patch:
-      ! share of the excess 0.82, 0.93, 1.00 on levels 3, 4, 5 at nu = 0;
-      ! 0.64, 0.77, 0.87 at nu = 0.219: the finite sphere's own compliance,
-      ! the same for both, dilutes the ratio, less as the mesh resolves the patch).
+      ! To the half-space value with the mesh (measured, B-bar, 2.5 mm patch,
+      ! share of the excess on levels 2, 3, 4): on the contact grid 1.060,
+      ! 1.077, 1.079 at nu = 0 and 1.145, 1.046, 1.027 at nu = 0.219, on the
+      ! legacy grid 0.60, 0.82, 0.93 (1.00 at level 5) and 0.47, 0.64, 0.78.
+      ! The legacy grid approached from below and the check was "level 4
+      ! nearer than level 3"; the contact grid's ratio has converged by level
+      ! 3 (at nu = 0 level 4 is 1.5e-4 further than level 3, 0.2 % of the
+      ! excess), slightly above the half-space value, where the finite
+      ! sphere's own compliance would put it below: a discretization error of
+      ! the two punch stiffnesses of 0.7 % (1.1064 against 1.0986). Checked:
+      ! it converges (the level 3 -> 4 change at most half the 2 -> 3 change,
+      ! p >= 1 as in test_contact_dynamic; measured 1.5e-4 after 1.7e-3 at
+      ! nu = 0, 8.6e-4 after 4.6e-3 at nu = 0.219), into 70-110 % of the excess.
       if (nus(i) < 0.3_dp) then
-        call check('patch nu = '//exact_text(nus(i))//': level 4 nearer the half-space ratio than level 3', &
-                   abs(ratio(i, 4) - exact) < abs(ratio(i, 3) - exact))
+        call check('patch nu = '//exact_text(nus(i))//': converges (level 3 -> 4 change <= 1/2 the 2 -> 3 change)', &
+                   abs(ratio(i, 4) - ratio(i, 3)) <= 0.5_dp*abs(ratio(i, 3) - ratio(i, 2)), &
+                   exact_text(ratio(i, 2))//', '//exact_text(ratio(i, 3))//', '//exact_text(ratio(i, 4)))
         call check('patch nu = '//exact_text(nus(i))//': level 4 has 70-110 % of the half-space excess', &
                    (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) > 0.7_dp .and. &
                    (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) < 1.1_dp, &
                    exact_text((ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp)))
       else
-        ! Near incompressibility the difference vanishes (0.0028 on a half-space);
-        ! the standard element locks under the extra constraints and shows ~0.013.
+        ! Near incompressibility the difference vanishes (0.0028 on a half-space;
+        ! B-bar, level 4: 0.0016; the standard element, printed, 0.0012 on the
+        ! contact grid, where on the legacy grid it locked under the extra
+        ! constraints and showed 0.0127).
         call check('patch nu = 0.45: bonded and frictionless within 0.5 % (B-bar, level 4)', &
                    ratio(i, 4) - 1.0_dp < 0.005_dp, exact_text(ratio(i, 4)))
         standard = patch_ratio(4, nus(i), 'STANDARD')
@@ -274,8 +286,7 @@ contains
     file = folder//'/patch.inp'
     call write_deck(file, [character(len=80) :: 'TITLE patch', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
       'FORMULATION '//formulation, 'MATERIAL m ELASTIC E=18.11e6 NU='//exact_text(nu)//' RHO=756.85', &
-      'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY', 'PLATE Z=0 STICK', 'GRAVITY G=100', 'END'])
-    ! (GRID=LEGACY: the level 3 -> 4 trend asserted below was measured on the legacy grid)
+      'MESH SPHERE R=0.0366 LEVEL='//itoa(level), 'PLATE Z=0 STICK', 'GRAVITY G=100', 'END'])
     ratio = 0.0_dp
     call read_deck(file, deck, error)
     if (allocated(error)) then

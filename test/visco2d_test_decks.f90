@@ -113,7 +113,7 @@ contains
   end function press
 
   !> The Table-1 sphere (E = 18.11 MPa, nu = 0.219, rho = 756.85 kg/m^3,
-  !> R = 36.6 mm; MESH SPHERE at `level`) on PLATE Z=0 `mode` (STICK or
+  !> R = 36.6 mm; MESH SPHERE at `level`, the default contact grid) on PLATE Z=0 `mode` (STICK or
   !> SLIP), pressed onto it by GRAVITY G = `g`: a STATIC deck titled `title`.
   function pressed_sphere(title, level, mode, g) result(deck_lines)
     character(*), intent(in) :: title, mode
@@ -124,7 +124,7 @@ contains
       'ANALYSIS STATIC', &                                                   ! 2
       'GEOMETRY AXISYMMETRIC', &                                             ! 3
       'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &              ! 4
-      'MESH SPHERE R=0.0366 LEVEL='//itoa(level)//' GRID=LEGACY', &          ! 5 (the grid the tests' bounds were set on)
+      'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &   ! 5
       'PLATE Z=0 '//mode, &                                                  ! 6
       'GRAVITY G='//exact_text(g), &                                         ! 7
       'END']                                                                 ! 8
