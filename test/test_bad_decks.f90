@@ -565,6 +565,10 @@ program test_bad_decks
   call expect_read_error('pad_size_too_fine', lines, 10, 29, 'PAD', 'is too fine: the pad would need more than 2000')
 
   lines = pad_impact('PAD THICKNESS=0.01 MAT=foam')
+  lines(3) = 'GEOMETRY PLANESTRAIN'
+  call expect_read_error('pad_plane_strain', lines, 10, 0, 'PAD', 'PAD needs GEOMETRY AXISYMMETRIC')
+
+  lines = pad_impact('PAD THICKNESS=0.01 MAT=foam')
   call expect_read_error('pad_without_plate', [lines(1:6), lines(8:)], 9, 0, 'PAD', 'PAD needs a PLATE card')
 
 

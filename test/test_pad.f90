@@ -56,7 +56,7 @@ program test_pad
   use visco2d_hertz, only: hertz_t, hertz_impact
   use visco2d_record, only: record_t
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, history_column, &
-                             summary_real
+                             summary_real, message_of
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_pad'
@@ -363,6 +363,7 @@ contains
     call check_close('static stiff pad: the rigid plate''s alpha (0.5 %)', alpha(2), alpha(1), 5.0e-3_dp)
     call check('static flesh pad: a smaller force at the same travel', force(3) < force(1))
     call static_hertz()
+    call static_lift_off()
   end subroutine static_pads
 
   !> Static indentation on a thick pad, the sphere pressed by GRAVITY alone
@@ -406,6 +407,25 @@ contains
                        0.01_dp)
     end do
   end subroutine static_hertz
+
+  !> A body resting on the pad alone whose pole is pulled up (FORCE at node
+  !> 96, the level-1 sphere's pole) would be free: a located error at the PAD card.
+  subroutine static_lift_off()
+    type(deck_t) :: deck
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    call read_deck(deck_file('static_lift_off', [character(len=line_length) :: 'ANALYSIS STATIC', &
+                   'GEOMETRY AXISYMMETRIC', fruit, 'MESH SPHERE R=0.0366 LEVEL=1 MAT=apple', 'PLATE Z=0 SLIP RELEASE=YES', &
+                   'GRAVITY G=20', 'FORCE 96 FR=0 FZ=5', 'MATERIAL flesh ELASTIC E=18.11e6 NU=0.219 RHO=1e-3', &
+                   'PAD THICKNESS=0.0366 WIDTH=0.1 MAT=flesh BOTTOM=SLIP']), deck, error)
+    call check('static lift-off: the deck reads', .not. allocated(error), message_of(error))
+    if (allocated(error)) return
+    call check('static lift-off: node 96 is the pole', deck%mesh%xy(1, 96) == 0.0_dp .and. deck%mesh%xy(2, 96) == 0.0_dp)
+    call solve_static_contact(deck, record, error)
+    call check('static lift-off: refused', allocated(error))
+    if (allocated(error)) call check_text_contains('static lift-off: says why, at the PAD card', error_text(error), &
+                                                   ':10: PAD: the body has lifted off the pad at its pole')
+  end subroutine static_lift_off
 
   !> Hertz's static approach of a sphere of radius `radius` pressed with
   !> `force` on a half-space of plane-strain modulus `modulus`: alpha =
