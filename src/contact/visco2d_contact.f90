@@ -25,7 +25,8 @@ module visco2d_contact
   use visco2d_deck, only: deck_t
   use visco2d_mesh, only: boundary_sides
   use visco2d_element, only: element_lumped_mass
-  use visco2d_assembly, only: node_dof, scatter_add
+  use visco2d_assembly, only: node_dof, scatter_add, support_mask
+  use visco2d_capacitance, only: constraint_sum
   use visco2d_hertz, only: hertz_t, hertz_impact
   use visco2d_pad_mesh, only: body_elements
   implicit none
@@ -34,7 +35,7 @@ module visco2d_contact
   public :: contact_t, hertz_t
   public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
   public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
-  public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression, contact_partner_equations
+  public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression
 
   !> The state of contact with the plate.
   type :: contact_t
@@ -49,8 +50,12 @@ module visco2d_contact
     logical, allocatable :: let_go(:)           !< (nnode) freed in this increment
     integer :: pole = 0                         !< lowest boundary node (nearest the axis): q is reported here
     logical :: pad = .false.                    !< the body touches a pad's surface, not the rigid plate
-    integer, allocatable :: partner(:, :)       !< (2, nnode) pad surface nodes under a body node (0: none)
-    real(dp), allocatable :: weight(:, :)       !< (2, nnode) their weights (1 - s, s)
+    !> (2, equations) by equation of a body node that may touch a pad: the pad
+    !> surface equations under the node in the same direction (0: none, or
+    !> supported), and their weights (1 - s, s): the other end of its
+    !> constraint. All 0 on the rigid plate.
+    integer, allocatable :: partner(:, :)
+    real(dp), allocatable :: weight(:, :)
     integer :: pad_axis = 0                     !< the pad's surface node on the axis (its compression)
     integer :: iterations = 0                   !< increments repeated because the contact set changed
   end type contact_t
@@ -98,31 +103,43 @@ contains
           (abs(mesh%xy(2, a) - mesh%xy(2, contact%pole)) <= contact%tolerance .and. &
            abs(mesh%xy(1, a)) < abs(mesh%xy(1, contact%pole)))) contact%pole = a
     end do
+    allocate(contact%partner(2, 2*mesh%nnode), contact%weight(2, 2*mesh%nnode))
+    contact%partner = 0
+    contact%weight = 0.0_dp
     end associate
     if (deck%pad%first_node > 0) call pad_partners(deck, contact)
   end subroutine contact_create
 
   !> Under each candidate, the pad surface segment that contains its
-  !> undeformed r: partner nodes and weights (none beyond the pad's width).
+  !> undeformed r: the partner equations and weights of the node's r and z
+  !> equations (none beyond the pad's width; a supported equation has none,
+  !> and supported partners are left out: they do not move).
   subroutine pad_partners(deck, contact)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(inout) :: contact
-    integer :: i, k, node
+    logical, allocatable :: supports(:)
+    integer :: i, k, node, c, j, equation, other
     real(dp) :: r, s
     associate (mesh => deck%mesh, surface => deck%pad%surface)
     contact%pad = .true.
     contact%pad_axis = surface(1)
-    allocate(contact%partner(2, mesh%nnode), contact%weight(2, mesh%nnode))
-    contact%partner = 0
-    contact%weight = 0.0_dp
+    supports = support_mask(deck)
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
       r = abs(mesh%xy(1, node))
       do k = 1, size(surface) - 1
         if (r > mesh%xy(1, surface(k + 1))) cycle
         s = (r - mesh%xy(1, surface(k)))/(mesh%xy(1, surface(k + 1)) - mesh%xy(1, surface(k)))
-        contact%partner(:, node) = [surface(k), surface(k + 1)]
-        contact%weight(:, node) = [1.0_dp - s, s]
+        do c = 1, 2
+          equation = node_dof(mesh, node, c)
+          if (supports(equation)) cycle
+          do j = 1, 2
+            other = node_dof(mesh, surface(k + j - 1), c)
+            if (supports(other)) cycle
+            contact%partner(j, equation) = other
+            contact%weight(j, equation) = merge(1.0_dp - s, s, j == 1)
+          end do
+        end do
         exit
       end do
     end do
@@ -137,42 +154,8 @@ contains
     type(contact_t), intent(in) :: contact
     real(dp), intent(in) :: field(:)
     integer, intent(in) :: node, component
-    integer :: k
-    total = 0.0_dp
-    if (.not. contact%pad) return
-    do k = 1, 2
-      if (contact%partner(k, node) > 0) total = total + contact%weight(k, node)* &
-        field(node_dof(deck%mesh, contact%partner(k, node), component))
-    end do
+    total = constraint_sum(contact%partner, contact%weight, field, node_dof(deck%mesh, node, component))
   end function contact_partner_sum
-
-  !> The constraint of each body equation that may touch a pad, by equation:
-  !> the pad surface equations under its node in the same direction and
-  !> their weights (0: none; supported ones left out: they do not move).
-  subroutine contact_partner_equations(deck, contact, supports, partner, weight)
-    type(deck_t), intent(in) :: deck
-    type(contact_t), intent(in) :: contact
-    logical, intent(in) :: supports(:)
-    integer, intent(out) :: partner(:, :)
-    real(dp), intent(out) :: weight(:, :)
-    integer :: i, node, c, k, equation, other
-    partner = 0
-    weight = 0.0_dp
-    if (.not. contact%pad) return
-    do i = 1, size(contact%candidates)
-      node = contact%candidates(i)
-      do c = 1, 2
-        equation = node_dof(deck%mesh, node, c)
-        do k = 1, 2
-          if (contact%partner(k, node) == 0) cycle
-          other = node_dof(deck%mesh, contact%partner(k, node), c)
-          if (supports(other)) cycle
-          partner(k, equation) = other
-          weight(k, equation) = contact%weight(k, node)
-        end do
-      end do
-    end do
-  end subroutine contact_partner_equations
 
   !> The pad's compression at the axis, -u_z of its surface there (m; 0 without a pad).
   pure real(dp) function pad_compression(deck, contact, u) result(compression)
@@ -192,7 +175,7 @@ contains
     integer, intent(in) :: node
     gap = deck%mesh%xy(2, node) + u(node_dof(deck%mesh, node, 2)) - contact%z_plate
     if (.not. contact%pad) return
-    if (contact%partner(1, node) == 0) then
+    if (contact%partner(1, node_dof(deck%mesh, node, 2)) == 0) then     ! beyond the pad
       gap = huge(1.0_dp)
     else
       gap = gap - contact_partner_sum(deck, contact, u, node, 2)

@@ -41,7 +41,7 @@ module visco2d_time_step
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms
   use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
-                             contact_gap, contact_partner_equations
+                             contact_gap
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, &
                                  capacitance_partners, constraint_sum
   use visco2d_pad_mesh, only: is_pad_node
@@ -83,8 +83,6 @@ module visco2d_time_step
     logical, allocatable :: supports(:), fixed(:), held(:)
     integer, allocatable :: held_rows(:)          !< the equations held by the plate
     logical, allocatable :: pad(:)                !< the pad's equations (PAD), else none
-    integer, allocatable :: partner(:, :)         !< (2, n) a held equation's pad surface equations (0: none)
-    real(dp), allocatable :: partner_weight(:, :) !< (2, n) their weights
     logical :: memory = .false., contact_on = .false.
     logical :: by_refactoring = .false.            !< tests only: contact by refactoring S~
     integer :: solver = solver_default             !< the factor's storage (SOLVER card, visco2d_factor)
@@ -135,10 +133,8 @@ contains
     allocate(stepper%trial(4, gauss_count, mesh%nelem), stepper%increments(4, gauss_count, mesh%nelem))
     if (stepper%memory) allocate(stepper%history_h(4, gauss_count, mesh%nelem), &
                                  stepper%history_length(4, gauss_count, mesh%nelem))
-    allocate(stepper%pad(n), stepper%partner(2, n), stepper%partner_weight(2, n))
+    allocate(stepper%pad(n))
     stepper%pad = .false.
-    stepper%partner = 0
-    stepper%partner_weight = 0.0_dp
     if (stepper%contact_on) call contact_create(deck, stepper%contact)
     if (stepper%contact_on .and. stepper%contact%pad) call pad_constraints(stepper, deck)
     end associate
@@ -160,19 +156,18 @@ contains
       if (is_pad_node(deck, node)) stepper%pad(node_dof(mesh, node, 1):node_dof(mesh, node, 2)) = .true.
     end do
     stepper%gravity = merge(0.0_dp, stepper%gravity, stepper%pad)
-    call contact_partner_equations(deck, stepper%contact, stepper%supports, stepper%partner, stepper%partner_weight)
     do r = 1, size(stepper%points)
-      call capacitance_partners(stepper%points(r)%capacitance, stepper%partner, stepper%partner_weight)
+      call capacitance_partners(stepper%points(r)%capacitance, stepper%contact%partner, stepper%contact%weight)
     end do
     end associate
   end subroutine pad_constraints
 
-  !> sum_k w_k x(partner_k) of equation c's constraint (0 without a pad).
+  !> sum_k w_k x(partner_k) of equation c's constraint (0 on the rigid plate).
   pure real(dp) function partner_sum(stepper, x, c) result(total)
     type(stepper_t), intent(in) :: stepper
     real(dp), intent(in) :: x(:)
     integer, intent(in) :: c
-    total = constraint_sum(stepper%partner, stepper%partner_weight, x, c)
+    total = constraint_sum(stepper%contact%partner, stepper%contact%weight, x, c)
   end function partner_sum
 
   !> Eq. [35] for row r and time step dt: S~ = (1 - alpha_f) S_h + c M, S_h
@@ -343,13 +338,7 @@ contains
                              stepper%du, stepper%dv, stepper%da)                       ! eqs. [37]-[39]
       if (stepper%contact_on) then                                      ! held on the plate: U'' = U' = 0
         call adjusted_displacements(stepper, deck, state%u, 1.0_dp)
-        if (stepper%contact%pad) then
-          call follow_pad(stepper, state)
-        else
-          stepper%du = merge(stepper%prescribed, stepper%du, stepper%held)
-          stepper%dv = merge(-state%v, stepper%dv, stepper%held)
-          stepper%da = merge(-state%a, stepper%da, stepper%held)
-        end if
+        call follow_surface(stepper, state)
       end if
       if (.not. all(ieee_is_finite(stepper%da)) .or. .not. all(ieee_is_finite(stepper%du))) then
         finite = .false.
@@ -385,21 +374,21 @@ contains
     end associate
   end subroutine contact_repeat
 
-  !> With a pad, a held body equation moves with the pad's surface under
-  !> it at the sub-step's end: U = U_surface + value, U' = U'_surface,
-  !> U'' = U''_surface (the rigid plate's U' = U'' = 0 when the pad is still).
-  subroutine follow_pad(stepper, state)
+  !> A held equation moves with the surface under it at the sub-step's end:
+  !> U = U_surface + value, U' = U'_surface, U'' = U''_surface, the surface
+  !> being the pad's under the node (partner_sum) or the fixed plate's (0:
+  !> U' = U'' = 0, U the adjusted displacement).
+  subroutine follow_surface(stepper, state)
     type(stepper_t), intent(inout) :: stepper
     type(dynamic_state_t), intent(in) :: state
     integer :: i, c
     do i = 1, size(stepper%held_rows)
       c = stepper%held_rows(i)
-      if (stepper%supports(c)) cycle
       stepper%du(c) = stepper%prescribed(c) + partner_sum(stepper, stepper%du, c)
       stepper%dv(c) = partner_sum(stepper, state%v, c) + partner_sum(stepper, stepper%dv, c) - state%v(c)
       stepper%da(c) = partner_sum(stepper, state%a, c) + partner_sum(stepper, stepper%da, c) - state%a(c)
     end do
-  end subroutine follow_pad
+  end subroutine follow_surface
 
   !> dU of eq. [34] with the held equations: the capacitance correction of
   !> `free`, or (refactoring strategy) a solve with S~ refactored.
@@ -437,13 +426,11 @@ contains
     associate (point => stepper%points(r), p => stepper%held_rows)
     inertia = solve_point_inertia(point%row, point%h, stepper%solution, state%u, state%v, state%a, start%u, start%v)
     stepper%reaction_solve = 0.0_dp
-    stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%base(p) &
-                                - stepper%mass(p)*inertia(p)
-    if (stepper%contact%pad) then                   ! on a pad: only the inertia relative to its surface
-      do i = 1, size(p)
-        stepper%reaction_solve(p(i)) = stepper%reaction_solve(p(i)) + stepper%mass(p(i))*partner_sum(stepper, inertia, p(i))
-      end do
-    end if
+    stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%base(p)
+    do i = 1, size(p)                               ! less the inertia relative to the surface under the node
+      stepper%reaction_solve(p(i)) = stepper%reaction_solve(p(i)) &
+                                     - stepper%mass(p(i))*(inertia(p(i)) - partner_sum(stepper, inertia, p(i)))
+    end do
     end associate
   end subroutine solve_point_reactions
 
