@@ -40,7 +40,7 @@ module visco2d_budget
   public :: budget_static, budget_quasistatic, budget_dynamic
   public :: sphere_mesh_counts, grid_mesh_counts
   public :: memory_limit, set_memory_limit, machine_memory, address_space_limit, parse_memory_size
-  public :: bytes_text, count_text, seconds_text
+  public :: bytes_text, count_text, seconds_text, raise_hint
   public :: max_mesh_entities, long_run_seconds
   public :: time_limit, set_time_limit
 
@@ -516,4 +516,15 @@ contains
     allocate(character(len=n) :: text)
     call get_environment_variable(name, text)
   end function environment_value
+
+  !> How to lift a memory limit, for messages.
+  pure function raise_hint(raisable) result(hint)
+    logical, intent(in) :: raisable
+    character(:), allocatable :: hint
+    if (raisable) then
+      hint = ' (a coarser mesh, or raise the limit with --max-memory SIZE or VISCO2D_MAX_MEMORY=SIZE)'
+    else
+      hint = ' (a coarser mesh)'
+    end if
+  end function raise_hint
 end module visco2d_budget

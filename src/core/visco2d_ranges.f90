@@ -22,7 +22,7 @@ module visco2d_ranges
   public :: modulus_range, density_range, rate_range, speed_range, acceleration_range, gravity_range
   public :: length_range, drop_height_range, pressure_range, force_range, time_range, time_step_range
   public :: curve_factor_range, expected_value_range, tolerance_range, bulk_shear_ratio_limit
-  public :: failure_stress_range, failure_energy_range, pad_length_range
+  public :: failure_stress_range, failure_energy_range, pad_length_range, max_coordinate
 
   !> Accepted values: lower <= value <= upper and, if floor > 0, |value| >= floor
   !> or (if zero) value = 0.
@@ -48,6 +48,9 @@ module visco2d_ranges
   type(range_t), parameter :: gravity_range = range_t(0.0_dp, 1.0e6_dp, 1.0e-6_dp, 'm/s^2')
   !> Coordinates and displacements: PLATE Z, PROBE R= Z=, FIX UR= UZ=.
   type(range_t), parameter :: length_range = range_t(-1.0e4_dp, 1.0e4_dp, 0.0_dp, 'm')
+  !> Largest |coordinate| of a node, m (NODE cards, MESH generators) (lengths beyond the scale of any
+  !> body keep every product of the solvers far from overflow).
+  real(dp), parameter :: max_coordinate = 1.0e4_dp
   !> THICKNESS, WIDTH and SIZE of PAD: from a 1 micrometre film to 100 m.
   type(range_t), parameter :: pad_length_range = range_t(1.0e-6_dp, 1.0e2_dp, 0.0_dp, 'm', .false.)
   !> HEIGHT of DROP: V = sqrt(2 g h) is divided by in the Hertz references.
