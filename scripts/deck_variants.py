@@ -1,7 +1,8 @@
 """Variants of a deck by text substitution, shared by scripts/study.py,
 scripts/bench.py and scripts/figures.py (a card value such as MESH SPHERE
 ... LEVEL= or TIME DT=, or a word of a card such as PLATE ... STICK), and
-the machine's CPU model for their reports."""
+the machine's CPU model for their reports, and the summary reader of
+scripts/study.py and scripts/integrators.py."""
 import re
 
 
@@ -56,3 +57,14 @@ def set_integrator(text, card):
         if count == 1:
             return new
     raise ValueError("expected at most one WILSON or INTEGRATOR card and a TIME card, found %d" % count)
+
+
+def read_summary(path):
+    """The key = value lines of a summary.txt as a dict of strings."""
+    values = {}
+    with open(path, encoding="utf-8", errors="replace") as handle:
+        for line in handle:
+            key, sep, value = line.partition("=")
+            if sep:
+                values[key.strip()] = value.strip()
+    return values

@@ -48,7 +48,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from deck_variants import INTEGRATOR_CARDS, cpu_model, set_card_value, set_integrator  # noqa: E402
+from deck_variants import INTEGRATOR_CARDS, cpu_model, set_card_value, set_integrator, read_summary  # noqa: E402
 
 #: alpha_m (mm) of the Table 1 impact converged in mesh and DT: the reference f* of `make study`
 #: (Richardson over levels 3-5 at DT 0.0025 ms plus the DT correction; README "What accuracy costs").
@@ -159,16 +159,6 @@ def amplification_table():
 
 
 # ---------------------------------------------------------------- the Table 1 impact
-
-def read_summary(path):
-    values = {}
-    with open(path, encoding="utf-8", errors="replace") as handle:
-        for line in handle:
-            key, sep, value = line.partition("=")
-            if sep:
-                values[key.strip()] = value.strip()
-    return values
-
 
 def read_history(path):
     with open(path, newline="") as handle:
