@@ -9,11 +9,11 @@ module visco2d_static_contact
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa
   use visco2d_deck, only: deck_t
-  use visco2d_assembly, only: node_dof, band_vector
+  use visco2d_assembly, only: node_dof, band_vector, support_mask
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
-  use visco2d_pad_mesh, only: is_pad_node
+  use visco2d_pad_mesh, only: is_pad_node, body_nodes
   use visco2d_held_system, only: held_system_t, held_system_create, held_system_solve
   use visco2d_contact, only: contact_t, contact_create, contact_count, contact_force, contact_gap, &
                              contact_pressure, contact_radius, volume_weights, contact_partner_sum, pad_compression
@@ -106,6 +106,8 @@ contains
       return
     end if
     call check_settled(deck, contact, u, reaction, error)
+    if (allocated(error)) return
+    call check_equilibrium(deck, contact, reaction, error)
     if (allocated(error)) return
     call static_record(deck, solution, record)
     call bruise_static(deck, solution%stress, solution%strain, record)
@@ -362,6 +364,45 @@ contains
       if (state(node) == node_stuck) held(node_dof(deck%mesh, node, 1)) = .true.
     end do
   end function static_held
+
+  !> The body's nodes off the plate and off its supports carry no force: their
+  !> residual K u - R (the `reaction`) is round-off, below 1e-9 of the
+  !> largest contact reaction. A solve of a singular system that passed the
+  !> factor's pivot test would fail here instead of giving a body out of
+  !> equilibrium.
+  subroutine check_equilibrium(deck, contact, reaction, error)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: reaction(:)
+    type(error_t), allocatable, intent(out) :: error
+    logical, allocatable :: supported(:)
+    real(dp) :: largest, residual
+    integer :: i, node, equation, worst
+    largest = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) largest = max(largest, maxval(abs(reaction(node_dof(deck%mesh, node, 1): &
+                                                                          node_dof(deck%mesh, node, 2)))))
+    end do
+    supported = support_mask(deck)
+    residual = 0.0_dp
+    worst = 0
+    do node = 1, body_nodes(deck)
+      if (contact%active(node)) cycle
+      do equation = node_dof(deck%mesh, node, 1), node_dof(deck%mesh, node, 2)
+        if (supported(equation)) cycle
+        if (abs(reaction(equation)) > residual) then
+          residual = abs(reaction(equation))
+          worst = node
+        end if
+      end do
+    end do
+    if (worst > 0 .and. residual > 1.0e-9_dp*largest) call set_error(error, &
+      'the static solution is not in equilibrium at node '//itoa(deck%mesh%node_id(worst))//' (r = '// &
+      gtoa(1.0e3_dp*deck%mesh%xy(1, worst))//' mm): a nodal force of '//gtoa(residual)//' where none acts, '// &
+      'against contact reactions up to '//gtoa(largest)//'; the stiffness may be singular (a body '// &
+      'free to move): fix its rigid motions', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+  end subroutine check_equilibrium
 
   !> The final static state must be one in which no free node is through the
   !> plate (beyond the tolerance) and every contact node pushes (to round-off).
