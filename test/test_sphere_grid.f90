@@ -2,8 +2,8 @@
 !>  - sizes: level 1 has the paper's 88 elements and 106 nodes on both grids,
 !>    and every level the counts the run-size estimator predicts;
 !>  - shape (contact grid, levels 1-5): every element angle in [50, 130] deg
-!>    ("well inside 90 +- 45 deg"; the generator's design gives 52.7-127.5 on
-!>    levels 1-3), every corner Jacobian positive (so the bilinear map is
+!>    ("well inside 90 +- 45 deg"; the generator's design gives 50.7-129.4 on
+!>    levels 1-5), every corner Jacobian positive (so the bilinear map is
 !>    one-to-one: det J is bilinear in the element coordinates, least at a corner);
 !>  - mass: the section's volume of revolution, summed over the elements
 !>    (Pappus, independently of the generator's sum over the surface), is
@@ -17,8 +17,9 @@
 !>    and move inward by less than their own level's outward volume offset;
 !>  - the legacy grid is the grid visco2d made before the contact grid (its
 !>    level-1 pole segment is 5.0 deg, its largest angle 152 deg);
-!>  - the card: GRID= other than CONTACT or LEGACY, and CORE= above 0.7 on the
-!>    contact grid (at 0.8 the map folds elements), are refused at their column.
+!>  - the card: GRID= other than CONTACT or LEGACY, and CORE= above 0.5 on the
+!>    contact grid (at 0.6 with GRADE=0 the map folds elements), are refused at
+!>    their column.
 program test_sphere_grid
   use visco2d_kinds, only: dp, pi
   use visco2d_mesh_generator, only: sphere_grid, sphere_grid_contact, sphere_grid_legacy, sphere_default_grade, &
@@ -46,8 +47,8 @@ program test_sphere_grid
   end do
   call check_legacy_deficit()
   call check_card('grid_unknown', 'MESH SPHERE R=0.0366 GRID=FANCY', 22, 'GRID must be CONTACT or LEGACY, got "FANCY"')
-  call check_card('core_contact_above_0.7', 'MESH SPHERE R=0.0366 CORE=0.8', 22, &
-                  'CORE must be in (0.05, 0.7] on GRID=CONTACT, got 8.0000E-01')
+  call check_card('core_contact_above_0.5', 'MESH SPHERE R=0.0366 CORE=0.6', 22, &
+                  'CORE must be in (0.05, 0.5] on GRID=CONTACT, got 6.0000E-01')
   call check_card('core_legacy_0.8_accepted', 'MESH SPHERE R=0.0366 CORE=0.8 GRID=LEGACY', 0, '')
   call test_summary('test_sphere_grid')
 

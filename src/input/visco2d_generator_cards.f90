@@ -97,8 +97,8 @@ contains
       call card_error(error, deck, card, 'CORE must be in (0.05, 0.95), got '//rtoa(core), field_column(card, 'CORE'))
       return
     end if
-    if (grid == sphere_grid_contact .and. core > 0.7_dp) then   ! at 0.8 the map folds elements near the core
-      call card_error(error, deck, card, 'CORE must be in (0.05, 0.7] on GRID=CONTACT, got '//rtoa(core), &
+    if (grid == sphere_grid_contact .and. core > 0.5_dp) then   ! at 0.6 and GRADE=0 the map folds elements
+      call card_error(error, deck, card, 'CORE must be in (0.05, 0.5] on GRID=CONTACT, got '//rtoa(core), &
                       field_column(card, 'CORE')); return
     end if
     call sphere_mesh_counts(level, nodes, elements, least_width)

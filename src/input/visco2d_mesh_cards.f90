@@ -223,7 +223,7 @@ contains
   !> MESH SPHERE R=.. [LEVEL=1] [MAT=id] [GRID=CONTACT|LEGACY] [GRADE=b] [CORE=c]
   !>   [SKINMAT=id [SKIN_LAYERS=n]] [COREMAT=id]
   !> (MAT= may be omitted when the deck has one material; GRADE and CORE
-  !> default to 2.5 and 0.2 on the contact grid, 2.35 and 0.35 on the legacy grid;
+  !> default to 4.5 and 0.15 on the contact grid, 2.35 and 0.35 on the legacy grid;
   !> SKINMAT= gives the outermost n of the 8 level-1 polar layers, n 2^(L-1)
   !> layers at level L, another material, COREMAT= the core block)
   !> MESH SPHEROID A=.. C=.. [LEVEL=1] [MAT=id] [GRID=..] [GRADE=b] [CORE=c]

@@ -24,19 +24,25 @@ module visco2d_mesh_generator
 
   !> Default surface grading exponent b per grid: theta(x) = pi (e^{bx} - 1)/(e^b - 1)
   !> at the fraction x of the surface segments from the contact pole. Contact grid:
-  !> b = 2.5, the level-1 segments grow by 28.4 % each from 4.6 deg (2.9 mm of a
-  !> 36.6 mm sphere); legacy grid: b = 2.35, 26.5 % each from 5.0 deg (3.2 mm).
-  real(dp), parameter :: sphere_default_grade(2) = [2.5_dp, 2.35_dp]
+  !> b = 4.5, the level-1 segments grow by 56.8 % each from 1.15 deg (0.73 mm of a
+  !> 36.6 mm sphere), so that 3 to 5 of the 10 level-1 segments (1 to 3 at b = 2.5)
+  !> lie inside the Hertz contact radius of a fruit drop, a/R = 0.09 .. 0.26
+  !> (doc/mesh.md gives the measurements behind the choice); legacy grid: b = 2.35, 26.5 % each from 5.0 deg
+  !> (3.2 mm).
+  real(dp), parameter :: sphere_default_grade(2) = [4.5_dp, 2.35_dp]
   !> Default radius of the core block, as a fraction of R, per grid (for the
   !> contact grid, in the reference disc before the map toward the pole).
-  real(dp), parameter :: sphere_default_core(2) = [0.2_dp, 0.35_dp]
+  !> With b = 4.5, core 0.15 and the pull a = 0.65 below, every element angle of
+  !> levels 1-5 stays within [51, 129] deg.
+  real(dp), parameter :: sphere_default_core(2) = [0.15_dp, 0.35_dp]
   !> Contact grid: the parameter a of the disc automorphism w = (z - a)/(1 - a z)
   !> that draws the grid toward the contact pole (element sizes there times
-  !> (1 - a)/(1 + a) = 1/3, at the far pole times 3).
-  real(dp), parameter :: contact_pull = 0.5_dp
+  !> (1 - a)/(1 + a) = 0.21, at the far pole times 4.7).
+  real(dp), parameter :: contact_pull = 0.65_dp
   !> Contact grid: polar angles (from the contact pole) of the core block's
   !> bottom and top corners in the reference disc, chosen so that no element
-  !> angle leaves [52, 128] deg on levels 1-5.
+  !> angle leaves [51, 129] deg on levels 1-5 with the default b, core and pull
+  !> (bottom/top 50/50, 55/45, 55/55 and 60/50 deg measured wider).
   real(dp), parameter :: core_corner_bottom = 55.0_dp*pi/180.0_dp, core_corner_top = 50.0_dp*pi/180.0_dp
   !> The validated range of a spheroid's aspect ratio C/A (`MESH SPHEROID`):
   !> on it the stretched sphere grid keeps every element angle of the default
@@ -315,8 +321,8 @@ contains
   !>     its surface point, the distance from the centre linear in the layer
   !>     fraction t, the angle blended by 1 - (1 - t)^2, so the lines across
   !>     the layers meet the surface at right angles;
-  !>  2. the disc automorphism w = (z - a)/(1 - a z), a = 0.5 (a conformal
-  !>     map: angles kept, sizes times 1/3 at the contact pole and 3 at the
+  !>  2. the disc automorphism w = (z - a)/(1 - a z), a = 0.65 (a conformal
+  !>     map: angles kept, sizes times 0.21 at the contact pole and 4.7 at the
   !>     far pole, the core drawn toward the pole); the reference surface
   !>     angles are its inverse images of the graded angles, so the surface
   !>     nodes end at theta = pi (e^{bx} - 1)/(e^b - 1);
