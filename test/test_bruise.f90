@@ -19,22 +19,39 @@
 !>    zeta = z/a, a and p0 = 3F/(2 pi a^2) from the FE's own plate force F.
 !>    Tolerance 5 %: the finite sphere loaded by its weight adds a stress of
 !>    order F/(pi R^2) ~ 2.5 % of the maximum; the 2 x 2 Gauss points sample
-!>    a flat peak (measured on the default contact grid: -2.4 % at level 4,
-!>    -1.9 % at level 3; legacy grid -3.0 %, -2.4 %). The peak is flat, so
+!>    a flat peak (measured on the default contact grid, GRADE 4.5: -2.86 %
+!>    at level 4, -2.17 % at level 3; on GRADE 2.5 -2.4 %, -1.9 %; legacy
+!>    grid -3.0 %, -2.4 %). The peak is flat, so
 !>    the depth of its maximum is set by the Gauss rows: it is within the
 !>    height h of the axis element it lies in, plus 5 % of Hertz's depth for
 !>    the finite sphere's offset (the 5 % of the value above). Measured on
-!>    the contact grid, levels 2-5: 1.98, 2.06, 2.10, 2.03 mm against Hertz's
-!>    1.93 mm (+2.9, +7.1, +9.2, +5.3 %; h there 0.74, 0.38, 0.19, 0.093 mm:
-!>    the offset does not shrink with h below ~0.1 mm, level 5 run offline);
+!>    the default grid, levels 2-5: 2.35, 2.13, 2.05, 2.07 mm against Hertz's
+!>    1.93 mm (+21.8, +10.4, +6.2, +7.3 %; h at level 4 0.135 mm, level 5
+!>    run offline); on GRADE 2.5 1.98, 2.06, 2.10, 2.03 mm (h 0.74, 0.38,
+!>    0.19, 0.093 mm: the offset does not shrink with h below ~0.1 mm);
 !>    legacy grid level 4: 2.15 mm, h 0.37 mm. (The check used the pole
 !>    element's height, the same as h on the uniform legacy grid; on the
 !>    graded contact grid the pole element, 0.17 mm at level 4, is smaller.)
+!>    The maximum is Hertz's, on the axis: the peak is flat in r too (Hertz's
+!>    largest max shear at r = 0.068 a, 0.1 a, 0.15 a is 0.11, 0.23, 0.52 %
+!>    below the axis value, Johnson eq. 3.44 evaluated offline), flatter than
+!>    the Gauss points sample it (at level 4 adjacent Gauss rows differ by
+!>    0.6-0.8 %, points of one row by 0.1-0.3 %), so which column holds the
+!>    single highest point is sampling: on the default grid (GRADE 4.5) it is
+!>    at r = 0.271 mm = 0.068 a, in the second element column (axis elements
+!>    0.15 mm wide there). Checked instead of its r: the axis elements' own
+!>    Gauss points reach the maximum to 0.5 % (measured -0.07 %, at r =
+!>    0.120 mm); a maximum away from the axis, e.g. at the surface near the
+!>    contact edge (STICK), fails it. (The check was r < the pole element's
+!>    height, 0.17 mm on the GRADE 2.5 grid; on the default grid it is
+!>    0.11 mm, and the r of the single highest point is not a property of
+!>    the field.)
 !>    The bruise volume (threshold 0.3 MPa; a sum of Gauss-point volumes
 !>    above it) converges with the mesh level (h halves per level): measured
-!>    on the contact grid 0.1334, 0.1100, 0.1170 cm^3 at levels 2, 3, 4 and
-!>    0.1178 at level 5 (offline): level 2 overshoots, then it approaches
-!>    from below, successive differences in ratio 3.3 and 8.6. On the legacy
+!>    on the default grid 0.1035, 0.1174, 0.1170 cm^3 at levels 2, 3, 4 and
+!>    0.1175 at level 5 (offline): levels 2-4's successive differences in
+!>    ratio -35.5, levels 3-5 within 0.4 % of each other (on GRADE 2.5
+!>    0.1334, 0.1100, 0.1170, 0.1178: ratios 3.3 and 8.6). On the legacy
 !>    grid it grew, 0.0503, 0.0950, 0.1058 (ratio 4.2), and "grows with the
 !>    level" was checked too; it is not a property of the contact grid.
 !>    Checked: the ratio of successive differences, in size, exceeds 2
@@ -230,7 +247,7 @@ contains
     type(record_t) :: record
     type(deck_t) :: deck
     character(len=deck_line_length), allocatable :: deck_lines(:)
-    real(dp) :: ratio, zeta, force, a, p0, tau, depth, h
+    real(dp) :: ratio, zeta, force, a, p0, tau, depth, h, axis_peak
     call hertz_maximum(nu, ratio, zeta)
     print '(a, f8.5, a, f8.5, a)', '# Hertz, nu = 0.3: max shear ', ratio, ' p0 at depth ', zeta, ' a'
     call check('hertz_textbook_0.31_p0_at_0.48_a', abs(ratio - 0.31_dp) < 0.005_dp .and. abs(zeta - 0.48_dp) < 0.01_dp, &
@@ -253,9 +270,14 @@ contains
     call check_close('hertz_max_shear_envelope_within_5_percent', tau, ratio*p0, 0.05_dp)
     call check('hertz_max_shear_depth_within_its_element_and_5_percent', abs(depth - zeta*a) <= h + 0.05_dp*zeta*a, &
                'depth '//exact_text(depth)//' m, Hertz '//exact_text(zeta*a)//' m, h '//exact_text(h)//' m')
-    call check('hertz_max_shear_near_axis', 1.0e-3_dp*summary_real(record, 'envelope_max_shear_r_mm') < &
-               pole_element_height(deck), &
-               'r of the maximum is not within an element of the axis')
+    axis_peak = axis_column_maximum(deck, field(record, 'max_shear_envelope'))
+    print '(a, f7.4, a, f6.3, a, f7.3, a)', '# Hertz: r of the FE maximum ', &
+      summary_real(record, 'envelope_max_shear_r_mm'), ' mm (', &
+      1.0e-3_dp*summary_real(record, 'envelope_max_shear_r_mm')/a, ' a); the axis elements reach it to ', &
+      100*(axis_peak/tau - 1), ' %'
+    call check('hertz_max_shear_on_the_axis_to_0.5_percent', axis_peak >= (1.0_dp - 0.005_dp)*tau, &
+               'axis elements '//exact_text(axis_peak)//' Pa, maximum '//exact_text(tau)//' Pa at r = '// &
+               exact_text(summary_real(record, 'envelope_max_shear_r_mm'))//' mm')
   end subroutine hertz_indentation
 
   !> The Hertz deck's bruise volume at levels 2, 3, 4: the observed order.
@@ -297,15 +319,18 @@ contains
     h = minval(z, z > below) - below
   end function axis_element_height
 
-  !> Height of the element at the pole: the two lowest nodes on the axis.
-  real(dp) function pole_element_height(deck) result(h)
+  !> Largest Gauss-point value of `gauss` (4, elements) in the elements with
+  !> a side on the axis (two nodes at r = 0).
+  real(dp) function axis_column_maximum(deck, gauss) result(peak)
     type(deck_t), intent(in) :: deck
-    real(dp), allocatable :: z(:)
-    real(dp) :: lowest
-    z = pack(deck%mesh%xy(2, :), abs(deck%mesh%xy(1, :)) < 1.0e-12_dp)
-    lowest = minval(z)
-    h = minval(z, z > lowest) - lowest
-  end function pole_element_height
+    real(dp), intent(in) :: gauss(:, :)
+    integer :: e
+    peak = -huge(1.0_dp)
+    do e = 1, deck%mesh%nelem
+      if (count(abs(deck%mesh%xy(1, deck%mesh%connectivity(:, e))) < 1.0e-12_dp) >= 2) &
+        peak = max(peak, maxval(gauss(:, e)))
+    end do
+  end function axis_column_maximum
 
   !> The impact sphere (level 2) at speed V with a MAXSHEAR threshold of 0.2 MPa (and 0.3 MPa).
   subroutine dynamic_impacts()

@@ -7,7 +7,9 @@
 !> FIX TOP Z: u_z(top pole (0, z_top)) = 0, so
 !>   u_r = -k r,   u_z = -k (z - z_top)
 !> (z_top = 2R on the legacy grid; the contact grid moves its top pole out
-!> a little to give the polygon the sphere's volume).
+!> to give the polygon the sphere's volume, by about the sagitta
+!> R (1 - cos(D/2)) of the chord of its far-pole surface segment of angle D:
+!> see the check of the top pole below).
 !> The displacement is linear, hence in the bilinear element space, and the
 !> straight-sided faceted surface carries exactly the traction -p n of the
 !> hydrostatic state, so the discrete solution is exact up to round-off on
@@ -22,12 +24,14 @@
 !> consistency defect (load, axis term, quadrature) gives errors of O(1e-3)
 !> or more on these coarse meshes.
 program test_sphere_pressure
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, pi
+  use visco2d_mesh_generator, only: sphere_grid_contact, sphere_default_grade
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_element, only: gauss_count
   use visco2d_testing, only: check, test_summary
+  use visco2d_strings, only: rtoa
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks'
@@ -49,7 +53,7 @@ contains
     type(error_t), allocatable :: error
     character(:), allocatable :: file, tag
     character(len=8) :: buffer
-    real(dp) :: k, exact(2), u_error, u_max, stress_error, top_uz
+    real(dp) :: k, exact(2), u_error, u_max, stress_error, top_uz, grade, far_segment, sagitta, outward
     integer :: unit, f, e, gp, node, other, top
     logical :: distinct
 
@@ -117,10 +121,27 @@ contains
     end do
     print '(a, es10.3)', '  '//tag//': max |u - u_exact| / max |u_exact| at nodes        = ', u_error/u_max
     call check(tag//': u = -k (x - x_c) + translation at every node (1e-8 of max |u|)', u_error <= 1.0e-8_dp*u_max)
-    ! The top pole is the FIX TOP Z node (0, z_top), z_top within 10 % of 2R (the contact grid: 7.6 % at level 1): u_z = 0 exactly (prescribed).
+    ! The top pole is the FIX TOP Z node (0, z_top), u_z = 0 exactly (prescribed),
+    ! outside the sphere by about the sagitta of its own surface chord: the
+    ! volume restoration fills the lunes between the chords and the circle,
+    ! moving each surface node out by the order of its chords' sagitta, most
+    ! at the far pole. The far-pole segment's angle D comes from the grading
+    ! theta(x) = pi (e^{bx} - 1)/(e^b - 1) at x = 1 - 1/(10 f). Measured
+    ! (z_top - 2R)/sagitta: 1.15, 0.97, 0.95 at levels 1-3 (default GRADE 4.5:
+    ! D = 66.0, 36.7, 19.4 deg, z_top - 2R = 18.6, 4.9, 1.35 % of R); on the
+    ! GRADE 2.5 grid 1.07 at level 1 (D = 43.4 deg, 7.6 % of R), where the
+    ! check was |z_top - 2R| <= 0.1 R. Asked: 0 <= z_top - 2R <= 1.5 sagittas.
     top_uz = solution%displacement(2, top)
-    call check(tag//': the top pole is on the axis near (0, 2R) and has u_z = 0', mesh%xy(1, top) == 0.0_dp .and. &
-               abs(mesh%xy(2, top) - 2.0_dp*radius) <= 0.1_dp*radius .and. top_uz == 0.0_dp)
+    grade = sphere_default_grade(sphere_grid_contact)
+    far_segment = pi*(exp(grade) - exp(grade*(1.0_dp - 1.0_dp/(10*f))))/(exp(grade) - 1.0_dp)
+    sagitta = radius*(1.0_dp - cos(0.5_dp*far_segment))
+    outward = mesh%xy(2, top) - 2.0_dp*radius
+    print '(a, f6.2, a, f7.4, a, f6.3)', '  '//tag//': far-pole segment ', far_segment*180.0_dp/pi, &
+      ' deg, (z_top - 2R)/R = ', outward/radius, ', over its chord''s sagitta ', outward/sagitta
+    call check(tag//': the top pole is on the axis, outside (0, 2R) by at most 1.5 sagittas, and has u_z = 0', &
+               mesh%xy(1, top) == 0.0_dp .and. outward >= 0.0_dp .and. outward <= 1.5_dp*sagitta .and. &
+               top_uz == 0.0_dp, '(z_top - 2R)/R = '//rtoa(outward/radius)//', sagitta/R = '// &
+               rtoa(sagitta/radius)//', u_z = '//rtoa(top_uz))
     ! Global equilibrium: the pressure on a closed surface has zero resultant,
     ! so the one support carries nothing (round-off: 1e-8 of p R^2, the scale of
     ! the nodal forces per radian).

@@ -46,7 +46,7 @@ module visco2d_mesh_generator
   real(dp), parameter :: core_corner_bottom = 55.0_dp*pi/180.0_dp, core_corner_top = 50.0_dp*pi/180.0_dp
   !> The validated range of a spheroid's aspect ratio C/A (`MESH SPHEROID`):
   !> on it the stretched sphere grid keeps every element angle of the default
-  !> contact grid within [35, 145] deg on levels 1-5 (test_spheroid).
+  !> contact grid within [35.2, 145.3] deg on levels 1-5 (doc/mesh.md, test_spheroid).
   real(dp), parameter :: spheroid_least_ratio = 0.6_dp, spheroid_largest_ratio = 1.6_dp
 
 contains
