@@ -18,8 +18,9 @@
 !>    is 1.0986 at nu = 0, 1.0468 at nu = 0.219, 1.0028 at nu = 0.45 and 1 at
 !>    nu = 1/2. An incremental no-slip contact stiffens by exactly that
 !>    bonded increment, so this is the "known small amount". The sphere's
-!>    patch (B-bar elements, nodes within 2.5 mm of the pole; the default
-!>    contact grid) converges to it with the mesh.
+!>    patch (B-bar elements, the same nodes on every level: those within
+!>    1.9 mm of the pole; the default contact grid) converges with the mesh,
+!>    to the limit the standard element converges to, near that value.
 !> 3. Regression decks: a flat block that the one-shot STICK iteration could
 !>    not settle; a block in which a stuck node freed at zero force would go
 !>    through the plate and so slides; a disc resting flat on the plate
@@ -45,6 +46,8 @@ program test_contact_stick
   real(dp), parameter :: young = 18.11e6_dp, poisson = 0.219_dp, radius = 0.0366_dp
   real(dp), parameter :: modulus = young/(1.0_dp - poisson**2)
   real(dp), parameter :: loads(3) = [50.0_dp, 100.0_dp, 200.0_dp]
+  !> Section 2's patch: the nodes with r up to this (m), the same on levels 2-6.
+  real(dp), parameter :: patch_radius = 1.9e-3_dp
   real(dp), parameter :: absent = -huge(1.0_dp)   ! an absent summary value: nint and the table stay NaN-free
   integer :: level, k
 
@@ -64,7 +67,7 @@ program test_contact_stick
   end do
 
   print '(a)', ''
-  print '(a)', '## 2. Bonded / frictionless stiffness of one contact patch (nodes within 2.5 mm of the pole)'
+  print '(a)', '## 2. Bonded / frictionless stiffness of one contact patch (nodes within 1.9 mm of the pole)'
   print '(a)', ''
   print '(a)', '| formulation | level | nu | patch nodes | k_bonded/k_frictionless | half-space '// &
                'ln(3-4nu)(1-nu)/(1-2nu) | share of the half-space excess |'
@@ -225,7 +228,7 @@ contains
   !> Section 2.
   subroutine patch_ratios()
     real(dp), parameter :: nus(3) = [0.0_dp, 0.219_dp, 0.45_dp]
-    real(dp) :: ratio(3, 2:4), exact, standard
+    real(dp) :: ratio(3, 2:4), standard(2:4), gap(2:4), exact
     integer :: i, level
     do i = 1, size(nus)
       exact = log(3.0_dp - 4.0_dp*nus(i))*(1.0_dp - nus(i))/(1.0_dp - 2.0_dp*nus(i))
@@ -234,40 +237,62 @@ contains
         call check('patch level '//itoa(level)//' nu = '//exact_text(nus(i))//': bonded is stiffer (exact)', &
                    ratio(i, level) > 1.0_dp, exact_text(ratio(i, level)))
       end do
-      ! To the half-space value with the mesh (measured, B-bar, 2.5 mm patch,
-      ! share of the excess on levels 2, 3, 4): on the contact grid 1.060,
-      ! 1.077, 1.079 at nu = 0 and 1.145, 1.046, 1.027 at nu = 0.219, on the
-      ! legacy grid 0.60, 0.82, 0.93 (1.00 at level 5) and 0.47, 0.64, 0.78.
-      ! The legacy grid approached from below and the check was "level 4
-      ! nearer than level 3"; the contact grid's ratio has converged by level
-      ! 3 (at nu = 0 level 4 is 1.5e-4 further than level 3, 0.2 % of the
-      ! excess), slightly above the half-space value, where the finite
-      ! sphere's own compliance would put it below: a discretization error of
-      ! the two punch stiffnesses of 0.7 % (1.1064 against 1.0986). Checked:
-      ! it converges (the level 3 -> 4 change at most half the 2 -> 3 change,
-      ! p >= 1 as in test_contact_dynamic; measured 1.5e-4 after 1.7e-3 at
-      ! nu = 0, 8.6e-4 after 4.6e-3 at nu = 0.219), into 70-110 % of the excess.
+      ! The patch is the same nodes on every level, r <= 1.885 mm (a/R =
+      ! 0.052): the level-2 grid's first five surface nodes, where the next
+      ! node lies at 2.685 mm (level 2), 2.262 (3), 2.068 (4), 1.975 (5),
+      ! 1.929 (6). (It was the nodes within 2.5 mm, whose edge moved with the
+      ! level: 1.885, 2.262, 2.467, 2.467 mm on levels 2-5 here, 1.369,
+      ! 2.119, 2.119, 2.314 mm on the GRADE=2.5 grid, so the level changes
+      ! mixed the patch's size with the mesh.)
+      ! Convergence, measured offline on levels 2-6 (B-bar; standard):
+      ! nu = 0: 1.10435, 1.10540, 1.10593, 1.10610, 1.10610; 1.09856,
+      ! 1.10279, 1.10468, 1.10547, 1.10577. nu = 0.219: 1.04844, 1.04812,
+      ! 1.04794, 1.04777, 1.04761; 1.04311, 1.04578, 1.04686, 1.04724,
+      ! 1.04734. The two elements tend to one limit, 1.1061 and about 1.0474,
+      ! but at nu = 0.219 B-bar only as h^0.5 (its distance from 1.0474 falls
+      ! by 0.59-0.76 per level; the standard element's changes by 0.26-0.40),
+      ! so "the level 3 -> 4 change at most half the 2 -> 3 change" (p >= 1,
+      ! as for alpha_m in test_contact_dynamic) is not a property of B-bar
+      ! here: with the 2.5 mm patch it read 1.04844, 1.04797, 1.04760 (0.78),
+      ! with this one 0.56 (and 0.94 from level 4 to 5). Checked instead, for
+      ! each: the gap between the two elements shrinks with every level
+      ! (measured 5.79e-3, 2.61e-3, 1.25e-3 at nu = 0; 5.33e-3, 2.34e-3,
+      ! 1.08e-3 at nu = 0.219), and B-bar's own changes shrink (1.05e-3 then
+      ! 5.3e-4; 3.2e-4 then 1.8e-4).
+      ! Its value: the limit lies above the half-space excess at nu = 0 by
+      ! 7.6 % of it, a finite-patch effect (it grows with the patch: B-bar
+      ! at level 6 gives 1.076 of the excess at 1.885 mm, 1.102 at 2.685 mm),
+      ! by about 1 % at nu = 0.219; level 4 must hold 70-110 % of it
+      ! (measured 1.074 and 1.023; on the GRADE=2.5 grid with the 2.5 mm
+      ! patch 1.079 and 1.027, on the legacy grid 0.93 and 0.78).
       if (nus(i) < 0.3_dp) then
-        call check('patch nu = '//exact_text(nus(i))//': converges (level 3 -> 4 change <= 1/2 the 2 -> 3 change)', &
-                   abs(ratio(i, 4) - ratio(i, 3)) <= 0.5_dp*abs(ratio(i, 3) - ratio(i, 2)), &
-                   exact_text(ratio(i, 2))//', '//exact_text(ratio(i, 3))//', '//exact_text(ratio(i, 4)))
+        do level = 2, 4
+          standard(level) = patch_ratio(level, nus(i), 'STANDARD')
+        end do
+        gap = abs(ratio(i, :) - standard)
+        call check('patch nu = '//exact_text(nus(i))//': converges (B-bar and standard gap shrinks per level, '// &
+                   'B-bar''s changes shrink)', gap(3) < gap(2) .and. gap(4) < gap(3) .and. &
+                   abs(ratio(i, 4) - ratio(i, 3)) < abs(ratio(i, 3) - ratio(i, 2)), &
+                   'B-bar '//exact_text(ratio(i, 2))//', '//exact_text(ratio(i, 3))//', '// &
+                   exact_text(ratio(i, 4))//'; gaps '//exact_text(gap(2))//', '//exact_text(gap(3))//', '// &
+                   exact_text(gap(4)))
         call check('patch nu = '//exact_text(nus(i))//': level 4 has 70-110 % of the half-space excess', &
                    (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) > 0.7_dp .and. &
                    (ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp) < 1.1_dp, &
                    exact_text((ratio(i, 4) - 1.0_dp)/(exact - 1.0_dp)))
       else
         ! Near incompressibility the difference vanishes (0.0028 on a half-space;
-        ! B-bar, level 4: 0.0016; the standard element, printed, 0.0012 on the
+        ! B-bar, level 4: 0.0016; the standard element, printed, 0.0014 on the
         ! contact grid, where on the legacy grid it locked under the extra
         ! constraints and showed 0.0127).
         call check('patch nu = 0.45: bonded and frictionless within 0.5 % (B-bar, level 4)', &
                    ratio(i, 4) - 1.0_dp < 0.005_dp, exact_text(ratio(i, 4)))
-        standard = patch_ratio(4, nus(i), 'STANDARD')
+        standard(4) = patch_ratio(4, nus(i), 'STANDARD')
       end if
     end do
   end subroutine patch_ratios
 
-  !> k_bonded / k_frictionless of the patch of nodes within 2.5 mm of the pole
+  !> k_bonded / k_frictionless of the patch of nodes within patch_radius of the pole
   !> held on the plate (u_z, and u_r when bonded), the sphere loaded by gravity:
   !> k = M g / (d alpha), alpha the volume-mean u_z.
   real(dp) function patch_ratio(level, nu, formulation) result(ratio)
@@ -302,7 +327,7 @@ contains
       nodes = 0
       do i = 1, size(contact%candidates)
         node = contact%candidates(i)
-        if (deck%mesh%xy(1, node) > 2.5e-3_dp .or. deck%mesh%xy(2, node) > 0.5_dp*radius) cycle
+        if (deck%mesh%xy(1, node) > patch_radius .or. deck%mesh%xy(2, node) > 0.5_dp*radius) cycle
         held(node_dof(deck%mesh, node, 2)) = .true.
         if (bonded == 1) held(node_dof(deck%mesh, node, 1)) = .true.
         nodes = nodes + 1

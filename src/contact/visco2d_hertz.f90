@@ -7,6 +7,7 @@ module visco2d_hertz
   use visco2d_strings, only: gtoa
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, record_put, record_put_real
+  use visco2d_mesh, only: pole_curvature_radius
   implicit none
   private
 
@@ -48,7 +49,10 @@ contains
   !> The Hertz reference of an impact at `speed` of a body of `mass`, in the
   !> summary (hertz_* keys), when the body is a generated sphere (MESH SPHERE)
   !> of one material: E and nu are the material's instantaneous values (its
-  !> elastic constants for an elastic material), R = half the pole-to-pole height.
+  !> elastic constants for an elastic material), R the mesh's radius of
+  !> curvature at the contact pole (`pole_curvature_radius`: the sphere's
+  !> radius on both grids; half the height is not, the contact grid's far
+  !> pole being moved out to restore the volume).
   !> Left out, with the key hertz_reference saying why, when it would mean
   !> nothing: a PAD under the body; V not small against the bar wave speed sqrt(E/rho) (Hertz's
   !> theory is quasi-static; this also keeps V^2 from overflowing), a value
@@ -73,7 +77,8 @@ contains
       call record_put(record, 'hertz_reference', 'none: the body touched the plate at rest (V = 0)')
       return
     end if
-    radius = 0.5_dp*(maxval(deck%mesh%xy(2, :)) - minval(deck%mesh%xy(2, :)))
+    radius = pole_curvature_radius(deck%mesh, deck%mesh%nelem)
+    if (.not. (radius > 0.0_dp)) return
     associate (material => deck%materials(1))
     wave_speed = sqrt(material%young/max(material%density, tiny(1.0_dp)))
     if (.not. abs(speed) < wave_speed) then

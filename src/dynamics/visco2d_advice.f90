@@ -7,7 +7,8 @@
 !> - the Hertz contact duration of an impact on the plate, eqs. [43], [44]:
 !>   t_c = 2 x 1.4716 alpha_m/V with alpha_m = (15 M V^2/(16 E* sqrt(R)))^(2/5),
 !>   E* = E/(1 - nu^2) (instantaneous constants), for a generated sphere of one
-!>   material (MESH SPHERE: R is known) moving at V toward the plate;
+!>   material (MESH SPHERE) moving at V toward the plate, R its radius of
+!>   curvature at the contact pole (`pole_curvature_radius`), M its mass;
 !> - the wave transit of the pole element (the element at the point of first
 !>   contact): its smallest side over the dilatational wave speed
 !>   c_p = sqrt((K + 4 G/3)/rho) (instantaneous moduli);
@@ -40,6 +41,7 @@ module visco2d_advice
   use visco2d_record, only: record_t, record_warn
   use visco2d_contact, only: hertz_impact, hertz_t
   use visco2d_pad_mesh, only: body_nodes, body_elements
+  use visco2d_mesh, only: pole_curvature_radius
   implicit none
   private
 
@@ -99,7 +101,8 @@ contains
     speed = -velocity(2)                                 ! toward the plate below
     end associate
     if (.not. (speed > 0.0_dp)) return
-    radius = 0.5_dp*height
+    radius = pole_curvature_radius(deck%mesh, body_elements(deck))
+    if (.not. (radius > 0.0_dp)) return
     associate (material => deck%materials(1))
     hertz = hertz_impact(material%young, material%poisson, radius, body_mass(deck), speed)
     end associate
@@ -276,7 +279,8 @@ contains
       'and densifies); its results are only indicative', file=deck%cards%file, line=deck%pad%line, card='PAD')
     if (deck%plate%line == 0 .or. .not. allocated(deck%mesh%source)) return
     if (deck%mesh%source /= 'SPHERE') return
-    radius = 0.5_dp*(maxval(deck%mesh%xy(2, :body_nodes(deck))) - minval(deck%mesh%xy(2, :body_nodes(deck))))
+    radius = pole_curvature_radius(deck%mesh, body_elements(deck))
+    if (.not. (radius > 0.0_dp)) return
     do k = 1, record%nsummary
       if (trim(record%summary(k)%key) /= 'alpha_max_mm' .and. trim(record%summary(k)%key) /= 'alpha_largest_mm') cycle
       read(record%summary(k)%value, *, iostat=ios) alpha

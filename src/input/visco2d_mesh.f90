@@ -13,7 +13,7 @@ module visco2d_mesh
   private
 
   public :: mesh_t, name_length
-  public :: node_set, edge_set_code, node_index, side_nodes, boundary_sides
+  public :: node_set, edge_set_code, node_index, side_nodes, boundary_sides, pole_curvature_radius
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
@@ -87,6 +87,56 @@ contains
     end do
     edges = edges(:, 1:nedge)
   end function boundary_sides
+
+  !> The radius of curvature, m, of the boundary of elements 1..last (a body
+  !> of revolution) at its contact pole, the lowest boundary node on the axis:
+  !> the circle centred on the axis through the pole and its neighbour along
+  !> the boundary, R = (r^2 + dz^2)/(2 dz). This is the R of Hertz's contact,
+  !> eqs. [43]-[45]: for a generated sphere its radius on both grids and
+  !> every level (the pole nodes lie on the sphere: +0.005 % at level 1 of the
+  !> contact grid), for a spheroid A^2/C to O(theta^2) (theta the first
+  !> segment's angle, 1.15 deg at level 1), for an outline its spline's
+  !> (measured on inputs/outline_apple.inp: -0.50 % at level 1, -0.04 % at
+  !> level 4). Not half the body's height, nor the radius of its volume: the
+  !> contact grid moves its far-pole nodes out to restore the volume (6.8 mm
+  !> on a 36.6 mm sphere at level 1), and a spheroid's pole curvature is not
+  !> its mean radius. 0 when there is no pole node or the boundary is not
+  !> convex there (dz <= 0: no Hertz contact).
+  function pole_curvature_radius(mesh, last) result(radius)
+    type(mesh_t), intent(in) :: mesh
+    integer, intent(in) :: last
+    real(dp) :: radius
+    integer, allocatable :: edges(:, :)
+    real(dp) :: tol, rise, run
+    integer :: k, pole, side
+    radius = 0.0_dp
+    edges = boundary_sides(mesh, last)
+    tol = geometry_tolerance*mesh%size
+    pole = 0
+    do k = 1, size(edges, 2)
+      do side = 1, 2
+        associate (node => edges(side, k))
+        if (abs(mesh%xy(1, node)) > tol) cycle
+        if (pole == 0) then
+          pole = node
+        else if (mesh%xy(2, node) < mesh%xy(2, pole)) then
+          pole = node
+        end if
+        end associate
+      end do
+    end do
+    if (pole == 0) return
+    do k = 1, size(edges, 2)
+      if (all(edges(:, k) /= pole)) cycle
+      associate (other => sum(edges(:, k)) - pole)
+      run = abs(mesh%xy(1, other))
+      rise = mesh%xy(2, other) - mesh%xy(2, pole)
+      end associate
+      if (run <= tol .or. rise <= tol) cycle     ! the side along the axis, or not convex
+      radius = (run**2 + rise**2)/(2.0_dp*rise)
+      return
+    end do
+  end function pole_curvature_radius
 
   !> Edge-set code of a name (AXIS, INNER, OUTER, BOTTOM, TOP), 0 if unknown.
   pure integer function edge_set_code(name) result(code)
