@@ -48,7 +48,7 @@
 !> Every number is printed in markdown tables. Decks are written to
 !> build/test-tmp/test_pad/.
 program test_pad
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, pi
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
@@ -427,8 +427,27 @@ contains
     call solve_static_contact(deck, record, error)
     call check('static lift-off: refused', allocated(error))
     if (allocated(error)) call check_text_contains('static lift-off: says why, at the PAD card', error_text(error), &
-                                                   ':10: PAD: the body has lifted off the pad at its pole')
+                                                   ':10: PAD: the body has lifted off the pad, which alone holds it')
+    call static_ring_contact()
   end subroutine static_lift_off
+
+  !> A body on the pad alone whose pole lifts while a ring of nodes still
+  !> holds it (a stiff cover on soft foam, STICK: the cover bridges under the
+  !> pole): the anchor moves to the held node nearest the axis and the run
+  !> goes on. The pad must then carry the body's weight, M g, to round-off,
+  !> and the solution pass solve_static_contact's equilibrium check.
+  subroutine static_ring_contact()
+    type(record_t) :: record
+    real(dp), parameter :: mass = 4.0_dp/3.0_dp*pi*0.03_dp**3*900.0_dp, gravity = 500.0_dp
+    call run_static('static_ring_contact', [character(len=line_length) :: 'ANALYSIS STATIC', &
+                    'GEOMETRY AXISYMMETRIC', 'MATERIAL flesh ELASTIC E=5e6 NU=0.3 RHO=900', &
+                    'MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100', 'MATERIAL belt ELASTIC E=20e6 NU=0.45 RHO=1200', &
+                    'MESH SPHERE R=0.03 LEVEL=1 MAT=flesh', 'PLATE Z=0 STICK', &
+                    'PAD THICKNESS=0.008 MAT=foam COVER=0.001 COVERMAT=belt WIDTH=0.04 SIZE=0.002 BOTTOM=SLIP', &
+                    'GRAVITY G=500'], record)
+    call check_close('static, the pole lifted: the pad carries the weight M g', summary_real(record, 'force_N'), &
+                     mass*gravity, 1.0e-9_dp)
+  end subroutine static_ring_contact
 
   !> Hertz's static approach of a sphere of radius `radius` pressed with
   !> `force` on a half-space of plane-strain modulus `modulus`: alpha =

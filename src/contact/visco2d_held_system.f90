@@ -40,8 +40,9 @@ module visco2d_held_system
     integer, allocatable :: partner(:, :)        !< (2, n) the constraints' pad equations
     real(dp), allocatable :: weight(:, :)        !< (2, n) and their weights
     !> A body held by the pad alone (its rigid z translation free in S): its
-    !> pole's u_z is pinned in the factor (the anchor), the translation
-    !> `rigid` (1 on the body's z equations) is an unknown t, and the body's
+    !> pole's u_z (or, once the pole lifts, another contact node's) is pinned
+    !> in the factor (the anchor), the translation `rigid` (1 on the body's z
+    !> equations) is an unknown t, and the body's
     !> equilibrium in z closes the system (anchored_solve).
     integer :: anchor = 0                        !< the anchor equation (0: the body has supports of its own)
     real(dp), allocatable :: rigid(:)            !< (n) the body's rigid z translation
@@ -75,7 +76,7 @@ contains
     ! sphere grid, CHOLMOD's last pivot of the free body passed it, and the
     ! solve of the singular system gave a body out of equilibrium).
     if (floats(deck, system%supports)) then
-      call anchor_body(deck, contact, system, info)
+      call anchor_body(deck, system, node_dof(deck%mesh, contact%pole, 2), info)
     else
       call factor_compute(system%factor, system%stiffness, system%supports, info, solver_of_card(deck%solver))
     end if
@@ -101,19 +102,21 @@ contains
     end do
   end function floats
 
-  !> The body is free (its supports leave it a rigid z translation): pin its
-  !> pole's u_z (the anchor) and refactor; the translation and the anchor
-  !> constraint's pad column for anchored_solve. info > 0: still singular.
-  subroutine anchor_body(deck, contact, system, info)
+  !> The body is free (its supports leave it a rigid z translation): pin the
+  !> u_z `equation` of one of its contact nodes (the anchor; first the pole)
+  !> and refactor; the translation and the anchor constraint's pad column for
+  !> anchored_solve. info > 0: still singular.
+  subroutine anchor_body(deck, system, equation, info)
     type(deck_t), intent(in) :: deck
-    type(contact_t), intent(in) :: contact
     type(held_system_t), intent(inout) :: system
+    integer, intent(in) :: equation
     integer, intent(out) :: info
     integer :: node, k
-    system%anchor = node_dof(deck%mesh, contact%pole, 2)
+    system%anchor = equation
     call factor_compute(system%factor, system%stiffness, system%supports .or. equation_mask(system%anchor), info, &
                         solver_of_card(deck%solver))
     if (info > 0) return
+    if (allocated(system%rigid)) deallocate(system%rigid, system%anchor_column)
     allocate(system%rigid(size(system%load)), system%anchor_column(size(system%load)))
     system%rigid = 0.0_dp
     do node = 1, body_nodes(deck)
@@ -188,11 +191,8 @@ contains
     logical, allocatable :: free_held(:)
     free_held = held .and. .not. system%supports
     if (system%anchor > 0) then
-      if (.not. held(system%anchor)) then
-        call set_error(error, 'the body has lifted off the pad at its pole, the one point that holds a body '// &
-          'resting on the pad alone: it would be free', file=deck%cards%file, line=deck%pad%line, card='PAD')
-        return
-      end if
+      if (.not. held(system%anchor)) call move_anchor(deck, system, held, error)
+      if (allocated(error)) return
       free_held(system%anchor) = .false.
     end if
     call capacitance_set(system%capacitance, system%factor, free_held, info)
@@ -219,8 +219,45 @@ contains
     reaction_base = band_multiply(system%stiffness, base)
   end subroutine pad_system_solve
 
-  !> u_0 and u_1 of a body resting on the pad alone. With the anchor (the
-  !> pole's u_z) pinned, u = w + Z lambda + z_a lambda_a + t phi, where w =
+  !> The anchor's node has left the pad (a body resting on the pad alone whose
+  !> pole lifts, e.g. under a stiff cover with STICK): pin instead the held
+  !> body z equation of the node nearest the axis, refactor, and start the
+  !> capacitance system again on the new factor. No held body z equation:
+  !> the body would be free, an error at the PAD card.
+  subroutine move_anchor(deck, system, held, error)
+    type(deck_t), intent(in) :: deck
+    type(held_system_t), intent(inout) :: system
+    logical, intent(in) :: held(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer :: node, equation, chosen, info
+    real(dp) :: nearest
+    chosen = 0
+    nearest = huge(1.0_dp)
+    do node = 1, body_nodes(deck)
+      equation = node_dof(deck%mesh, node, 2)
+      if (.not. held(equation) .or. system%supports(equation)) cycle
+      if (abs(deck%mesh%xy(1, node)) < nearest) then
+        nearest = abs(deck%mesh%xy(1, node))
+        chosen = equation
+      end if
+    end do
+    if (chosen == 0) then
+      call set_error(error, 'the body has lifted off the pad, which alone holds it: it would be free', &
+                     file=deck%cards%file, line=deck%pad%line, card='PAD')
+      return
+    end if
+    call anchor_body(deck, system, chosen, info)
+    if (info > 0) then
+      call set_error(error, singular_message(deck, info)//' (the body resting on the pad, anchored at another '// &
+                     'contact node)', file=deck%cards%file, line=deck%pad%line, card='PAD')
+      return
+    end if
+    call capacitance_reset(system%capacitance, size(system%load))
+    call capacitance_partners(system%capacitance, system%partner, system%weight)
+  end subroutine move_anchor
+
+  !> u_0 and u_1 of a body resting on the pad alone. With the anchor (a held
+  !> node's u_z, first the pole's) pinned, u = w + Z lambda + z_a lambda_a + t phi, where w =
   !> S_a^-1 f, Z the capacitance columns of the other held equations, z_a the
   !> anchor constraint's pad column, phi the body's rigid translation (S phi =
   !> 0) and t its amount. The unknowns lambda, lambda_a, t solve (dense,
