@@ -7,7 +7,7 @@ module visco2d_hertz
   use visco2d_strings, only: gtoa
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, record_put, record_put_real
-  use visco2d_mesh, only: pole_curvature_radius
+  use visco2d_mesh, only: pole_curvature_radius, generated_round_body
   implicit none
   private
 
@@ -47,12 +47,14 @@ contains
   end function hertz_impact
 
   !> The Hertz reference of an impact at `speed` of a body of `mass`, in the
-  !> summary (hertz_* keys), when the body is a generated sphere (MESH SPHERE)
-  !> of one material: E and nu are the material's instantaneous values (its
-  !> elastic constants for an elastic material), R the mesh's radius of
-  !> curvature at the contact pole (`pole_curvature_radius`: the sphere's
-  !> radius on both grids; half the height is not, the contact grid's far
-  !> pole being moved out to restore the volume).
+  !> summary (hertz_* keys), when the body is a generated round body (MESH
+  !> SPHERE, SPHEROID or OUTLINE) of one material: E and nu are the
+  !> material's instantaneous values (its elastic constants for an elastic
+  !> material), R the mesh's radius of curvature at the contact pole
+  !> (`pole_curvature_radius`: the sphere's radius on both grids, A^2/C for a
+  !> spheroid; half the height is not, the contact grid's far pole being
+  !> moved out to restore the volume). For a spheroid or an outline it is an
+  !> estimate: Hertz's sphere of the pole's curvature with the body's mass.
   !> Left out, with the key hertz_reference saying why, when it would mean
   !> nothing: a PAD under the body; V not small against the bar wave speed sqrt(E/rho) (Hertz's
   !> theory is quasi-static; this also keeps V^2 from overflowing), a value
@@ -72,7 +74,7 @@ contains
                       'thick pad, Hertz with 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2: doc/method.md)')
       return
     end if
-    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1) return
+    if (.not. generated_round_body(deck%mesh) .or. size(deck%materials) /= 1) return
     if (speed == 0.0_dp) then
       call record_put(record, 'hertz_reference', 'none: the body touched the plate at rest (V = 0)')
       return

@@ -6,8 +6,9 @@
 !> The physical times of a scene:
 !> - the Hertz contact duration of an impact on the plate, eqs. [43], [44]:
 !>   t_c = 2 x 1.4716 alpha_m/V with alpha_m = (15 M V^2/(16 E* sqrt(R)))^(2/5),
-!>   E* = E/(1 - nu^2) (instantaneous constants), for a generated sphere of one
-!>   material (MESH SPHERE) moving at V toward the plate, R its radius of
+!>   E* = E/(1 - nu^2) (instantaneous constants), for a generated round body
+!>   of one material (MESH SPHERE, SPHEROID or OUTLINE) moving at V toward
+!>   the plate, R its radius of
 !>   curvature at the contact pole (`pole_curvature_radius`), M its mass;
 !> - the wave transit of the pole element (the element at the point of first
 !>   contact): its smallest side over the dilatational wave speed
@@ -41,7 +42,7 @@ module visco2d_advice
   use visco2d_record, only: record_t, record_warn
   use visco2d_contact, only: hertz_impact, hertz_t
   use visco2d_pad_mesh, only: body_nodes, body_elements
-  use visco2d_mesh, only: pole_curvature_radius
+  use visco2d_mesh, only: pole_curvature_radius, generated_round_body
   implicit none
   private
 
@@ -96,7 +97,7 @@ contains
     if (deck%plate%line == 0 .or. pole_element == 0) return
     if (scales%wave_speed > 0.0_dp) scales%pole_transit = smallest_side(deck, pole_element)/scales%wave_speed
     if (.not. allocated(deck%mesh%source)) return
-    if (deck%mesh%source /= 'SPHERE' .or. size(deck%materials) /= 1 .or. deck%pad%line > 0) return
+    if (.not. generated_round_body(deck%mesh) .or. size(deck%materials) /= 1 .or. deck%pad%line > 0) return
     associate (velocity => initial_velocity(deck))
     speed = -velocity(2)                                 ! toward the plate below
     end associate
@@ -256,8 +257,8 @@ contains
   !> deformation is beyond the small-strain, small-displacement model: a
   !> principal strain above strain_warning_level (`strain`: the largest over
   !> the body's elements, `pad_strain` over a PAD's, each located at its
-  !> material's card), or for a generated sphere on the plate an approach
-  !> alpha_max above approach_warning_level of R.
+  !> material's card), or for a generated round body on the plate an approach
+  !> alpha_max above approach_warning_level of R (its pole curvature radius).
   subroutine deformation_warnings(deck, record, strain, pad_strain)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
@@ -277,8 +278,7 @@ contains
       deck%pad%material//') reached '//rtoa(100.0_dp*pad_strain)//' % (above '// &
       rtoa(100.0_dp*strain_warning_level)//' %): beyond the small-strain, linear pad model (a foam buckles '// &
       'and densifies); its results are only indicative', file=deck%cards%file, line=deck%pad%line, card='PAD')
-    if (deck%plate%line == 0 .or. .not. allocated(deck%mesh%source)) return
-    if (deck%mesh%source /= 'SPHERE') return
+    if (deck%plate%line == 0 .or. .not. generated_round_body(deck%mesh)) return
     radius = pole_curvature_radius(deck%mesh, body_elements(deck))
     if (.not. (radius > 0.0_dp)) return
     do k = 1, record%nsummary

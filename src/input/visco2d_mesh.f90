@@ -14,6 +14,7 @@ module visco2d_mesh
 
   public :: mesh_t, name_length
   public :: node_set, edge_set_code, node_index, side_nodes, boundary_sides, pole_curvature_radius
+  public :: generated_round_body
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
@@ -35,7 +36,7 @@ module visco2d_mesh
     integer, allocatable :: equation(:)               !< band position of each node (1..nnode)
     integer :: half_bandwidth = 0                     !< after renumbering (equations, diagonal excluded)
     integer :: half_bandwidth_before = 0              !< in input order
-    character(:), allocatable :: source               !< 'CARDS', 'SPHERE' or 'RECT'
+    character(:), allocatable :: source               !< 'CARDS', 'SPHERE', 'SPHEROID', 'OUTLINE' or 'RECT'
     real(dp) :: size = 1.0_dp                         !< bounding-box diagonal, m
     integer :: line = 0, column = 0                   !< the MESH card, or the first ELEMENT card
     character(:), allocatable :: card                 !< 'MESH' or 'ELEMENT'
@@ -102,6 +103,17 @@ contains
   !> on a 36.6 mm sphere at level 1), and a spheroid's pole curvature is not
   !> its mean radius. 0 when there is no pole node or the boundary is not
   !> convex there (dz <= 0: no Hertz contact).
+  !> Whether the mesh is a generated round body (`MESH SPHERE`, `SPHEROID` or
+  !> `OUTLINE`): a convex contact pole on the axis that touches a plate like
+  !> a sphere of the pole's radius of curvature, the body Hertz's reference
+  !> and the Hertz advice are computed for.
+  pure logical function generated_round_body(mesh)
+    type(mesh_t), intent(in) :: mesh
+    generated_round_body = .false.
+    if (.not. allocated(mesh%source)) return
+    generated_round_body = mesh%source == 'SPHERE' .or. mesh%source == 'SPHEROID' .or. mesh%source == 'OUTLINE'
+  end function generated_round_body
+
   function pole_curvature_radius(mesh, last) result(radius)
     type(mesh_t), intent(in) :: mesh
     integer, intent(in) :: last
