@@ -14,7 +14,9 @@ rewritten file it prints why: its worst differences. --force rewrites the
 given decks' files even within tolerance. --all: every deck of --inputs
 (default inputs/), and a note for each reference without a deck.
 
-If any deck fails to run, nothing is written and the exit status is 1; 2 on
+If any deck fails to run, or misses one of its own EXPECT cards (a summary
+key expect_<key>_within_rtol = no), nothing is written and the exit status
+is 1; 2 on
 usage errors; 0 otherwise. `make bless DECK=inputs/x.inp` and `make bless`
 call this script.
 """
@@ -88,7 +90,24 @@ def run_decks(exe, decks, work):
         print(f"bless: refused: {names} failed to run ({exe} exit status {result.returncode});"
               " nothing written", file=sys.stderr)
         return None
+    missed = [f"{case} ({', '.join(keys)})" for case, folder in folders.items()
+              if (keys := missed_expectations(os.path.join(folder, "summary.txt")))]
+    if missed:
+        print(f"bless: refused: an EXPECT card is outside its RTOL in {'; '.join(missed)}:"
+              " a reference must meet its deck's own expectations; nothing written", file=sys.stderr)
+        return None
     return folders
+
+
+def missed_expectations(summary):
+    """The keys of a summary.txt whose EXPECT card is outside its RTOL (expect_<key>_within_rtol = no)."""
+    missed = []
+    with open(summary) as stream:
+        for line in stream:
+            name, _, value = line.partition(" = ")
+            if name.startswith("expect_") and name.endswith("_within_rtol") and value.strip() == "no":
+                missed.append(name[len("expect_"):-len("_within_rtol")])
+    return missed
 
 
 def plan(folders, references, rtol, force):

@@ -256,3 +256,17 @@ if cmp -s "$tmp/sums_before" "$tmp/sums_after" && grep -q 'refused: inputs/broke
 else
   fail "... names it and writes nothing" "$(tail -2 "$tmp/out")"
 fi
+
+# A deck that runs but misses one of its own EXPECT cards: its reference would archive a failed check.
+rm -f "$repo/inputs/broken.inp"
+sed -e 's/^EXPECT probe_pole_uz_m .*/EXPECT probe_pole_uz_m 2.0e-3 RTOL=1e-6/' "$repo/inputs/sphere_pressure.inp" \
+  > "$repo/inputs/missed_expect.inp"
+bless inputs/missed_expect.inp > "$tmp/out" 2>&1
+check_rc "bless refuses a deck outside its EXPECT RTOL (exit 1)" 1 $?
+tree_sums "$repo/reference_outputs" > "$tmp/sums_after"
+if cmp -s "$tmp/sums_before" "$tmp/sums_after" \
+   && grep -q 'refused: an EXPECT card is outside its RTOL in missed_expect (probe_pole_uz_m)' "$tmp/out"; then
+  pass "... names the deck and the key and writes nothing"
+else
+  fail "... names the deck and the key and writes nothing" "$(tail -2 "$tmp/out")"
+fi
