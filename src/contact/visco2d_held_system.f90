@@ -116,13 +116,14 @@ contains
     call factor_compute(system%factor, system%stiffness, system%supports .or. equation_mask(system%anchor), info, &
                         solver_of_card(deck%solver))
     if (info > 0) return
-    if (allocated(system%rigid)) deallocate(system%rigid, system%anchor_column)
-    allocate(system%rigid(size(system%load)), system%anchor_column(size(system%load)))
-    system%rigid = 0.0_dp
-    do node = 1, body_nodes(deck)
-      system%rigid(node_dof(deck%mesh, node, 2)) = 1.0_dp
-    end do
-    system%rigid = merge(0.0_dp, system%rigid, system%supports)
+    if (.not. allocated(system%rigid)) then             ! the body's z translation (no z supports: it floats)
+      allocate(system%rigid(size(system%load)))
+      system%rigid = 0.0_dp
+      do node = 1, body_nodes(deck)
+        system%rigid(node_dof(deck%mesh, node, 2)) = 1.0_dp
+      end do
+    end if
+    if (.not. allocated(system%anchor_column)) allocate(system%anchor_column(size(system%load)))
     system%anchor_column = 0.0_dp                       ! the anchor constraint's pad part: -sum w e_p
     do k = 1, 2
       if (system%partner(k, system%anchor) > 0) &
@@ -150,14 +151,29 @@ contains
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:), reaction_base(:), reaction_rate(:)
     type(error_t), allocatable, intent(out) :: error
+    if (system%pad) then
+      call pad_system_solve(deck, system, held, values, base, rate, error)
+    else
+      call eliminated_solve(deck, system, held, values, base, rate, error)
+    end if
+    if (allocated(error)) return
+    reaction_rate = band_multiply(system%stiffness, rate) - system%load
+    reaction_base = band_multiply(system%stiffness, base)
+  end subroutine held_system_solve
+
+  !> held_system_solve on the rigid plate: the held equations eliminated and
+  !> S refactored with them fixed.
+  subroutine eliminated_solve(deck, system, held, values, base, rate, error)
+    type(deck_t), intent(in) :: deck
+    type(held_system_t), intent(in) :: system
+    logical, intent(in) :: held(:)
+    real(dp), intent(in) :: values(:)
+    real(dp), allocatable, intent(out) :: base(:), rate(:)
+    type(error_t), allocatable, intent(out) :: error
     type(factor_t) :: factor
     real(dp), allocatable :: rhs(:, :)
     logical, allocatable :: fixed(:)
     integer :: info
-    if (system%pad) then
-      call pad_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
-      return
-    end if
     fixed = system%supports .or. held
     call factor_compute(factor, system%stiffness, fixed, info, solver_of_card(deck%solver))
     if (info > 0) then
@@ -172,20 +188,18 @@ contains
     call factor_solve_many(factor, rhs)
     rate = rhs(:, 1)
     base = rhs(:, 2)
-    reaction_rate = band_multiply(system%stiffness, rate) - system%load
-    reaction_base = band_multiply(system%stiffness, base)
-  end subroutine held_system_solve
+  end subroutine eliminated_solve
 
   !> held_system_solve with a pad: the held equations are constraints
   !> u_c - sum w u_p = value imposed by the capacitance system on S's factor
   !> with the supports (visco2d_capacitance): u_1 from the load and the
   !> prescribed supports (held values 0), u_0 from the held values alone.
-  subroutine pad_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
+  subroutine pad_system_solve(deck, system, held, values, base, rate, error)
     type(deck_t), intent(in) :: deck
     type(held_system_t), intent(inout) :: system
     logical, intent(in) :: held(:)
     real(dp), intent(in) :: values(:)
-    real(dp), allocatable, intent(out) :: base(:), rate(:), reaction_base(:), reaction_rate(:)
+    real(dp), allocatable, intent(out) :: base(:), rate(:)
     type(error_t), allocatable, intent(out) :: error
     integer :: info
     logical, allocatable :: free_held(:)
@@ -203,9 +217,6 @@ contains
     end if
     if (system%anchor > 0) then
       call anchored_solve(deck, system, values, base, rate, error)
-      if (allocated(error)) return
-      reaction_rate = band_multiply(system%stiffness, rate) - system%load
-      reaction_base = band_multiply(system%stiffness, base)
       return
     end if
     rate = system%load
@@ -215,8 +226,6 @@ contains
     allocate(base(size(values)))
     base = 0.0_dp
     call capacitance_apply(system%capacitance, values, base)
-    reaction_rate = band_multiply(system%stiffness, rate) - system%load
-    reaction_base = band_multiply(system%stiffness, base)
   end subroutine pad_system_solve
 
   !> The anchor's node has left the pad (a body resting on the pad alone whose
