@@ -226,6 +226,20 @@ program test_bad_decks
   lines = [character(len=deck_line_length) :: lines(1:9), 'FORCE 3 FZ=-1e3', lines(12:12)]
   call expect_run_error('no_supports', lines, 0, '', 'singular')
   call check_no_supports_message()
+  ! A sphere with gravity and no support along z: its rigid z translation
+  ! passes the factors' pivot test (every solver), so the solve returned
+  ! |u| = 4e8 m with exit 0; the out-of-balance check stops it at the MESH card.
+  lines = [character(len=deck_line_length) :: 'TITLE free sphere', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
+           'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=2', 'GRAVITY G=9.8', &
+           'SOLVER CHOLMOD', 'END']
+  call expect_run_error('free_sphere_cholmod', lines, 5, 'MESH', 'singular')
+  lines(7) = 'SOLVER BAND'
+  call expect_run_error('free_sphere_band', lines, 5, 'MESH', 'singular')
+  lines(7) = 'SOLVER PROFILE'
+  call expect_run_error('free_sphere_profile', lines, 5, 'MESH', 'singular')
+  lines(2) = 'ANALYSIS QUASISTATIC'
+  lines(7) = 'TIME DT=0.1 TEND=0.2'
+  call expect_run_error('free_sphere_quasistatic', lines, 5, 'MESH', 'singular')
 
   ! --------------------------------------------- a valid deck written loosely
   call loose_deck()

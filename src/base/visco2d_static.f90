@@ -98,6 +98,10 @@ contains
       call not_finite_error(deck, 'the static displacement', error)
       return
     end if
+    if (.not. present(given)) then
+      call check_balance(deck, band_multiply(stiffness, u) - load, fixed, load, error)
+      if (allocated(error)) return
+    end if
 
     solution%displacement = nodal_field(mesh, u)
     associate (residual => band_multiply(stiffness, u) - load)
@@ -120,6 +124,24 @@ contains
       call not_finite_error(deck, 'the static stress, reaction or energy', error)
     end associate
   end subroutine solve_static
+
+  !> A solve of a singular stiffness can pass the factor's pivot test (a body
+  !> with no support along z: its rigid translation) and return a huge,
+  !> meaningless displacement. Then the free equations are out of balance:
+  !> the residual K u - R there, round-off for a true solution, is above
+  !> 1e-8 of the loads and the support reactions. That is the singular-
+  !> stiffness error, at the worst equation.
+  subroutine check_balance(deck, residual, fixed, load, error)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: residual(:), load(:)
+    logical, intent(in) :: fixed(:)
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: scale
+    integer :: worst
+    scale = max(maxval(abs(load)), maxval(abs(merge(residual, 0.0_dp, fixed))), tiny(1.0_dp))
+    worst = maxloc(abs(merge(0.0_dp, residual, fixed)), dim=1)
+    if (abs(residual(worst)) > 1.0e-8_dp*scale .and. .not. fixed(worst)) call singular_error(deck, worst, error)
+  end subroutine check_balance
 
   !> Message for a factorization failure at band equation `equation`.
   function singular_message(deck, equation) result(message)
@@ -399,6 +421,8 @@ contains
       end if
       equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
                               max(maxval(abs(internal)), tiny(1.0_dp)))
+      call check_balance(deck, internal - load, fixed, load, error)
+      if (allocated(error)) return
       call quasistatic_row(deck, record, t, u, stress, fixed, internal - load)
     end subroutine quasistatic_increment
   end subroutine solve_quasistatic
