@@ -15,6 +15,12 @@
 !> element's own 2 x 2 rule, weights 1): whole body in axisymmetry, per metre
 !> of thickness in plane strain.
 !>
+!> bruise_update takes the state its caller gives: a dynamic run gives the
+!> state where the integrator holds equilibrium (Wilson-theta's solve point
+!> t + theta dt, visco2d_time_step's solve_point_state; the step's end
+!> otherwise), free of the overshoot Wilson-theta's t + dt carries after a
+!> node is arrested on the plate.
+!>
 !> The envelopes are also kept for a deck with OUTPUT ENVELOPES=YES and no
 !> BRUISE card: then the envelope maxima and fields are reported, and no
 !> bruise (threshold) measures. Nothing is allocated or computed for a deck
@@ -32,7 +38,7 @@ module visco2d_bruise
   implicit none
   private
 
-  public :: bruise_t, bruise_update, bruise_report, bruise_static, measure_count, measure_names
+  public :: bruise_t, bruise_update, bruise_report, bruise_static, measure_count, measure_names, envelopes_wanted
 
   integer, parameter :: measure_count = 4   !< max shear, von Mises, octahedral, energy density
   !> Names of the measures as fields and keys (in the order of the criterion codes).

@@ -60,13 +60,13 @@ module visco2d_dynamic
                             phase_output, phase_step_loop
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_advice, only: deformation_warnings, largest_strain
-  use visco2d_bruise, only: bruise_t, bruise_update, bruise_report
+  use visco2d_bruise, only: bruise_t, bruise_update, bruise_report, envelopes_wanted
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_surface_stress
   use visco2d_integrators, only: mass_coefficient, energy_overshoot, stability_advice
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
-                               solve_supports, contact_repeat, commit_substep
+                               solve_supports, contact_repeat, commit_substep, solve_point_state
   use visco2d_energy_book, only: energy_book_t, energy_growth_limit, book_start, book_substep, book_contact_loss, &
                                  book_growth
   use visco2d_dynamic_record, only: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, &
@@ -279,8 +279,8 @@ contains
     real(dp), intent(out) :: touch_fraction
     character(:), allocatable, intent(out) :: what   !< why the integration is unstable
     type(error_t), allocatable, intent(inout) :: error
-    real(dp) :: t_end, offset, energy
-    logical :: finite
+    real(dp) :: t_end, offset, energy, t_solve
+    logical :: finite, at_solve_point
     integer :: r
     start%t = state%t
     start%u = state%u
@@ -319,8 +319,19 @@ contains
       call book_growth(measures%book, energy, what)
       if (allocated(what)) return
       call timer_start(phase_constitutive)
+      ! The envelopes take the state where the integrator holds equilibrium,
+      ! as the plate reactions: t + theta dt for Wilson-theta (visco2d_time_step,
+      ! solve_point_state), the sub-step's end otherwise.
+      at_solve_point = point%h /= point%length .and. envelopes_wanted(deck)
+      t_solve = state%t + point%h
+      if (at_solve_point) call solve_point_state(stepper, deck, r, state)
       call commit_substep(stepper, deck, r, state, t_end)                       ! eqs. [24], [40]-[42]
-      call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain, state%history)
+      if (at_solve_point) then
+        call bruise_update(measures%bruise, deck, t_solve, stepper%stress_solve, stepper%strain_solve, &
+                           stepper%history_solve)
+      else
+        call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain, state%history)
+      end if
       call timer_stop(phase_constitutive)
       offset = offset + point%row%fraction
       end associate

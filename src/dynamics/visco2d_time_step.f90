@@ -38,7 +38,7 @@ module visco2d_time_step
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solver_default
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, prescribed_displacement, &
                               scatter_add, lumped_mass, gravity_load
-  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms, viscoelastic_state_t
   use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
                              contact_gap
@@ -54,7 +54,7 @@ module visco2d_time_step
   private
 
   public :: stepper_t, point_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
-            solve_supports, contact_repeat, commit_substep, hold_contact
+            solve_supports, contact_repeat, commit_substep, hold_contact, solve_point_state
 
   !> The solve point of one row: its intervals, S~ and its factor, the
   !> capacitance system of the held equations on that factor, and the step
@@ -69,6 +69,7 @@ module visco2d_time_step
     type(capacitance_t) :: capacitance
     type(step_coefficients_t), allocatable :: over_h(:), over_length(:)   !< per material
     real(dp), allocatable :: shear(:), bulk(:)      !< per element, over the sub-step
+    real(dp), allocatable :: shear_h(:), bulk_h(:)  !< per element, over h
   end type point_t
 
   !> What the step needs besides the state: the integrator and its solve
@@ -93,6 +94,9 @@ module visco2d_time_step
     real(dp), allocatable :: base(:), free(:), solution(:), prescribed(:), du(:), dv(:), da(:)
     real(dp), allocatable :: load_next(:), internal_next(:), reaction_next(:), target_next(:)
     real(dp), allocatable :: trial(:, :, :), increments(:, :, :), history_h(:, :, :), history_length(:, :, :)
+    !> The state at the solve point t + h when h is not the sub-step (Wilson-theta; solve_point_state).
+    real(dp), allocatable :: stress_solve(:, :, :), strain_solve(:, :, :), increments_solve(:, :, :), internal_solve(:)
+    type(viscoelastic_state_t) :: history_solve
   end type stepper_t
 
 contains
@@ -190,6 +194,8 @@ contains
     end do
     point%shear = point%over_length(material_of)%shear
     point%bulk = point%over_length(material_of)%bulk
+    point%shear_h = point%over_h(material_of)%shear
+    point%bulk_h = point%over_h(material_of)%bulk
     call assemble_stiffness(deck, point%over_h(material_of)%shear, point%over_h(material_of)%bulk, point%effective)
     stiffness_rows = 0.0_dp
     associate (effective => point%effective)
@@ -470,6 +476,42 @@ contains
     end do
     end associate
   end subroutine adjusted_displacements
+
+  !> The stresses, strains and (with memory) histories at the solve point
+  !> t + h of row r, from the start state and the solution dU_h with the
+  !> moduli and the history stress over h (eqs. [13], [14], [23], [24]):
+  !> the state in which the integrator holds equilibrium, the one the plate
+  !> reactions are taken in (solve_point_reactions). Call it before
+  !> commit_substep (it reads the start state); into stepper%stress_solve,
+  !> strain_solve, history_solve. For Wilson-theta this, not the state at
+  !> t + dt, is free of the overshoot of the stiff modes that a node
+  !> arrested on the plate in the step excites: its free neighbours start
+  !> the step with the velocity the node was stopped from, and Wilson-theta
+  !> answers an initial velocity v in a mode with omega dt >> 1 with a
+  !> displacement (1 - 1/theta^2) v dt at t + dt (and -0.78 times it at each
+  !> step after), against ~v/omega at t + h.
+  subroutine solve_point_state(stepper, deck, r, state)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state
+    associate (point => stepper%points(r))
+    if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
+                                                        stepper%increments_solve, mold=state%stress)
+    if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
+    if (stepper%memory) then
+      call operators_trial_stress(stepper%operators, stepper%solution, point%shear_h, point%bulk_h, state%stress, &
+                                  stepper%increments_solve, stepper%stress_solve, stepper%internal_solve, &
+                                  stepper%history_h)
+      stepper%history_solve = state%history
+      call commit_history(deck%mesh%element_material, stepper%history_solve, point%over_h, stepper%increments_solve)
+    else
+      call operators_trial_stress(stepper%operators, stepper%solution, point%shear_h, point%bulk_h, state%stress, &
+                                  stepper%increments_solve, stepper%stress_solve, stepper%internal_solve)
+    end if
+    stepper%strain_solve = state%strain + stepper%increments_solve
+    end associate
+  end subroutine solve_point_state
 
   !> The sub-step stands: strains, stresses (the trial stresses) and the
   !> histories (eq. [24], over the sub-step), then U'' += dU'', U' += dU',
