@@ -16,7 +16,8 @@ program test_meaning
   use visco2d_record, only: record_t
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
-  use visco2d_test_decks, only: deck_line_length, impact, press, try_read_deck, check_error_location
+  use visco2d_test_decks, only: deck_line_length, impact, press, square, creep, dynamic, try_read_deck, &
+                                check_error_location
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks/meaning'
@@ -28,6 +29,13 @@ program test_meaning
   call fix_on_the_plate()
   call probe_outside()
   call fields_after_the_stop()
+  call drop_with_a_gap()
+  call motion_on_the_axis()
+  call unit_slips()
+  call static_without_load()
+  call sphere_in_plane_strain()
+  call unused_material()
+  call misleading_messages()
 
   call execute_command_line('rm -rf '//out_root)
   call test_summary('test_meaning')
@@ -167,4 +175,105 @@ contains
     call check('fields_late_counted', summary_value(record, 'warnings') == '1', &
                'warnings = '//summary_value(record, 'warnings'))
   end subroutine fields_after_the_stop
+
+  !> DROP HEIGHT=0.05 with the sphere 10 mm above the plate, in gravity: it
+  !> struck at sqrt(2 g 0.06) = 1.084 m/s, not the 0.990 m/s of the card.
+  !> A gap of 1 % of the height changes the speed by 0.5 %: the threshold.
+  subroutine drop_with_a_gap()
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = impact()
+    lines(6) = 'DROP HEIGHT=0.05'
+    lines = with_card(lines, 'GRAVITY G=9.8')
+    call expect_warning('drop_on_the_plate', lines, 'above the plate', 0)
+    lines(7) = 'PLATE Z=-0.01'
+    call expect_warning('drop_gap', lines, 'falls HEIGHT + gap = 6.0000E-02 m and strikes at 1.0844E+00 m/s', 1, &
+                        6, 'DROP')
+    lines(7) = 'PLATE Z=-0.0004'                           ! 0.8 % of the height: within the 0.5 % of speed
+    call expect_warning('drop_small_gap', lines, 'above the plate', 0)
+  end subroutine drop_with_a_gap
+
+  !> INITIAL VR= in axisymmetry swells every ring; FR= on the axis acts on
+  !> a held degree of freedom. In plane strain VR is a sideways throw.
+  subroutine motion_on_the_axis()
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = impact()
+    lines(6) = 'INITIAL VZ=-1 VR=0.5'
+    call expect_warning('initial_vr_axisymmetric', lines, 'breathing motion', 1, 6, 'INITIAL')
+    lines = dynamic()
+    lines(3) = 'GEOMETRY PLANESTRAIN'
+    lines(6) = 'INITIAL VZ=-1 VR=0.5'
+    call expect_warning('initial_vr_plane_strain', lines, 'breathing', 0)
+    call expect_warning('force_fr_on_axis', with_card(creep(), 'FORCE 1 FR=1'), 'does nothing', 1, 11, 'FORCE')
+    call expect_warning('force_fz_on_axis', with_card(creep(), 'FORCE 1 FZ=1'), 'does nothing', 0)
+  end subroutine motion_on_the_axis
+
+  !> RHO=0.8 (g/cm^3 for 800 kg/m^3), R=38.1 (mm for 0.0381 m), a pad of 10 m.
+  subroutine unit_slips()
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = impact()
+    lines(4) = 'MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=0.8'
+    call expect_warning('density_in_g_cm3', lines, 'in g/cm^3 that would be 8.0000E+02 kg/m^3', 1, 4, 'MATERIAL')
+    call expect_warning('density_kg_m3', impact(), 'g/cm^3', 0)
+    lines = impact()
+    lines(5) = 'MESH SPHERE R=38.1 LEVEL=1'
+    call expect_warning('radius_in_mm', lines, 'larger than any fruit', 1, 5, 'MESH')
+    call expect_warning('radius_in_m', impact(), 'larger than any fruit', 0)
+    lines = impact()
+    lines(5) = 'MESH SPHERE R=0.0381 LEVEL=1 MAT=apple'
+    lines = with_card(lines, 'MATERIAL foam ELASTIC E=1e5 NU=0.3 RHO=100')
+    call expect_warning('pad_in_mm', with_card(lines, 'PAD THICKNESS=10 MAT=foam'), 'thicker than any handling pad', &
+                        1, 11, 'PAD')
+    call expect_warning('pad_in_m', with_card(lines, 'PAD THICKNESS=0.01 MAT=foam'), 'thicker than any', 0)
+  end subroutine unit_slips
+
+  !> A STATIC deck with supports and no load ran to zero everywhere.
+  subroutine static_without_load()
+    call expect_warning('static_no_load', square(), 'without any load', 1, 2, 'ANALYSIS')
+    call expect_warning('static_force', with_card(square(), 'FORCE 3 FZ=-1'), 'without any load', 0)
+    call expect_warning('static_prescribed', with_card(square(), 'FIX 3 Z UZ=-1e-4'), 'without any load', 0)
+    call expect_warning('static_gravity', press(), 'without any load', 0)
+  end subroutine static_without_load
+
+  !> MESH SPHERE in GEOMETRY PLANESTRAIN is a long cylinder: said.
+  subroutine sphere_in_plane_strain()
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = impact()
+    lines(3) = 'GEOMETRY PLANESTRAIN'
+    call expect_warning('sphere_plane_strain', lines, 'cross-section of a long cylinder', 1, 5, 'MESH')
+    call expect_warning('sphere_axisymmetric', impact(), 'long cylinder', 0)
+  end subroutine sphere_in_plane_strain
+
+  !> A second MATERIAL no element names (a MAT= naming the other by mistake).
+  subroutine unused_material()
+    call expect_warning('unused_material', with_card(square(), 'MATERIAL rubber ELASTIC E=1e6 NU=0.4'), &
+                        'material RUBBER is used by no element', 1, 12, 'MATERIAL')
+    call expect_warning('used_material', with_card(square(), 'FORCE 3 FZ=-1'), 'used by no element', 0)
+  end subroutine unused_material
+
+  !> CORE=0.94 on GRID=LEGACY said "number its nodes counter-clockwise" (the
+  !> user numbered none); E= with G= said "unknown field G".
+  subroutine misleading_messages()
+    logical :: refused
+    character(:), allocatable :: text
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = impact()
+    lines(5) = 'MESH SPHERE R=0.0381 LEVEL=1 GRID=LEGACY CORE=0.94'
+    call try_read_deck(deck_path('legacy_core'), refused, text, lines)
+    call check('legacy_core_refused', refused, 'read_deck accepted CORE=0.94 on GRID=LEGACY at level 1')
+    if (refused) call check_error_location('legacy_core', text, deck_path('legacy_core'), 5, 42, 'MESH', &
+      'the grid folds: element ')
+    if (refused) call check('legacy_core_not_numbering', index(text, 'counter-clockwise') == 0, text)
+    lines = impact()
+    lines(4) = 'MATERIAL apple ELASTIC E=6e6 NU=0.3 G=2e6 RHO=800'
+    call try_read_deck(deck_path('e_with_g'), refused, text, lines)
+    call check('e_with_g_refused', refused, 'read_deck accepted E=, NU= and G=')
+    if (refused) call check_error_location('e_with_g', text, deck_path('e_with_g'), 4, 37, 'MATERIAL', &
+      'give the elastic constants one way: E= and NU=, or G= and K=')
+    lines(4) = 'MATERIAL apple ELASTIC E=6e6 K=5e6 RHO=800'
+    call try_read_deck(deck_path('e_with_k'), refused, text, lines)
+    call check('e_with_k_refused', refused, 'read_deck accepted E= and K=')
+    if (refused) call check_error_location('e_with_k', text, deck_path('e_with_k'), 4, 30, 'MATERIAL', &
+      'give the elastic constants one way')
+  end subroutine misleading_messages
+
 end program test_meaning
