@@ -3,7 +3,8 @@
 !> runs the decks as `visco2d [-q] [-o OUT] DECK...` runs them serially: the
 !> same OUT/<case>/ folders, the same one-line result per deck on stdout in
 !> deck order (rank 0 prints them), the same errors on stderr, exit status 1
-!> if any deck failed, 2 on usage errors. Rank 0 checks the command line and
+!> if any deck failed, 2 on usage errors, 3 if every deck ran but one missed
+!> its own EXPECT cards. Rank 0 checks the command line and
 !> prepares the output root before any work; with more than one rank it is a
 !> dispatcher that hands out deck indices one at a time to the ranks that ask
 !> (dynamic scheduling: a long deck holds up no other) and prints the results
@@ -19,6 +20,7 @@ program visco2d_farm
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_batch, only: duplicate_case_message, run_batch_deck
+  use visco2d_expect, only: expect_missed_status
   use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup, get_argument
   use visco2d_progress, only: progress_configure, progress_off
@@ -43,13 +45,14 @@ program visco2d_farm
   integer, parameter :: go = 0, stop_ok = 1, stop_usage = 2           !< rank 0's verdict on the command line
   !> A deck's result as rank 0 keeps it until its turn to be printed.
   type :: result_t
-    character(:), allocatable :: text      !< its one-line result, or its error
+    character(:), allocatable :: text      !< its one-line result, or its error; then its EXPECT misses
+    integer :: split = 0                   !< length of the result (or error) part of text
     logical :: failed = .false.
   end type result_t
   character(len=:), allocatable :: decks(:)
   character(:), allocatable :: out_root
   logical :: quiet
-  integer :: rank, ranks, verdict, failed, count
+  integer :: rank, ranks, verdict, failed, missed, count
 
   call MPI_Init()
   call MPI_Comm_rank(MPI_COMM_WORLD, rank)
@@ -60,16 +63,19 @@ program visco2d_farm
   call read_command_line(verdict)
   call MPI_Bcast(verdict, 1, MPI_INTEGER, 0, MPI_COMM_WORLD)
   failed = 0
+  missed = 0
   if (verdict == go) then
     count = size(decks)
     if (rank == 0) then
       if (ranks == 1) then
-        call run_alone(failed)
+        call run_alone(failed, missed)
       else
-        call dispatch(failed)
+        call dispatch(failed, missed)
       end if
       if (count > 1 .and. failed > 0) &
         write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
+      if (count > 1 .and. missed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', missed, ' of ', count, &
+        ' decks missed their own EXPECT cards (their results are written)'
     else
       call work()
     end if
@@ -79,6 +85,7 @@ program visco2d_farm
   call MPI_Finalize()
   if (rank == 0 .and. verdict == stop_usage) call c_exit(2_c_int)
   if (rank == 0 .and. failed > 0) call c_exit(1_c_int)
+  if (rank == 0 .and. missed > 0) call c_exit(int(expect_missed_status, c_int))
 
 contains
 
@@ -151,14 +158,14 @@ contains
   end subroutine read_command_line
 
   !> One rank: every deck in order, as the serial program runs them.
-  subroutine run_alone(failed)
-    integer, intent(inout) :: failed
-    character(:), allocatable :: line
+  subroutine run_alone(failed, missed)
+    integer, intent(inout) :: failed, missed
+    character(:), allocatable :: line, misses
     type(error_t), allocatable :: error
     integer :: k
     do k = 1, size(decks)
-      call run_batch_deck(trim(decks(k)), out_root, line, error)
-      call report(allocated(error), line, failed)
+      call run_batch_deck(trim(decks(k)), out_root, line, error, misses)
+      call report(allocated(error), line, misses, failed, missed)
     end do
   end subroutine run_alone
 
@@ -166,12 +173,12 @@ contains
   !> with the index of the next deck, or 0 when none is left; keep the results
   !> that come early and print them in deck order. The wait polls every 2 ms
   !> and sleeps in between, so this rank takes almost no processor time.
-  subroutine dispatch(failed)
-    integer, intent(inout) :: failed
+  subroutine dispatch(failed, missed)
+    integer, intent(inout) :: failed, missed
     type(MPI_Request) :: request
     type(MPI_Status) :: status
     type(result_t), allocatable :: results(:)
-    integer :: header(3), next, printed, stopped, source, none, ignored
+    integer :: header(4), next, printed, stopped, source, none, ignored
     logical :: arrived
     allocate(results(size(decks)))
     next = 1
@@ -179,7 +186,7 @@ contains
     printed = 0
     stopped = 0
     do while (stopped < ranks - 1)
-      call MPI_Irecv(header, 3, MPI_INTEGER, MPI_ANY_SOURCE, tag_report, MPI_COMM_WORLD, request)
+      call MPI_Irecv(header, 4, MPI_INTEGER, MPI_ANY_SOURCE, tag_report, MPI_COMM_WORLD, request)
       arrived = .false.
       do
         call MPI_Test(request, arrived, status)
@@ -187,15 +194,18 @@ contains
         ignored = c_usleep(2000_c_int)
       end do
       source = status%MPI_SOURCE
-      if (header(1) > 0) then          ! header: deck index, 1 if it failed, length of its text
+      if (header(1) > 0) then          ! header: deck index, 1 if it failed, length of its text, of its result part
         allocate(character(len=header(3)) :: results(header(1))%text)
         if (header(3) > 0) call MPI_Recv(results(header(1))%text, header(3), MPI_CHARACTER, source, tag_text, &
                                          MPI_COMM_WORLD, MPI_STATUS_IGNORE)
         results(header(1))%failed = header(2) == 1
+        results(header(1))%split = header(4)
         do while (printed < size(decks))
           if (.not. allocated(results(printed + 1)%text)) exit
           printed = printed + 1
-          call report(results(printed)%failed, results(printed)%text, failed)
+          associate (result => results(printed))
+          call report(result%failed, result%text(:result%split), result%text(result%split + 1:), failed, missed)
+          end associate
           deallocate(results(printed)%text)
         end do
       end if
@@ -212,26 +222,28 @@ contains
   !> A rank other than 0: report (nothing at first), receive a deck index, run
   !> that deck, report its result; until rank 0 answers 0.
   subroutine work()
-    character(:), allocatable :: line
+    character(:), allocatable :: line, misses, text
     type(error_t), allocatable :: error
-    integer :: header(3), index
-    header = [0, 0, 0]
+    integer :: header(4), index
+    header = [0, 0, 0, 0]
     do
-      call MPI_Send(header, 3, MPI_INTEGER, 0, tag_report, MPI_COMM_WORLD)
-      if (header(3) > 0) call MPI_Send(line, header(3), MPI_CHARACTER, 0, tag_text, MPI_COMM_WORLD)
+      call MPI_Send(header, 4, MPI_INTEGER, 0, tag_report, MPI_COMM_WORLD)
+      if (header(3) > 0) call MPI_Send(text, header(3), MPI_CHARACTER, 0, tag_text, MPI_COMM_WORLD)
       call MPI_Recv(index, 1, MPI_INTEGER, 0, tag_work, MPI_COMM_WORLD, MPI_STATUS_IGNORE)
       if (index == 0) exit
-      call run_batch_deck(trim(decks(index)), out_root, line, error)
-      header = [index, merge(1, 0, allocated(error)), len(line)]
+      call run_batch_deck(trim(decks(index)), out_root, line, error, misses)
+      text = line//misses
+      header = [index, merge(1, 0, allocated(error)), len(text), len(line)]
     end do
   end subroutine work
 
   !> Print a deck's result as the serial program does: its line on stdout
-  !> (unless quiet), or its error on stderr.
-  subroutine report(deck_failed, text, failed)
+  !> (unless quiet), or its error on stderr; then the EXPECT cards it
+  !> missed on stderr (miss_report), counted in `missed`.
+  subroutine report(deck_failed, text, misses, failed, missed)
     logical, intent(in) :: deck_failed
-    character(*), intent(in) :: text
-    integer, intent(inout) :: failed
+    character(*), intent(in) :: text, misses
+    integer, intent(inout) :: failed, missed
     if (deck_failed) then
       failed = failed + 1
       write(0, '(a)') 'visco2d: error: '//text
@@ -239,6 +251,11 @@ contains
     else if (.not. quiet) then
       print '(a)', text
       flush(6)
+    end if
+    if (.not. deck_failed .and. len(misses) > 0) then
+      missed = missed + 1
+      write(0, '(a)') misses
+      flush(0)
     end if
   end subroutine report
 
@@ -252,7 +269,8 @@ contains
     print '(a)', 'rank: the same DIR/<case>/ folders, the same one-line result per deck, printed'
     print '(a)', 'in deck order, the same errors. Rank 0 hands out the decks (with N > 1 it runs'
     print '(a)', 'none itself: use one rank more than cores). Exit status 1 if any deck failed,'
-    print '(a)', '2 for usage errors (and two decks with the same case name). See doc/command_line.md.'
+    print '(a)', '2 for usage errors (and two decks with the same case name), 3 if every deck ran'
+    print '(a)', 'but one missed its own EXPECT cards. See doc/command_line.md.'
     print '(a)', ''
     print '(a)', 'options:'
     print '(a)', '  -o, --out DIR   output root folder (default: out)'

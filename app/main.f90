@@ -8,7 +8,7 @@ program visco2d
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, check_deck
-  use visco2d_expect, only: run_line, expect_tally_t
+  use visco2d_expect, only: run_line, expect_tally_t, missed_expect, miss_report, expect_missed_status
   use visco2d_batch, only: duplicate_case_message
   use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup, get_argument
@@ -28,7 +28,7 @@ program visco2d
   end interface
   character(:), allocatable :: out_root, argument, message
   character(len=:), allocatable :: decks(:)
-  integer :: i, count, failed, length
+  integer :: i, count, failed, missed, length
   logical :: quiet, checking, progress
   type(error_t), allocatable :: error
 
@@ -99,6 +99,7 @@ program visco2d
   call configure_progress()
 
   failed = 0
+  missed = 0
   do i = 1, count
     length = len_trim(decks(i))
     if (checking) then
@@ -113,12 +114,15 @@ program visco2d
     end if
   end do
   if (count > 1 .and. failed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
+  if (count > 1 .and. missed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', missed, ' of ', count, &
+    ' decks missed their own EXPECT cards (their results are written)'
   flush(6)
   flush(0)
   deallocate(decks, out_root)                 ! everything freed before exit (valgrind: nothing lost)
   if (allocated(argument)) deallocate(argument)
   if (allocated(message)) deallocate(message)
   if (failed > 0) call c_exit(1_c_int)
+  if (missed > 0) call c_exit(int(expect_missed_status, c_int))     ! every deck ran; an EXPECT card missed
 
 contains
 
@@ -129,7 +133,13 @@ contains
     type(record_t) :: record
     type(expect_tally_t) :: tally
     call run_deck(path, out_root, record, error, tally)
-    if (.not. allocated(error) .and. .not. quiet) print '(a)', run_line(record, tally)
+    if (allocated(error)) return
+    if (.not. quiet) print '(a)', run_line(record, tally)
+    if (missed_expect(tally)) then
+      missed = missed + 1
+      flush(6)
+      write(0, '(a)') miss_report(tally)
+    end if
   end subroutine run_one
 
   !> Before any deck runs: the output root must be named and writable (exit
@@ -310,7 +320,9 @@ contains
     print '(a)', 'disk, an interrupt) leaves no case folder behind and an older one as it was. The'
     print '(a)', 'run goes on with the next deck; the exit status is 1 if any deck failed, 2 for'
     print '(a)', 'usage errors and an output folder that is empty or cannot be written (checked'
-    print '(a)', 'before any deck runs). Folders left by runs that no longer exist are removed.'
+    print '(a)', 'before any deck runs), 3 if every deck ran but one missed its own EXPECT cards'
+    print '(a)', '(its results are written; the misses are on stderr, as errors). Folders left'
+    print '(a)', 'by runs that no longer exist are removed.'
     print '(a)', 'Two decks of a batch with the same case name (the file name without its'
     print '(a)', 'extension) would write one folder: the batch is refused (exit status 2).'
     print '(a)', 'Errors read  file:line:column: CARD: message.  The cards: doc/cards.md.'

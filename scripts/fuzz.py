@@ -11,10 +11,11 @@ from them (deterministically: deck i depends only on --seed, i and the seed deck
 --jobs), runs each with the visco2d executable into a fresh output root under a wall-time
 bound and a 4 GB address-space limit (and VISCO2D_MAX_TIME = a quarter of the bound,
 so a run estimated to be longer is refused up front; a tenth of the decks go to
-'visco2d check DECK' instead), and classifies the run.  A run passes when it exits 0, 1 or 2 and none of
+'visco2d check DECK' instead), and classifies the run.  A run passes when it exits 0, 1, 2 or 3
+(3: it ran, its outputs are written, and it missed one of its own EXPECT cards) and none of
 these holds:
 
-  CRASH       a signal, an exit status other than 0/1/2, or runtime-error text in
+  CRASH       a signal, an exit status other than 0/1/2/3, or runtime-error text in
               stderr ('Fortran runtime error', 'Backtrace', 'Error termination',
               'Segmentation', UBSan's 'runtime error:', 'AddressSanitizer', ...)
   HANG        still running after --bound seconds (its process group is killed)
@@ -28,13 +29,15 @@ these holds:
   UNLOCATED   exit 1 without an error line 'visco2d: error: <deck>:<line>[:<col>]: ...'
               (the errors without a column are counted by message form, as statistics)
   OUTPUT_ON_ERROR  exit 1 or 2 with the case folder OUT/<case>/ left behind
-  MISSING_OUTPUT   exit 0 without each of listing.txt, summary.txt, history.csv, results.h5
+  MISSING_OUTPUT   exit 0 or 3 without each of listing.txt, summary.txt, history.csv, results.h5
   SILENT      a change that must not go unnoticed was accepted: a card padded with
               blanks past column 4096 or given a long comment (same meaning) ran to a
               different summary, or to an error that is not about the line's length; a
               keyword turned into a non-keyword (near miss) or a
               duplicated MESH/ELEMENT card ran with exit 0; a run with exit 0 whose
-              summary reports fewer EXPECT results than the deck's EXPECT cards; a run with
+              summary reports fewer EXPECT results than the deck's EXPECT cards; a run
+              whose summary has an EXPECT outside its RTOL (expect_*_within_rtol = no) with
+              exit 0, or exit 3 without one or without its located 'EXPECT:' error line; a run with
               exit 0 whose energy-balance error (balance_error_max_rel) is above 10 % of the
               energy put in without a 'visco2d: warning:' about the energy
 
@@ -1040,7 +1043,7 @@ def classify(case, hung, work, out_root, options, seed_summaries):
     if hung:
         add(case, 'HANG', 'still running after %g s' % options.bound)
         sign(case, 'HANG %s %s' % (case.seed_name, '+'.join(case.kinds)))
-    elif status < 0 or status not in (0, 1, 2):
+    elif status < 0 or status not in (0, 1, 2, 3):
         add(case, 'CRASH', 'exit status %d%s' % (status, ' (signal %d)' % -status if status < 0 else ''))
     found = [text for text in CRASH_TEXT if text in stderr]
     if found:
@@ -1078,17 +1081,18 @@ def classify(case, hung, work, out_root, options, seed_summaries):
             add(case, 'OUTPUT_ON_ERROR', '"visco2d check" wrote into the output root')
             sign(case, 'OUTPUT_ON_ERROR check wrote output')
         return
-    if status == 0:
+    if status in (0, 3):
         missing = [name for name in ('listing.txt', 'summary.txt', 'history.csv', 'results.h5')
                    if not (os.path.isfile(os.path.join(case_dir, name))
                            and os.path.getsize(os.path.join(case_dir, name)) > 0)]
         if missing:
-            add(case, 'MISSING_OUTPUT', 'exit 0 without %s' % ', '.join(missing))
+            add(case, 'MISSING_OUTPUT', 'exit %d without %s' % (status, ', '.join(missing)))
             sign(case, 'MISSING_OUTPUT ' + ','.join(missing))
     if os.path.isdir(case_dir):
         check_outputs(case, case_dir)
-        if status == 0:
+        if status in (0, 3):
             check_oracles(case, case_dir, seed_summaries)
+            check_expect_status(case, case_dir, status)
 
 
 def first_error(stderr):
@@ -1232,7 +1236,7 @@ def check_hdf5(case, path):
                         problems.append(problem)
             handle.visititems(visit)
     except Exception as error:  # an unreadable file after exit 0 is a broken output
-        if case.status == 0:
+        if case.status in (0, 3):
             add(case, 'MISSING_OUTPUT', 'results.h5 unreadable: %s' % error)
             sign(case, 'MISSING_OUTPUT results.h5 unreadable')
         return
@@ -1261,6 +1265,22 @@ def expect_keys(text):
         if len(words) >= 2 and words[0].upper() == 'EXPECT':
             keys.add(words[1])
     return keys
+
+
+def check_expect_status(case, case_dir, status):
+    """Exit 3 if and only if the summary holds an EXPECT outside its RTOL, with a located EXPECT error line."""
+    missed = [key for key, value in read_summary(case_dir).items()
+              if key.startswith('expect_') and key.endswith('_within_rtol') and value.strip() == 'no']
+    if status == 0 and missed:
+        add(case, 'SILENT', 'exit 0 with an EXPECT outside its RTOL: %s' % ', '.join(missed[:3]))
+        sign(case, 'SILENT EXPECT missed, exit 0')
+    elif status == 3 and not missed:
+        add(case, 'SILENT', 'exit 3 with every EXPECT within its RTOL')
+        sign(case, 'SILENT exit 3 without a miss')
+    elif status == 3 and not re.search(r'^visco2d: error: ' + re.escape(case.file_name) + r':\d+:\d+: EXPECT: ',
+                                       case.stderr, re.M):
+        add(case, 'UNLOCATED', 'exit 3 without a located "EXPECT:" error line')
+        sign(case, 'UNLOCATED EXPECT miss')
 
 
 def check_oracles(case, case_dir, seed_summaries):

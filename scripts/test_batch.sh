@@ -261,3 +261,18 @@ batch expand "$root/inputs/examples/apple_drop_on_pad.inp" --param height=0.2 --
 check_ok example_pad_template_expands $? example_pad.log
 "$exe" check "example_pad/decks/apple_drop_on_pad__height=0.2__pad_t=0.01__pad_e=2e6.inp" > example_pad_check.log 2>&1
 check_ok example_pad_deck_checks $? example_pad_check.log
+
+# 11. A case that misses its own EXPECT card (visco2d exit 3) runs and writes its results, and the
+#     batch fails (exit 1) with the case `missed` in the table, its keys in the error cell.
+sed -e 's/^EXPECT probe_pole_uz_m .*/EXPECT probe_pole_uz_m ${uz} RTOL=1e-6/' "$root/inputs/sphere_pressure.inp" \
+  > pressure.inp
+batch run pressure.inp --param uz=2.271585e-3,2.0e-3 -j 1 -o expects > expects.log 2>&1
+check_rc expect_miss_fails_the_batch 1 $?
+check expect_miss_row "expects/table.csv: no row 'pressure__uz=2.0e-3,missed,...probe_pole_uz_m'" \
+  grep -q '^pressure__uz=2.0e-3,missed,.*outside the RTOL of its EXPECT card(s): probe_pole_uz_m' expects/table.csv
+check expect_met_row "expects/table.csv: no row 'pressure__uz=2.271585e-3,ok'" \
+  grep -q '^pressure__uz=2.271585e-3,ok,' expects/table.csv
+check expect_miss_results_written "expects/pressure__uz=2.0e-3/summary.txt is missing" \
+  test -f "expects/pressure__uz=2.0e-3/summary.txt"
+check expect_miss_reported "expects.log: no 'MISSED pressure__uz=2.0e-3: ...: EXPECT: probe_pole_uz_m' line" \
+  grep -q '^MISSED pressure__uz=2.0e-3: .*:23:[0-9]*: EXPECT: probe_pole_uz_m = ' expects.log

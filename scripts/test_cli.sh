@@ -1002,7 +1002,9 @@ cd "$work" || exit 0
 
 # ------------------------------------------------------------- EXPECT
 # One check per EXPECT card (run line "EXPECT k/n"); an expected 0 or a
-# second card for a key is refused at the card, before solving.
+# second card for a key is refused at the card, before solving. A deck that
+# misses one of its own EXPECT cards writes its results and exits 3 (it
+# exited 0), the miss located on stderr; in a batch, 1 (a deck failed) wins.
 mkdir expect && cd expect || exit 0
 "$exe" -q -o out ../decks/first.inp > /dev/null 2>&1
 value_in() { sed -n "s/^$1 = //p" out/first/summary.txt 2>/dev/null | head -1; }
@@ -1013,8 +1015,21 @@ u=$(value_in max_displacement_m); w=$(value_in strain_energy_J)
   echo "EXPECT external_work_J 1.0 RTOL=1e-6"
   echo END; } > three.inp
 "$exe" -o out three.inp > three.out 2> three.err
-check_rc expect_three_exit_0 0 $?
+check_rc expect_missed_exit_3 3 $?
 check expect_counts_cards "stdout: $(first_lines three.out)" grep -q '; EXPECT 2/3 within RTOL (worst rel. error ' three.out
+check expect_missed_located "stderr: $(first_lines three.err)" \
+  grep -q '^visco2d: error: three\.inp:10:24: EXPECT: external_work_J = .* is not within RTOL = 1.0E-06 of the expected 1.0 ' three.err
+check expect_missed_results_written "no out/three/summary.txt" test -s out/three/summary.txt
+check expect_missed_in_summary "out/three/summary.txt" grep -q '^expect_external_work_J_within_rtol = no$' out/three/summary.txt
+grep -v '^EXPECT external_work_J' three.inp > two.inp
+"$exe" -q -o out two.inp > two.out 2> two.err
+check_rc expect_met_exit_0 0 $?
+"$exe" -q -o out two.inp three.inp > pair.out 2> pair.err
+check_rc expect_batch_with_a_miss_exit_3 3 $?
+check expect_batch_miss_counted "stderr: $(first_lines pair.err)" \
+  grep -q '^visco2d: 1 of 2 decks missed their own EXPECT cards' pair.err
+"$exe" -q -o out three.inp ../decks/missing_file.inp > mixed.out 2> mixed.err
+check_rc expect_batch_failure_wins_exit_1 1 $?
 sed -e "s/^EXPECT strain_energy_J .*/EXPECT strain_energy_J 0/" three.inp > zero.inp
 "$exe" -o out zero.inp > zero.out 2> zero.err
 check_rc expect_zero_exit_1 1 $?

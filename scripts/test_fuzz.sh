@@ -51,11 +51,19 @@ case $what in
   silent_energy) write_outputs 1.0 1.0; echo 'balance_error_max_rel = 5.0' >> "$out/$case/summary.txt" ;;
   silent_exit) write_outputs 1.0 1.0 ;;
   missing_output) mkdir -p "$out/$case"; echo 'case = x' > "$out/$case/summary.txt" ;;
+  expect_missed) write_outputs 1.0 1.0; echo 'expect_max_displacement_m_within_rtol = no' >> "$out/$case/summary.txt"
+    echo "visco2d: error: $deck:1:5: EXPECT: max_displacement_m = 1.0 is not within RTOL" >&2; exit 3 ;;
+  expect_exit_0) write_outputs 1.0 1.0; echo 'expect_max_displacement_m_within_rtol = no' >> "$out/$case/summary.txt" ;;
+  expect_exit_3_met) write_outputs 1.0 1.0; exit 3 ;;
+  expect_unlocated) write_outputs 1.0 1.0; echo 'expect_max_displacement_m_within_rtol = no' >> "$out/$case/summary.txt"
+    exit 3 ;;
+  exit_4) write_outputs 1.0 1.0; exit 4 ;;
 esac
 STUB
 chmod +x "$stub/visco2d"
 for what in clean crash runtime hang partial nonfinite nonfinite_h5 unreadable unlocated output_on_error \
-            missing_output silent_energy silent_exit; do
+            missing_output silent_energy silent_exit expect_missed expect_exit_0 expect_exit_3_met expect_unlocated \
+            exit_4; do
   echo "$what" > "$stub/decks/$what.inp"
 done
 echo '# fuzz: exit 1' >> "$stub/decks/silent_exit.inp"   # must be refused, the stub runs it
@@ -66,7 +74,8 @@ import csv, sys
 expected = {'clean': '', 'crash': 'CRASH', 'runtime': 'CRASH', 'hang': 'HANG', 'partial': 'PARTIAL',
             'nonfinite': 'NONFINITE', 'nonfinite_h5': 'NONFINITE', 'unreadable': 'UNREADABLE',
             'unlocated': 'UNLOCATED', 'output_on_error': 'OUTPUT_ON_ERROR', 'missing_output': 'MISSING_OUTPUT',
-            'silent_energy': 'SILENT', 'silent_exit': 'SILENT'}
+            'silent_energy': 'SILENT', 'silent_exit': 'SILENT', 'expect_missed': '', 'expect_exit_0': 'SILENT',
+            'expect_exit_3_met': 'SILENT', 'expect_unlocated': 'UNLOCATED', 'exit_4': 'CRASH'}
 try:
     rows = {r['id']: r['classes'].split() for r in csv.DictReader(open(sys.argv[1]))}
 except OSError as error:

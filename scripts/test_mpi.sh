@@ -115,6 +115,21 @@ if [ -s "$work/quiet.out" ]; then fail mpi_quiet_no_lines "$(head -c 200 "$work/
 mpirun_n 2 "$farm" -o "$work/good" inputs/sphere_pressure.inp inputs/lame_axisymmetric.inp > /dev/null 2>&1
 check_rc mpi_all_good_exit_0 0 $?
 
+# A deck that misses its own EXPECT card: results written, the miss on stderr, exit 3 (as visco2d);
+# with the failing deck too, 1 wins.
+sed -e 's/^EXPECT probe_pole_uz_m .*/EXPECT probe_pole_uz_m 2.0e-3 RTOL=1e-6/' inputs/sphere_pressure.inp \
+  > "$work/missed.inp"
+for ranks in 1 3; do
+  mpirun_n $ranks "$farm" -q -o "$work/missed_$ranks" inputs/lame_axisymmetric.inp "$work/missed.inp" \
+    > /dev/null 2> "$work/missed_$ranks.err"
+  check_rc "mpi_${ranks}_ranks_expect_miss_exit_3" 3 $?
+  if grep -q "^visco2d: error: .*missed.inp:23:[0-9]*: EXPECT: probe_pole_uz_m = " "$work/missed_$ranks.err" \
+     && [ -s "$work/missed_$ranks/missed/summary.txt" ]; then pass "mpi_${ranks}_ranks_expect_miss_reported"
+  else fail "mpi_${ranks}_ranks_expect_miss_reported" "$(head -c 300 "$work/missed_$ranks.err" | tr '\n' '|')"; fi
+done
+mpirun_n 2 "$farm" -q -o "$work/missed_mixed" "$work/missed.inp" "$work/broken.inp" > /dev/null 2>&1
+check_rc mpi_expect_miss_and_failure_exit_1 1 $?
+
 # Two decks with one case name: refused before anything runs, like visco2d.
 mkdir -p "$work/a" "$work/b"
 cp inputs/sphere_pressure.inp "$work/a/peach.inp"

@@ -17,8 +17,9 @@ OUT/decks/<case>.inp, named <deck stem>__<name>=<value>__...; it is run by the
 installed visco2d into OUT/<case>/ and copied there as OUT/<case>/<case>.inp
 when the run ends. The table of the batch: OUT/table.csv and OUT/table.md.
 
-Exit status: 0 every case ran, 1 a case failed (or no onset in a bracket),
-2 a usage error (nothing run). Details: doc/batch.md.
+Exit status: 0 every case ran, 1 a case failed or missed its own EXPECT cards
+(visco2d exit 3: its results are written, its table row says `missed`; or no
+onset in a bracket), 2 a usage error (nothing run). Details: doc/batch.md.
 """
 
 import argparse
@@ -40,6 +41,7 @@ PROGRAM = 'visco2d-batch'
 DEFAULT_KEYS = ['alpha_max_mm', 't_alpha_max_ms', 'q_max_MPa', 'force_max_N', 'contact_radius_max_mm',
                 'envelope_max_shear_max_Pa', 'bruise_volume_cm3', 'coefficient_of_restitution', 'warnings']
 MAX_NAME = 150          # longer case names fall back to <stem>__case=<index>
+EXPECT_MISSED = 3        # visco2d's exit status: the deck ran (results written) and missed its own EXPECT cards
 DECKS_DIR = 'decks'     # OUT/decks/: the expanded decks, their parameters, the errors of failed cases
 
 
@@ -228,6 +230,7 @@ class Case:
         self.source = source      # the template or plain deck it comes from
         self.index = 0
         self.error = None
+        self.missed = None        # the located EXPECT misses of a run that exited 3 (its results are written)
 
 
 def deck_stem(path):
@@ -369,7 +372,7 @@ class Progress:
     def update(self, case, message):
         with self.lock:
             self.done += 1
-            self.failed += case.error is not None
+            self.failed += case.error is not None or case.missed is not None
             if self.shown:
                 sys.stderr.write('\r\033[K')
             if not self.quiet:
@@ -387,6 +390,8 @@ class Progress:
 def result_message(case, stdout):
     if case.error is not None:
         return f'FAILED {case.name}: {case.error}'
+    if case.missed is not None:
+        return f'MISSED {case.name}: {case.missed}'
     lines = [line for line in stdout.splitlines() if line.strip()]
     return lines[-1] if lines else f'{case.name}: done'
 
@@ -422,7 +427,9 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
             stdout, stderr, status = done.stdout, done.stderr, done.returncode
         except OSError as error:
             stdout, stderr, status = '', f'visco2d: error: cannot run {exe}: {error.strerror}', 1
-        if status != 0:
+        if status == EXPECT_MISSED:
+            case.missed = located_error(stderr)
+        if status not in (0, EXPECT_MISSED):
             case.error = located_error(stderr)
             if status < 0:
                 case.error = f'visco2d stopped by signal {-status}: {case.error}'
@@ -457,13 +464,17 @@ def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
         handle.write(f'$ {" ".join(shlex.quote(part) for part in command)}\n# exit status {done.returncode}\n'
                      f'# stdout\n{done.stdout}# stderr\n{done.stderr}')
     for case in cases:
-        if not os.path.isfile(os.path.join(out, case.name, 'summary.txt')):
+        summary = os.path.join(out, case.name, 'summary.txt')
+        if not os.path.isfile(summary):
             case.error = located_error(done.stderr, case.deck) if case.deck in done.stderr else (
                 f'no results (mpirun exit status {done.returncode}; see {out}/{DECKS_DIR}/mpi.log)')
+        elif missed_expectations(read_summary(summary)):
+            case.missed = located_error(done.stderr, case.deck) if case.deck in done.stderr else (
+                'outside the RTOL of its EXPECT card(s): ' + ', '.join(missed_expectations(read_summary(summary))))
         finish_case(case, out)
         lines = [line for line in done.stdout.splitlines() if line.startswith(case.name + ':')]
         progress.update(case, result_message(case, lines[-1] if lines else ''))
-    if done.returncode not in (0, 1):
+    if done.returncode not in (0, 1, EXPECT_MISSED):
         print(f'{PROGRAM}: mpirun exited with status {done.returncode}: see {out}/{DECKS_DIR}/mpi.log',
               file=sys.stderr)
 
@@ -512,6 +523,12 @@ def execute(cases, out, options):
 
 # ---------------------------------------------------------------- the table
 
+def missed_expectations(summary):
+    """The keys of a summary whose EXPECT card is outside its RTOL (expect_<key>_within_rtol = no)."""
+    return [key[len('expect_'):-len('_within_rtol')] for key, value in summary.items()
+            if key.startswith('expect_') and key.endswith('_within_rtol') and value.strip() == 'no']
+
+
 def read_summary(path):
     values = {}
     with open(path) as handle:
@@ -547,6 +564,9 @@ def gather(out):
                'summary': {}, 'status': 'ok', 'error': ''}
         if os.path.isfile(summary_path):
             row['summary'] = read_summary(summary_path)
+            missed = missed_expectations(row['summary'])
+            if missed:                       # it ran (visco2d exit 3): a verification deck that failed
+                row['status'], row['error'] = 'missed', 'outside the RTOL of its EXPECT card(s): ' + ', '.join(missed)
         elif os.path.isfile(error_path):
             with open(error_path) as handle:
                 row['status'], row['error'] = 'failed', handle.read().strip()
@@ -819,7 +839,7 @@ def main(argv=None):
                       f'{PROGRAM} collect {options.out}')
         else:
             write_table(options.out, keys, options.quiet)
-        return 1 if any(case.error is not None for case in cases) else 0
+        return 1 if any(case.error is not None or case.missed is not None for case in cases) else 0
     except UsageError as error:
         print(f'{PROGRAM}: error: {error}', file=sys.stderr)
         return 2

@@ -7,7 +7,7 @@ module visco2d_batch
   use visco2d_error, only: error_t, error_text
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, case_name_of
-  use visco2d_expect, only: run_line, expect_tally_t
+  use visco2d_expect, only: run_line, expect_tally_t, miss_report
   implicit none
   private
 
@@ -87,19 +87,24 @@ contains
   end subroutine sort_by_name
 
   !> Run one deck of a batch into out_root/<case>/ (run_deck): on success, line
-  !> is its one-line result (run_line); on failure, error is set and line is
-  !> the error's text as the programs print it after "visco2d: error: ".
-  subroutine run_batch_deck(path, out_root, line, error)
+  !> is its one-line result (run_line) and `misses` the lines to print on
+  !> stderr for its EXPECT cards outside their RTOL ('' if none: miss_report);
+  !> on failure, error is set and line is the error's text as the programs
+  !> print it after "visco2d: error: ".
+  subroutine run_batch_deck(path, out_root, line, error, misses)
     character(*), intent(in) :: path, out_root
     character(:), allocatable, intent(out) :: line
     type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable, intent(out), optional :: misses
     type(record_t) :: record
     type(expect_tally_t) :: tally
     call run_deck(path, out_root, record, error, tally)
+    if (present(misses)) misses = ''
     if (allocated(error)) then
       line = error_text(error)
     else
       line = run_line(record, tally)
+      if (present(misses)) misses = miss_report(tally)
     end if
   end subroutine run_batch_deck
 end module visco2d_batch

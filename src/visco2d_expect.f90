@@ -3,23 +3,31 @@
 !> run), the one-line report of a run, and the summary value of a key.
 module visco2d_expect
   use visco2d_kinds, only: dp
-  use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, to_upper, to_lower
-  use visco2d_deck, only: deck_t
+  use visco2d_error, only: error_t, set_error, error_text
+  use visco2d_strings, only: itoa, rtoa, to_upper, to_lower, short_real
+  use visco2d_deck, only: deck_t, expect_t
   use visco2d_record, only: record_t, record_put, record_put_real
   use visco2d_output_check, only: finite_text
   implicit none
   private
 
   public :: expect_tally_t, check_expect_cards, check_expectations, relative_error, run_line, summary_value
+  public :: missed_expect, miss_report
 
   !> The EXPECT checks of a run: one per EXPECT card (the summary holds their
-  !> expect_<key>_value, _rel_error and _within_rtol keys).
+  !> expect_<key>_value, _rel_error and _within_rtol keys). A deck that
+  !> misses one (within < count) still writes its case folder; the programs
+  !> print `misses` on stderr and exit with status 3 (expect_missed_status).
   type :: expect_tally_t
     integer :: count = 0          !< EXPECT cards checked
     integer :: within = 0         !< of them within their RTOL
     real(dp) :: worst = 0.0_dp    !< the largest relative error
+    character(:), allocatable :: misses   !< one located line per card outside its RTOL, newline-separated
   end type expect_tally_t
+
+  !> The exit status of a run whose decks all ran, one or more of them
+  !> outside the RTOL of its own EXPECT cards (1, a deck that failed, wins).
+  integer, parameter, public :: expect_missed_status = 3
 
 contains
 
@@ -93,7 +101,11 @@ contains
         relative = relative_error(computed, deck%expects(k)%value)
         tally%count = tally%count + 1
         tally%worst = max(tally%worst, relative)
-        if (relative <= deck%expects(k)%tolerance) tally%within = tally%within + 1
+        if (relative <= deck%expects(k)%tolerance) then
+          tally%within = tally%within + 1
+        else
+          call add_miss(tally, deck, deck%expects(k), trim(record%summary(i)%key), record%summary(i)%value, relative)
+        end if
         call record_put_real(record, 'expect_'//trim(record%summary(i)%key)//'_value', deck%expects(k)%value)
         call record_put_real(record, 'expect_'//trim(record%summary(i)%key)//'_rel_error', relative)
         call record_put(record, 'expect_'//trim(record%summary(i)%key)//'_within_rtol', &
@@ -108,6 +120,48 @@ contains
       end if
     end do
   end subroutine check_expectations
+
+  !> One line of tally%misses: the card, the computed and expected values,
+  !> the relative error and the RTOL it missed.
+  subroutine add_miss(tally, deck, expect, key, computed, relative)
+    type(expect_tally_t), intent(inout) :: tally
+    type(deck_t), intent(in) :: deck
+    type(expect_t), intent(in) :: expect
+    character(*), intent(in) :: key, computed       !< the summary key as spelt there, its value
+    real(dp), intent(in) :: relative
+    type(error_t), allocatable :: miss
+    call set_error(miss, key//' = '//trim(adjustl(computed))//' is not within RTOL = '// &
+      short_real(expect%tolerance)//' of the expected '//short_real(expect%value)//' (relative error '// &
+      rtoa(relative)//'): the deck misses its own EXPECT card (its results are written)', &
+      file=deck%cards%file, line=expect%line, column=positional_column(deck, expect%line, 2), card='EXPECT')
+    if (.not. allocated(tally%misses)) tally%misses = ''
+    if (len(tally%misses) > 0) tally%misses = tally%misses//new_line('a')
+    tally%misses = tally%misses//error_text(miss)
+  end subroutine add_miss
+
+  !> The run missed one of its EXPECT cards (outside its RTOL).
+  pure logical function missed_expect(tally)
+    type(expect_tally_t), intent(in) :: tally
+    missed_expect = tally%within < tally%count
+  end function missed_expect
+
+  !> The misses as the programs print them on stderr, one line per card:
+  !> `visco2d: error: file:line:column: EXPECT: ...` ('' if none).
+  function miss_report(tally) result(text)
+    type(expect_tally_t), intent(in) :: tally
+    character(:), allocatable :: text
+    integer :: start, stop
+    text = ''
+    if (.not. allocated(tally%misses)) return
+    start = 1
+    do while (start <= len(tally%misses))
+      stop = index(tally%misses(start:), new_line('a'))
+      if (stop == 0) stop = len(tally%misses) - start + 2
+      if (len(text) > 0) text = text//new_line('a')
+      text = text//'visco2d: error: '//tally%misses(start:start + stop - 2)
+      start = start + stop
+    end do
+  end function miss_report
 
   !> |computed - expected| / |expected| for finite values and expected /= 0,
   !> without overflow: values beyond huge/4 are halved first (exact, so the

@@ -70,7 +70,8 @@ module visco2d_dynamic
   use visco2d_energy_book, only: energy_book_t, energy_growth_limit, book_start, book_substep, book_contact_loss, &
                                  book_growth
   use visco2d_dynamic_record, only: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, &
-                                    keep_state, insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary
+                                    keep_state, insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary, &
+                                    warn_unwritten_fields
   implicit none
   private
 
@@ -147,6 +148,7 @@ contains
     call timers_set_steps(step_count)
     if (timers_enabled()) call measure_floor(stepper)
     call log_snapshot(measures%log, deck, record, 'final', step_count, state)
+    call warn_unwritten_fields(measures%log, deck, record, state%t)
     call put_summary(stepper, deck, record, state, step_count, measures)
   end subroutine solve_dynamic
 

@@ -4,14 +4,14 @@
 !> strain energy and the summary keys of the end state.
 module visco2d_dynamic_record
   use visco2d_kinds, only: dp, whole_body_factor, energy_basis
-  use visco2d_strings, only: itoa, short_real
-  use visco2d_deck, only: deck_t, total_steps
+  use visco2d_strings, only: itoa, rtoa, short_real
+  use visco2d_deck, only: deck_t, total_steps, stop_name
   use visco2d_element, only: gauss_count
   use visco2d_assembly, only: node_dof, nodal_field
   use visco2d_viscoelastic, only: element_terms, deviatoric_part
   use visco2d_static, only: node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
-                            history_append, record_add_snapshot, record_insert_snapshot
+                            history_append, record_add_snapshot, record_insert_snapshot, record_warn
   use visco2d_impact, only: impact_t, impact_columns, impact_row, sensor_acceleration
   use visco2d_operators, only: operators_t
   use visco2d_dynamic_state, only: dynamic_state_t
@@ -20,7 +20,7 @@ module visco2d_dynamic_record
   private
 
   public :: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, keep_state, &
-            insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary
+            insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary, warn_unwritten_fields
 
   !> The (corner, element) pairs at a probe node (node_corners).
   type :: corners_t
@@ -161,6 +161,23 @@ contains
     end do
     end associate
   end subroutine log_field_times
+
+  !> After the step loop at time t: a run stopped before TEND (STOP
+  !> AT=MAXDEFORMATION or SEPARATION) writes no snapshot at the FIELDS= times
+  !> after t; a run-time warning at the OUTPUT card names them.
+  subroutine warn_unwritten_fields(log, deck, record, t)
+    type(dynamic_log_t), intent(in) :: log
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: t
+    associate (times => deck%output%field_times)
+    if (log%next_field > size(times)) return
+    call record_warn(record, itoa(size(times) - log%next_field + 1)//' FIELDS time(s) from '// &
+      short_real(times(log%next_field))//' s on not written: the run stopped at t = '//rtoa(t)//' s (STOP AT='// &
+      stop_name(deck%stop_at)//') before them, so results.h5 has no snapshot there', &
+      file=deck%cards%file, line=deck%output%line, card='OUTPUT')
+    end associate
+  end subroutine warn_unwritten_fields
 
   !> A snapshot of the state now, named after the step (or the label added
   !> to the last one when it is already kept at this time).

@@ -30,9 +30,10 @@ module visco2d_deck
                                 solver_card_names
   use visco2d_deck_targets, only: pending_t, read_fix, read_pressure, read_force, read_probe, read_expect, &
                                   resolve_materials, resolve_fixes, resolve_forces, resolve_probes, curve_index
+  use visco2d_deck_meaning, only: check_meaning
   use visco2d_deck_checks, only: check_time_stages, check_dynamic_cards, check_contact_cards, &
-                                 check_plate_position, check_mass, check_locking, check_memory_needs_time, &
-                                 check_load_sizes, check_pressures
+                                 check_plate_position, check_plate_supports, check_mass, check_locking, &
+                                 check_memory_needs_time, check_load_sizes, check_pressures
   implicit none
   private
 
@@ -392,10 +393,12 @@ contains
     call check_memory_needs_time(deck, reading%analysis_line, error); if (allocated(error)) return
     call check_mass(deck, error); if (allocated(error)) return
     call check_plate_position(deck, error); if (allocated(error)) return
+    call check_plate_supports(deck, error); if (allocated(error)) return
     if (deck%pad%line > 0) then                       ! the pad's mesh after the body's (its checks need the body)
       call append_pad(deck, error); if (allocated(error)) return
     end if
     call check_locking(deck)
+    call check_meaning(deck, reading%analysis_line)
     end associate
   end subroutine finish_deck
 

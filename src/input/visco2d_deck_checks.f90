@@ -17,6 +17,7 @@ module visco2d_deck_checks
   private
 
   public :: check_time_stages, check_dynamic_cards, check_contact_cards, check_plate_position, check_mass
+  public :: check_plate_supports
   public :: check_locking, check_memory_needs_time, check_load_sizes, check_pressures
 
 contains
@@ -140,6 +141,30 @@ contains
         rtoa(deck%plate%z)//': the body must start on or above the plate', 'Z')
     end if
   end subroutine check_plate_position
+
+  !> No FIX of u_z on a node that starts on the plate: the support, not the
+  !> plate, would take the contact force there (the pressure at the pole read
+  !> 0 while the plate force was 196 N), and the plate already holds the body
+  !> in z. Refused at the FIX card.
+  subroutine check_plate_supports(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, i, node
+    if (deck%plate%line == 0) return
+    do k = 1, size(deck%fixes)
+      if (.not. deck%fixes(k)%fix_z) cycle
+      do i = 1, size(deck%fixes(k)%nodes)
+        node = deck%fixes(k)%nodes(i)
+        if (deck%mesh%xy(2, node) > deck%plate%z + 1.0e-9_dp*deck%mesh%size) cycle
+        call line_error(error, deck, deck%fixes(k)%line, 'node '//itoa(deck%mesh%node_id(node))//' (r = '// &
+          rtoa(deck%mesh%xy(1, node))//', z = '//rtoa(deck%mesh%xy(2, node))//') lies on the plate (PLATE Z = '// &
+          rtoa(deck%plate%z)//', line '//itoa(deck%plate%line)//'): a FIX of its u_z would take the contact '// &
+          'force there instead of the plate (the pressure q would read 0); the plate already holds the body '// &
+          'in z: fix R only, or fix a node off the plate')
+        return
+      end do
+    end do
+  end subroutine check_plate_supports
 
   !> Inertia and gravity need mass: every material in use needs RHO > 0.
   subroutine check_mass(deck, error)

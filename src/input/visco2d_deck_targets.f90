@@ -5,7 +5,7 @@
 module visco2d_deck_targets
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, short_real, to_lower, to_upper
+  use visco2d_strings, only: itoa, rtoa, short_real, to_lower, to_upper
   use visco2d_ranges, only: length_range, pressure_range, force_range, expected_value_range, tolerance_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, &
                            named_word, positional_word, positional_real, &
@@ -363,7 +363,7 @@ contains
     type(pending_t), intent(in) :: pending(:)
     type(error_t), allocatable, intent(inout) :: error
     integer :: k, i
-    real(dp) :: point(2)
+    real(dp) :: point(2), size_there
     real(dp), allocatable :: distance(:)
     allocate(deck%probes(size(pending)))
     do k = 1, size(pending)
@@ -377,7 +377,16 @@ contains
         point = pending(k)%values
       end if
       distance = hypot(deck%mesh%xy(1, :) - point(1), deck%mesh%xy(2, :) - point(2))
-      if (len(pending(k)%target) == 0) probe%node = minloc(distance, dim=1)
+      if (len(pending(k)%target) == 0) then
+        probe%node = minloc(distance, dim=1)
+        size_there = element_size_at(deck, probe%node)
+        if (distance(probe%node) > size_there) call add_warning(deck, card%line, 'PROBE', &
+          'the point (r = '//short_real(point(1))//', z = '//short_real(point(2))//') m is '// &
+          rtoa(distance(probe%node))//' m from its nearest node '//itoa(deck%mesh%node_id(probe%node))// &
+          ' (r = '//rtoa(deck%mesh%xy(1, probe%node))//', z = '//rtoa(deck%mesh%xy(2, probe%node))// &
+          '), more than the size of the elements there ('//rtoa(size_there)//' m): it lies outside the body, '// &
+          'and probe '//probe%name//' reports that node (a unit slip? R= and Z= are in m)')
+      end if
       probe%radius = pending(k)%radius
       if (probe%radius <= 0.0_dp) cycle
       if (deck%analysis /= analysis_dynamic) then
@@ -392,4 +401,24 @@ contains
       end associate
     end do
   end subroutine resolve_probes
+
+  !> The largest distance between two corners of an element holding `node`
+  !> (its diameter): a point inside the body lies within the diameter of
+  !> its element from one of its corners.
+  pure real(dp) function element_size_at(deck, node) result(size_at)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: node
+    integer :: e, i, j
+    size_at = 0.0_dp
+    associate (mesh => deck%mesh)
+    do e = 1, mesh%nelem
+      if (.not. any(mesh%connectivity(:, e) == node)) cycle
+      do i = 1, 3
+        do j = i + 1, 4
+          size_at = max(size_at, norm2(mesh%xy(:, mesh%connectivity(i, e)) - mesh%xy(:, mesh%connectivity(j, e))))
+        end do
+      end do
+    end do
+    end associate
+  end function element_size_at
 end module visco2d_deck_targets

@@ -44,6 +44,11 @@ contains
     select case (kind)
     case ('ELASTIC')
       material%kind = material_kind_elastic
+      if ((has_field(card, 'E') .or. has_field(card, 'NU')) .and. (has_field(card, 'G') .or. has_field(card, 'K'))) then
+        call field_error('give the elastic constants one way: E= and NU=, or G= and K= (this card mixes them: '// &
+          'two constants fix an isotropic material, a third would contradict them)', &
+          trim(merge('G', 'K', has_field(card, 'G')))); return
+      end if
       if (has_field(card, 'E') .or. has_field(card, 'NU')) then
         call named_real(cards, card, 'E', material%young, error, range=modulus_range); if (allocated(error)) return
         call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return

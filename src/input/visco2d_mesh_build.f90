@@ -238,7 +238,7 @@ contains
     type(mesh_t), intent(in) :: mesh
     type(error_t), allocatable, intent(inout) :: error
     real(dp) :: jacobian, floor
-    integer :: e
+    integer :: e, column
     character(:), allocatable :: why
     floor = 1.0e-12_dp*mesh%size**2
     do e = 1, mesh%nelem
@@ -247,6 +247,19 @@ contains
       if (jacobian > 0.0_dp) then
         why = ' is nearly flat: its smallest Jacobian, '//rtoa(jacobian)//' m^2, is below 1e-12 of the mesh''s '// &
               'size squared; give it a reasonable shape'
+      else if (mesh%card == 'MESH' .and. column_at(deck, mesh%line, 'CORE') + column_at(deck, mesh%line, 'GRADE') > 0) then
+        ! A generated grid whose CORE/GRADE leave its layers no room at this LEVEL (CORE=0.94 on GRID=LEGACY,
+        ! level 1): the user numbered no node, so "number its nodes counter-clockwise" would mislead.
+        column = column_at(deck, mesh%line, 'CORE')
+        if (column == 0) column = column_at(deck, mesh%line, 'GRADE')
+        call set_error(error, 'the grid folds: element '//itoa(mesh%element_id(e))//' is inverted (Jacobian '// &
+          rtoa(jacobian)//' m^2): its CORE and GRADE leave the layers no room at this LEVEL; a smaller '// &
+          'CORE or GRADE (or a higher LEVEL) keeps it valid', file=deck%file, line=mesh%line, column=column, &
+          card=mesh%card)
+        return
+      else if (mesh%card == 'MESH') then
+        why = ' of the generated grid has a non-positive Jacobian ('//rtoa(jacobian)//'): the MESH card''s '// &
+              'dimensions fold it'
       else
         why = ' has a non-positive Jacobian ('//rtoa(jacobian)//'): number its nodes counter-clockwise and keep it convex'
       end if
