@@ -17,7 +17,7 @@ program visco2d
   use visco2d_strings, only: itoa
   use visco2d_timers, only: timers_enable
   use visco2d_progress, only: progress_configure, progress_auto, progress_on, progress_off
-  use visco2d_budget, only: set_memory_limit, set_time_limit
+  use visco2d_budget, only: set_memory_limit, set_time_limit, read_limit_environment
   use, intrinsic :: iso_c_binding, only: c_int
   implicit none
   interface
@@ -90,6 +90,8 @@ program visco2d
     end select
     i = i + 1
   end do
+  call read_limit_environment(message)      ! a bad VISCO2D_MAX_MEMORY / VISCO2D_MAX_TIME: as a bad option
+  if (len(message) > 0) call usage_error(message)
   if (count == 0) call usage_error('no deck given')
   if (.not. checking) then
     message = duplicate_case_message(decks(1:count), out_root)    ! no silent overwrite of a case folder

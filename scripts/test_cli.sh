@@ -1194,10 +1194,33 @@ VISCO2D_MAX_MEMORY=1M "$exe" -o out sphere.inp > size_env.out 2> size_env.err
 check_rc size_env_run_exit_1 1 $?
 check size_env_names_variable "stderr: $(first_lines size_env.err)" grep -q 'set by VISCO2D_MAX_MEMORY' size_env.err
 check size_env_no_output "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" test -z "$(ls -A out 2>/dev/null)"
-VISCO2D_MAX_MEMORY=lots "$exe" -q -o out sphere.inp > size_junk.out 2> size_junk.err
-check_rc size_env_junk_exit_0 0 $?
-check size_env_junk_warns "stderr: $(first_lines size_junk.err)" \
-  grep -q '^visco2d: warning: VISCO2D_MAX_MEMORY "lots" is not a memory size' size_junk.err
+# A limit in the environment that is not one is refused as the same value on
+# the command line is (exit 2, before any deck): it was ignored with a
+# warning, and the run had no limit at all.
+for value in lots 1s 0 -1 nan garbage; do
+  VISCO2D_MAX_MEMORY=$value "$exe" -q -o out sphere.inp > size_junk.out 2> size_junk.err
+  check_rc "size_env_memory_${value}_exit_2" 2 $?
+  check "size_env_memory_${value}_says_why" "stderr: $(first_lines size_junk.err)" \
+    grep -q "^visco2d: VISCO2D_MAX_MEMORY \"$value\" is not a memory size" size_junk.err
+  check "size_env_memory_${value}_no_output" "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+    test -z "$(ls -A out 2>/dev/null)"
+  VISCO2D_MAX_TIME=$value "$exe" check sphere.inp > size_junk.out 2> size_junk.err
+  check_rc "size_env_time_${value}_check_exit_2" 2 $?
+  VISCO2D_MAX_TIME=$value "$exe" -q -o out sphere.inp > size_junk.out 2> size_junk.err
+  check_rc "size_env_time_${value}_exit_2" 2 $?
+  check "size_env_time_${value}_says_why" "stderr: $(first_lines size_junk.err)" \
+    grep -q "^visco2d: VISCO2D_MAX_TIME \"$value\" is not a number of seconds > 0" size_junk.err
+  check "size_env_time_${value}_no_output" "out/ holds: $(ls -A out 2>/dev/null | tr '\n' ' ')" \
+    test -z "$(ls -A out 2>/dev/null)"
+done
+# An option given overrides the variable, which is then not read; an empty
+# variable is an unset one.
+VISCO2D_MAX_TIME=1s "$exe" --max-time 600 check sphere.inp > size_junk.out 2> size_junk.err
+check_rc size_env_time_option_overrides 0 $?
+VISCO2D_MAX_MEMORY=1s "$exe" --max-memory 8G check sphere.inp > size_junk.out 2> size_junk.err
+check_rc size_env_memory_option_overrides 0 $?
+VISCO2D_MAX_TIME= VISCO2D_MAX_MEMORY= "$exe" check sphere.inp > size_junk.out 2> size_junk.err
+check_rc size_env_empty_is_unset 0 $?
 check size_help_option "--help does not mention --max-memory" grep -q -- '--max-memory' ../usage/help.out
 check size_help_variable "--help does not mention VISCO2D_MAX_MEMORY" grep -q VISCO2D_MAX_MEMORY ../usage/help.out
 cd "$work" || exit 0

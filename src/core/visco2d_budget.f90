@@ -42,7 +42,7 @@ module visco2d_budget
   public :: memory_limit, set_memory_limit, machine_memory, address_space_limit, parse_memory_size
   public :: bytes_text, count_text, seconds_text, raise_hint
   public :: max_mesh_entities, long_run_seconds
-  public :: time_limit, set_time_limit
+  public :: time_limit, set_time_limit, read_limit_environment
 
   !> Analysis kinds as the cost model sees them.
   integer, parameter :: budget_static = 1, budget_quasistatic = 2, budget_dynamic = 3
@@ -357,8 +357,10 @@ contains
 
   !> The memory limit of a run (bytes), what set it (text for messages) and
   !> whether the user can raise it (false when it is the machine's memory).
-  !> Reads VISCO2D_MAX_MEMORY the first time unless --max-memory was given; a
-  !> value that is not a size is reported on stderr and ignored.
+  !> Reads VISCO2D_MAX_MEMORY the first time unless --max-memory was given or
+  !> the command line read it (read_limit_environment, which refuses a value
+  !> that is not a size); here, for a caller other than the command line,
+  !> such a value is reported on stderr and ignored.
   subroutine memory_limit(limit, origin, raisable)
     real(dp), intent(out) :: limit
     character(:), allocatable, intent(out) :: origin
@@ -486,8 +488,9 @@ contains
   end subroutine set_time_limit
 
   !> The user's time limit (s; 0: none) and what set it. Reads
-  !> VISCO2D_MAX_TIME the first time unless --max-time was given; a value that
-  !> is not a number of seconds is reported on stderr and ignored.
+  !> VISCO2D_MAX_TIME the first time unless --max-time was given or the
+  !> command line read it (read_limit_environment, which refuses a value that
+  !> is not a number of seconds); here such a value is reported and ignored.
   subroutine time_limit(seconds, origin)
     real(dp), intent(out) :: seconds
     character(:), allocatable, intent(out) :: origin
@@ -503,6 +506,29 @@ contains
     seconds = user_seconds
     origin = trim(user_seconds_origin)
   end subroutine time_limit
+
+  !> Read VISCO2D_MAX_MEMORY and VISCO2D_MAX_TIME (each unless its option,
+  !> --max-memory or --max-time, was given): message is '' if both are unset,
+  !> empty or valid, else why the first invalid one is refused. The command
+  !> line calls it once its options are read and refuses a bad value as it
+  !> refuses a bad option (exit 2): ignored with a warning, a value such as
+  !> "1s" or "0" left the run without the limit it asked for.
+  subroutine read_limit_environment(message)
+    character(:), allocatable, intent(out) :: message
+    character(:), allocatable :: text
+    message = ''
+    if (.not. environment_read) then
+      environment_read = .true.
+      text = environment_value('VISCO2D_MAX_MEMORY')
+      if (len(text) > 0) call set_memory_limit(text, 'VISCO2D_MAX_MEMORY', message)
+      if (len(message) > 0) return
+    end if
+    if (.not. time_environment_read) then
+      time_environment_read = .true.
+      text = environment_value('VISCO2D_MAX_TIME')
+      if (len(text) > 0) call set_time_limit(text, 'VISCO2D_MAX_TIME', message)
+    end if
+  end subroutine read_limit_environment
 
   !> The value of an environment variable ('' when it is not set or empty).
   function environment_value(name) result(text)
