@@ -80,6 +80,7 @@ program test_bruise
   use visco2d_strings, only: itoa
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
   use visco2d_test_decks, only: deck_line_length, pressed_sphere, try_read_deck, check_error_location
+  use visco2d_analytic, only: hertz_axis_maximum
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_bruise'
@@ -211,44 +212,13 @@ contains
       'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=4 NZ=4', 'FIX BOTTOM Z', 'PRESSURE TOP P=1e5', bruise, 'END']
   end function block_lines
 
-  !> Hertz's (sigma_r - sigma_z)/(2 p0) on the axis at zeta = z/a.
-  pure real(dp) function axis_shear(zeta, nu)
-    real(dp), intent(in) :: zeta, nu
-    real(dp) :: radial, axial
-    axial = -1.0_dp/(1.0_dp + zeta**2)
-    radial = -(1.0_dp + nu)*(1.0_dp - zeta*atan(1.0_dp/zeta)) + 0.5_dp/(1.0_dp + zeta**2)
-    axis_shear = 0.5_dp*(radial - axial)
-  end function axis_shear
-
-  !> Golden-section maximum of axis_shear over zeta in [0.1, 2]: value and zeta.
-  subroutine hertz_maximum(nu, value, zeta)
-    real(dp), intent(in) :: nu
-    real(dp), intent(out) :: value, zeta
-    real(dp), parameter :: golden = 0.5_dp*(sqrt(5.0_dp) - 1.0_dp)
-    real(dp) :: low, high, x1, x2
-    integer :: i
-    low = 0.1_dp
-    high = 2.0_dp
-    do i = 1, 200
-      x1 = high - golden*(high - low)
-      x2 = low + golden*(high - low)
-      if (axis_shear(x1, nu) > axis_shear(x2, nu)) then
-        high = x2
-      else
-        low = x1
-      end if
-    end do
-    zeta = 0.5_dp*(low + high)
-    value = axis_shear(zeta, nu)
-  end subroutine hertz_maximum
-
   subroutine hertz_indentation()
     real(dp), parameter :: nu = 0.3_dp, young = 18.11e6_dp, radius = 0.0366_dp
     type(record_t) :: record
     type(deck_t) :: deck
     character(len=deck_line_length), allocatable :: deck_lines(:)
     real(dp) :: ratio, zeta, force, a, p0, tau, depth, h, axis_peak
-    call hertz_maximum(nu, ratio, zeta)
+    call hertz_axis_maximum(nu, ratio, zeta)
     print '(a, f8.5, a, f8.5, a)', '# Hertz, nu = 0.3: max shear ', ratio, ' p0 at depth ', zeta, ' a'
     call check('hertz_textbook_0.31_p0_at_0.48_a', abs(ratio - 0.31_dp) < 0.005_dp .and. abs(zeta - 0.48_dp) < 0.01_dp, &
                'got '//exact_text(ratio)//' p0 at '//exact_text(zeta)//' a')

@@ -57,12 +57,13 @@
 !>    maximum, under the threshold (bruise_volume_cm3 = 0, exactly).
 program test_envelope_spike
   use visco2d_kinds, only: dp, pi
-  use visco2d_error, only: error_t, error_text
+  use visco2d_error, only: error_t
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
   use visco2d_strings, only: itoa
-  use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, message_of
   use visco2d_test_decks, only: deck_line_length
+  use visco2d_analytic, only: hertz_axis_maximum
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_envelope_spike'
@@ -103,7 +104,7 @@ contains
       'INITIAL VZ=-2', 'TIME DT='//dt_text(k)//' TEND=4e-3', 'PLATE Z=0 SLIP', 'STOP AT=MAXDEFORMATION', &
       'OUTPUT EVERY=1000', 'BRUISE CRITERION=MAXSHEAR STRESS=1e6', 'END'])
     call run_deck(folder//'/'//name//'.inp', folder//'/out', record, error)
-    call check('spike_'//name//'_runs', .not. allocated(error), message(error))
+    call check('spike_'//name//'_runs', .not. allocated(error), message_of(error))
     if (allocated(error)) then
       maximum(level, k) = 0.0_dp
       return
@@ -133,42 +134,6 @@ contains
                      atol=0.0_dp)
   end subroutine one_run
 
-  !> Hertz's largest (sigma_1 - sigma_3)/(2 p0) on the axis and its zeta = z/a
-  !> (Johnson eq. 3.45): a scan of 0 < zeta <= 3, then golden-section refinement.
-  subroutine hertz_axis_maximum(poisson, ratio, zeta)
-    real(dp), intent(in) :: poisson
-    real(dp), intent(out) :: ratio, zeta
-    real(dp), parameter :: golden = 0.5_dp*(sqrt(5.0_dp) - 1.0_dp)
-    real(dp) :: low, high, x1, x2
-    integer :: i, best
-    best = 1
-    do i = 1, 3000
-      if (shear(0.001_dp*i, poisson) > shear(0.001_dp*best, poisson)) best = i
-    end do
-    low = 0.001_dp*max(best - 1, 1)
-    high = 0.001_dp*(best + 1)
-    do i = 1, 100
-      x1 = high - golden*(high - low)
-      x2 = low + golden*(high - low)
-      if (shear(x1, poisson) > shear(x2, poisson)) then
-        high = x2
-      else
-        low = x1
-      end if
-    end do
-    zeta = 0.5_dp*(low + high)
-    ratio = shear(zeta, poisson)
-  end subroutine hertz_axis_maximum
-
-  !> (sigma_r - sigma_z)/(2 p0) on Hertz's axis at zeta = z/a (Johnson eq. 3.45).
-  pure real(dp) function shear(z, poisson)
-    real(dp), intent(in) :: z, poisson
-    real(dp) :: sigma_z, sigma_r
-    sigma_z = -1.0_dp/(1.0_dp + z**2)
-    sigma_r = -(1.0_dp + poisson)*(1.0_dp - z*atan(1.0_dp/z)) + 0.5_dp/(1.0_dp + z**2)
-    shear = 0.5_dp*(sigma_r - sigma_z)
-  end function shear
-
   function real_list(values) result(text)
     real(dp), intent(in) :: values(:)
     character(:), allocatable :: text
@@ -182,10 +147,4 @@ contains
     end do
   end function real_list
 
-  function message(error) result(text)
-    type(error_t), allocatable, intent(in) :: error
-    character(:), allocatable :: text
-    text = ''
-    if (allocated(error)) text = error_text(error)
-  end function message
 end program test_envelope_spike

@@ -25,10 +25,10 @@
 !>     row (measured 1.9 % and 2.5 %), so the offset is real.
 program test_force_timing
   use visco2d_kinds, only: dp
-  use visco2d_error, only: error_t, error_text
+  use visco2d_error, only: error_t
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
-  use visco2d_testing, only: check, test_summary, write_deck, summary_real, history_column
+  use visco2d_testing, only: check, test_summary, write_deck, summary_real, history_column, message_of
   use visco2d_test_decks, only: deck_line_length
   implicit none
 
@@ -63,7 +63,7 @@ contains
     lines(8) = 'INTEGRATOR '//card
     call write_deck(folder//'/'//name//'.inp', lines)
     call run_deck(folder//'/'//name//'.inp', folder//'/out', record, error)
-    call check('timing_'//name//'_runs', .not. allocated(error), message(error))
+    call check('timing_'//name//'_runs', .not. allocated(error), message_of(error))
     if (allocated(error)) return
     a = history_column(record, 'az_cm_m_s2')
     force = history_column(record, 'force_N')
@@ -95,10 +95,4 @@ contains
     text = trim(adjustl(buffer))
   end function real_text
 
-  function message(error) result(text)
-    type(error_t), allocatable, intent(in) :: error
-    character(:), allocatable :: text
-    text = ''
-    if (allocated(error)) text = error_text(error)
-  end function message
 end program test_force_timing

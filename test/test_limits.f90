@@ -8,7 +8,7 @@ program test_limits
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, read_lines, &
-                             summary_real
+                             summary_real, message_of
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks/limits'
@@ -44,10 +44,10 @@ contains
     lines = [character(len=line_length) :: lines(1:k - 1), 'PLATE Z=-0.01 SLIP', lines(k:)]
     call write_deck(folder//'/sphere_plate.inp', lines)
     call run_deck(folder//'/sphere_plain.inp', out_root, plain, error)
-    call check('sphere under pressure runs', .not. allocated(error), message(error))
+    call check('sphere under pressure runs', .not. allocated(error), message_of(error))
     if (allocated(error)) deallocate(error)
     call run_deck(folder//'/sphere_plate.inp', out_root, plated, error)
-    call check('sphere under pressure with an untouched PLATE runs', .not. allocated(error), message(error))
+    call check('sphere under pressure with an untouched PLATE runs', .not. allocated(error), message_of(error))
     if (allocated(error)) return
     call check('untouched PLATE: no node on the plate', summary_value(plated, 'contact_nodes') == '0', &
                'contact_nodes = '//summary_value(plated, 'contact_nodes'))
@@ -71,10 +71,10 @@ contains
     type(error_t), allocatable :: error
     character(:), allocatable :: text
     call run_deck(pad_deck('pad_thin', '0.0366', '18.11e6', '100', '9.8'), out_root, thin, error)
-    call check('sphere on a 36.6 mm pad runs', .not. allocated(error), message(error))
+    call check('sphere on a 36.6 mm pad runs', .not. allocated(error), message_of(error))
     if (allocated(error)) deallocate(error)
     call run_deck(pad_deck('pad_thick', '100', '18.11e6', '100', '9.8'), out_root, thick, error)
-    call check('sphere on a 100 m pad runs (not "singular")', .not. allocated(error), message(error))
+    call check('sphere on a 100 m pad runs (not "singular")', .not. allocated(error), message_of(error))
     if (allocated(error)) deallocate(error)
     ! The force on the plate is the body's weight either way (rtol: round-off
     ! of the contact sums).
@@ -107,11 +107,11 @@ contains
     ! allows (1e-6: measured 1e-8).
     call run_deck(pad_deck('steel_foam_band', '0.01', '1e5', '100', '9.8', '2e11', 'SOLVER BAND'), &
                   out_root, thin, error)
-    call check('steel sphere on foam runs (band)', .not. allocated(error), message(error))
+    call check('steel sphere on foam runs (band)', .not. allocated(error), message_of(error))
     if (allocated(error)) deallocate(error)
     call run_deck(pad_deck('steel_foam_cholmod', '0.01', '1e5', '100', '9.8', '2e11', 'SOLVER CHOLMOD'), &
                   out_root, thick, error)
-    call check('steel sphere on foam runs (CHOLMOD)', .not. allocated(error), message(error))
+    call check('steel sphere on foam runs (CHOLMOD)', .not. allocated(error), message_of(error))
     if (allocated(error)) deallocate(error)
     call check_close('steel on foam: band and CHOLMOD agree (sigma_z_min)', summary_real(thick, 'sigma_z_min_Pa'), &
                      summary_real(thin, 'sigma_z_min_Pa'), rtol=1.0e-6_dp)
@@ -144,11 +144,4 @@ contains
       'PAD THICKNESS='//thickness//' WIDTH=0.1 MAT=flesh BOTTOM=SLIP', last, 'END'])
   end function pad_deck
 
-  !> The error's text, or '' for none.
-  function message(error) result(text)
-    type(error_t), allocatable, intent(in) :: error
-    character(:), allocatable :: text
-    text = ''
-    if (allocated(error)) text = error_text(error)
-  end function message
 end program test_limits

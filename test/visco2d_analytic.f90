@@ -1,5 +1,6 @@
 !> Closed-form and exact reference solutions of linear viscoelasticity, for
-!> comparison with finite-element results.
+!> comparison with finite-element results; and Hertz's stresses on the axis
+!> under a sphere's contact (hertz_axis_shear, hertz_axis_maximum).
 !>
 !> The material is elastic in bulk and viscoelastic in shear:
 !>
@@ -33,6 +34,7 @@ module visco2d_analytic
 
   public :: shear_relaxation, shear_ramp_response, uniaxial_creep_compliance_one_term
   public :: cylinder_bore_displacement, cylinder_bore_displacement_elastic
+  public :: hertz_axis_shear, hertz_axis_maximum
 
   !> Which function of s a root search is for (see find_root).
   integer, parameter :: function_gbar = 1, function_bulk_shear = 2
@@ -429,4 +431,39 @@ contains
       if (exponent > -745.0_dp) evaluate = evaluate + expansion%residue(k)*exp(exponent)
     end do
   end function evaluate
+  !> Hertz's (sigma_r - sigma_z)/(2 p0) on the axis of a sphere's contact at
+  !> zeta = z/a (Johnson, Contact Mechanics, eq. 3.45): the largest shear
+  !> stress there, over the peak pressure p0.
+  pure real(dp) function hertz_axis_shear(zeta, nu)
+    real(dp), intent(in) :: zeta, nu
+    real(dp) :: radial, axial
+    axial = -1.0_dp/(1.0_dp + zeta**2)
+    radial = -(1.0_dp + nu)*(1.0_dp - zeta*atan(1.0_dp/zeta)) + 0.5_dp/(1.0_dp + zeta**2)
+    hertz_axis_shear = 0.5_dp*(radial - axial)
+  end function hertz_axis_shear
+
+  !> The maximum of hertz_axis_shear over zeta (value, over p0, and its zeta),
+  !> by golden-section search on [0.1, 2], where it is unimodal (its maximum
+  !> is near zeta = 0.48 for every nu in [0, 0.5]).
+  pure subroutine hertz_axis_maximum(nu, value, zeta)
+    real(dp), intent(in) :: nu
+    real(dp), intent(out) :: value, zeta
+    real(dp), parameter :: golden = 0.5_dp*(sqrt(5.0_dp) - 1.0_dp)
+    real(dp) :: low, high, x1, x2
+    integer :: i
+    low = 0.1_dp
+    high = 2.0_dp
+    do i = 1, 200
+      x1 = high - golden*(high - low)
+      x2 = low + golden*(high - low)
+      if (hertz_axis_shear(x1, nu) > hertz_axis_shear(x2, nu)) then
+        high = x2
+      else
+        low = x1
+      end if
+    end do
+    zeta = 0.5_dp*(low + high)
+    value = hertz_axis_shear(zeta, nu)
+  end subroutine hertz_axis_maximum
+
 end module visco2d_analytic
