@@ -340,9 +340,8 @@ contains
                            log%basis_factor*sum(log%node_mass(probe%region)))
       call record_put(record, 'probe_'//probe%name//'_sensor_reads', 'the mean acceleration sum(m a)/sum(m) '// &
         'of the nodes within RADIUS (the rigid-body acceleration of that region), not the body''s F/M '// &
-        '(accel_cm_max_g): on a plate it carries the stress waves of the node-by-node arrests (about '// &
-        '1.1 x accel_cm_max_g at the centre of an apple at level 5), which shrink only slowly with the '// &
-        'mesh level and DT')
+        '(accel_cm_max_g): on a plate it carries the stress waves of the node-by-node arrests, which '// &
+        'shrink only slowly with the mesh level and DT (doc/outputs.md)')
       end associate
     end do
   end subroutine put_sensor_summary
