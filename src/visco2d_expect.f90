@@ -22,7 +22,7 @@ module visco2d_expect
     integer :: count = 0          !< EXPECT cards checked
     integer :: within = 0         !< of them within their RTOL
     real(dp) :: worst = 0.0_dp    !< the largest relative error
-    character(:), allocatable :: misses   !< one located line per card outside its RTOL, newline-separated
+    character(:), allocatable :: misses   !< `visco2d: error: ` lines, one per card outside its RTOL
   end type expect_tally_t
 
   !> The exit status of a run whose decks all ran, one or more of them
@@ -136,7 +136,7 @@ contains
       file=deck%cards%file, line=expect%line, column=positional_column(deck, expect%line, 2), card='EXPECT')
     if (.not. allocated(tally%misses)) tally%misses = ''
     if (len(tally%misses) > 0) tally%misses = tally%misses//new_line('a')
-    tally%misses = tally%misses//error_text(miss)
+    tally%misses = tally%misses//'visco2d: error: '//error_text(miss)
   end subroutine add_miss
 
   !> The run missed one of its EXPECT cards (outside its RTOL).
@@ -150,17 +150,8 @@ contains
   function miss_report(tally) result(text)
     type(expect_tally_t), intent(in) :: tally
     character(:), allocatable :: text
-    integer :: start, stop
     text = ''
-    if (.not. allocated(tally%misses)) return
-    start = 1
-    do while (start <= len(tally%misses))
-      stop = index(tally%misses(start:), new_line('a'))
-      if (stop == 0) stop = len(tally%misses) - start + 2
-      if (len(text) > 0) text = text//new_line('a')
-      text = text//'visco2d: error: '//tally%misses(start:start + stop - 2)
-      start = start + stop
-    end do
+    if (allocated(tally%misses)) text = tally%misses
   end function miss_report
 
   !> |computed - expected| / |expected| for finite values and expected /= 0,
