@@ -409,7 +409,7 @@ contains
     !> stresses keep 6 digits.
     real(dp), parameter :: round_off_balance = 1.0e-6_dp
     logical, allocatable :: supported(:)
-    character(:), allocatable :: where
+    character(:), allocatable :: where, round_off
     real(dp) :: largest, residual, scale, compression, deformation
     integer :: i, node, equation, worst
     largest = 0.0_dp
@@ -440,22 +440,23 @@ contains
     if (residual >= singular_balance*scale) then
       call set_error(error, where//'; the stiffness may be singular (a body free to move): fix its rigid motions', &
                      file=deck%cards%file, line=deck%plate%line, card='PLATE')
-    else if (contact%pad) then
+      return
+    end if
+    round_off = ' ('//gtoa(residual/scale)//' of them; '//gtoa(round_off_balance)//' allowed): the round-off '// &
+      'of an ill-conditioned system, not a singular stiffness'
+    if (contact%pad) then
       compression = pad_compression(deck, contact, u)
       deformation = 0.0_dp
       do node = 1, body_nodes(deck)
         deformation = max(deformation, abs(u(node_dof(deck%mesh, node, 2)) + compression))
       end do
-      call set_error(error, where//' ('//gtoa(residual/scale)//' of them; '//gtoa(round_off_balance)// &
-        ' allowed): the round-off of an ill-conditioned system, not a singular stiffness: the body rides down '// &
-        gtoa(1.0e3_dp*compression)// &
+      call set_error(error, where//round_off//': the body rides down '//gtoa(1.0e3_dp*compression)// &
         ' mm with the pad''s compression, '//gtoa(compression/max(deformation, tiny(1.0_dp)))// &
         ' times its own deformation, and that motion formed through its stiffness leaves the residual; make '// &
         'the PAD thinner or stiffer (closer to the body''s modulus)', &
         file=deck%cards%file, line=deck%pad%line, card='PAD')
     else
-      call set_error(error, where//' ('//gtoa(residual/scale)//' of them; '//gtoa(round_off_balance)// &
-        ' allowed): the round-off of an ill-conditioned system (moduli or sizes far apart), not a singular stiffness', &
+      call set_error(error, where//round_off//' (moduli or sizes far apart)', &
         file=deck%cards%file, line=deck%plate%line, card='PLATE')
     end if
   end subroutine check_equilibrium
