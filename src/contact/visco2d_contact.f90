@@ -34,6 +34,7 @@ module visco2d_contact
 
   public :: contact_t, hertz_t
   public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
+  public :: contact_release_tensile
   public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
   public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression
 
@@ -206,7 +207,8 @@ contains
 
   !> After a trial increment du from u: put on the plate every free candidate
   !> that went through it, and (RELEASE=YES) free every contact node whose
-  !> plate reaction (z, per radian) is tensile. A node
+  !> plate reaction (z, per radian) is tensile (on a PAD that is done at the
+  !> start of the increment instead, contact_release_tensile). A node
   !> changes state at most once per increment, so the repetition ends.
   !> `fraction` is the earliest crossing of the plate within the increment
   !> (0..1, linear in time), 1 if nothing touched.
@@ -228,7 +230,7 @@ contains
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
       if (contact%active(node)) then
-        if (.not. contact%release .or. contact%touched(node)) cycle
+        if (.not. contact%release .or. contact%touched(node) .or. contact%pad) cycle
         if (reaction(node_dof(deck%mesh, node, 2)) < -1.0e-9_dp*force_scale) then
           contact%active(node) = .false.
           contact%let_go(node) = .true.
@@ -248,6 +250,39 @@ contains
     end do
     if (changed) contact%iterations = contact%iterations + 1
   end subroutine contact_search
+
+  !> On a PAD with RELEASE=YES, at the start of an increment: free every
+  !> contact node whose reaction (z, per radian) at the end of the last
+  !> increment was tensile. contact_search does not free pad nodes within
+  !> the increment: freeing a pair whose last force was compressive lets
+  !> that force work on the pair's separation over the step (the
+  !> trapezoidal work 1/2 lambda_t dg of the integrators), energy the
+  !> contact does not have; after release on a tensile force that work
+  !> is negative. A pair thus holds a tension for at most one increment.
+  !> The node may touch again in the same increment (contact_search).
+  subroutine contact_release_tensile(deck, contact, reaction, changed)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(inout) :: contact
+    real(dp), intent(in) :: reaction(:)
+    logical, intent(out) :: changed
+    real(dp) :: force_scale
+    integer :: i, node
+    changed = .false.
+    if (.not. (contact%pad .and. contact%release)) return
+    force_scale = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) force_scale = max(force_scale, abs(reaction(node_dof(deck%mesh, node, 2))))
+    end do
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (.not. contact%active(node)) cycle
+      if (reaction(node_dof(deck%mesh, node, 2)) < -1.0e-9_dp*force_scale) then
+        contact%active(node) = .false.
+        changed = .true.
+      end if
+    end do
+  end subroutine contact_release_tensile
 
   !> Number of contact nodes.
   pure integer function contact_count(contact) result(number)

@@ -95,8 +95,12 @@ contains
   end subroutine book_substep
 
   !> The kinetic energy (velocity v before the sub-step's update) of the
-  !> components the plate stopped in this sub-step; on a pad, relative to
-  !> its surface (a node's mass arrested on a much heavier surface).
+  !> components the plate stopped in this sub-step. On a pad, the energy of
+  !> the inelastic collision of the node with the surface under it
+  !> (visco2d_pad_projection): 1/2 mu (v - v_surface)^2 with the reduced mass
+  !> 1/mu = 1/m + sum_k w_k^2/m_k of the node and the surface nodes (the
+  !> coupling of pairs touching in the same sub-step through a shared
+  !> surface node is left out); on the rigid plate mu = m.
   subroutine book_contact_loss(book, deck, contact, mass, v)
     type(energy_book_t), intent(inout) :: book
     type(deck_t), intent(in) :: deck
@@ -107,11 +111,24 @@ contains
       node = contact%candidates(i)
       if (.not. contact%touched(node)) cycle
       associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
-      book%contact_loss = book%contact_loss + 0.5_dp*mass(z)*(v(z) - contact_partner_sum(deck, contact, v, node, 2))**2
+      book%contact_loss = book%contact_loss + &
+        0.5_dp*reduced_mass(z)*(v(z) - contact_partner_sum(deck, contact, v, node, 2))**2
       if (contact%stick) book%contact_loss = book%contact_loss + &
-        0.5_dp*mass(r)*(v(r) - contact_partner_sum(deck, contact, v, node, 1))**2
+        0.5_dp*reduced_mass(r)*(v(r) - contact_partner_sum(deck, contact, v, node, 1))**2
       end associate
     end do
+  contains
+    !> mu of equation c and the surface equations under it.
+    pure real(dp) function reduced_mass(c)
+      integer, intent(in) :: c
+      real(dp) :: compliance
+      integer :: k
+      compliance = 1.0_dp/mass(c)
+      do k = 1, 2
+        if (contact%partner(k, c) > 0) compliance = compliance + contact%weight(k, c)**2/mass(contact%partner(k, c))
+      end do
+      reduced_mass = 1.0_dp/compliance
+    end function reduced_mass
   end subroutine book_contact_loss
 
   !> The instability test after a step (kinetic + internal energy `energy`):

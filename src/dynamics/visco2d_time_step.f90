@@ -41,10 +41,11 @@ module visco2d_time_step
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms, viscoelastic_state_t
   use visco2d_constitutive, only: history_stresses, commit_history
   use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_begin_increment, contact_search, &
-                             contact_gap
+                             contact_gap, contact_release_tensile
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_set, capacitance_apply, &
                                  capacitance_partners, constraint_sum
   use visco2d_pad_mesh, only: is_pad_node
+  use visco2d_pad_projection, only: project_on_surface
   use visco2d_timers, only: timer_start, timer_stop, phase_solve, phase_constitutive, phase_contact, &
                             phase_factorization
   use visco2d_integrators, only: integrator_t, row_t, integrator_create, solve_interval, mass_coefficient, &
@@ -331,9 +332,13 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     logical :: changed
     real(dp) :: fraction
-    integer :: i, info
     finite = .true.
     associate (point => stepper%points(r), row => stepper%points(r)%row)
+    if (stepper%contact_on) then                                        ! a PAD's releases (contact_release_tensile)
+      call contact_release_tensile(deck, stepper%contact, stepper%reaction_solve, changed)
+      if (changed) call new_contact_set(stepper, deck, error)
+      if (allocated(error)) return
+    end if
     do
       if (stepper%contact_on) call adjusted_displacements(stepper, deck, state%u, row%theta)
       call timer_start(phase_solve)
@@ -344,7 +349,8 @@ contains
                              stepper%du, stepper%dv, stepper%da)                       ! eqs. [37]-[39]
       if (stepper%contact_on) then                                      ! held on the plate: U'' = U' = 0
         call adjusted_displacements(stepper, deck, state%u, 1.0_dp)
-        call follow_surface(stepper, state)
+        call follow_surface(stepper, state, error, deck)
+        if (allocated(error)) return
       end if
       if (.not. all(ieee_is_finite(stepper%da)) .or. .not. all(ieee_is_finite(stepper%du))) then
         finite = .false.
@@ -361,39 +367,75 @@ contains
       call timer_stop(phase_contact)
       if (.not. changed) exit
       stepper%touch_fraction = min(stepper%touch_fraction, fraction)
-      stepper%held = contact_held_dofs(deck, stepper%contact)
-      stepper%fixed = stepper%supports .or. stepper%held
-      stepper%held_rows = pack([(i, i = 1, size(stepper%held))], stepper%held)
-      call timer_start(phase_factorization)
-      call hold_contact(stepper, info)
-      call timer_stop(phase_factorization)
-      if (info > 0) then
-        call set_error(error, 'the effective stiffness is not positive definite at equation '//itoa(info)// &
-          ' after a contact change', file=deck%cards%file, line=deck%plate%line, card='PLATE')
-        return
-      else if (info < 0) then
-        call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(-info)// &
-          ' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
-        return
-      end if
+      call new_contact_set(stepper, deck, error)
+      if (allocated(error)) return
     end do
     end associate
   end subroutine contact_repeat
 
+  !> The contact set has changed: the held equations and rows, into every
+  !> row's capacitance system (hold_contact); an error at the PLATE card if
+  !> a matrix is not positive definite.
+  subroutine new_contact_set(stepper, deck, error)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: i, info
+    stepper%held = contact_held_dofs(deck, stepper%contact)
+    stepper%fixed = stepper%supports .or. stepper%held
+    stepper%held_rows = pack([(i, i = 1, size(stepper%held))], stepper%held)
+    call timer_start(phase_factorization)
+    call hold_contact(stepper, info)
+    call timer_stop(phase_factorization)
+    if (info > 0) then
+      call set_error(error, 'the effective stiffness is not positive definite at equation '//itoa(info)// &
+        ' after a contact change', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+    else if (info < 0) then
+      call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(-info)// &
+        ' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+    end if
+  end subroutine new_contact_set
+
   !> A held equation moves with the surface under it at the sub-step's end:
-  !> U = U_surface + value, U' = U'_surface, U'' = U''_surface, the surface
-  !> being the pad's under the node (partner_sum) or the fixed plate's (0:
-  !> U' = U'' = 0, U the adjusted displacement).
-  subroutine follow_surface(stepper, state)
+  !> U = U_surface + value, U' = U'_surface, U'' = U''_surface. On the fixed
+  !> plate (U' = U'' = 0 there, U the adjusted displacement) the node is put
+  !> there. On a PAD the pair (the body node and the surface nodes under it)
+  !> is put on its constraint by the mass-metric correction of
+  !> visco2d_pad_projection, an inelastic collision that keeps the momentum
+  !> and cannot add energy; supported equations keep their values.
+  subroutine follow_surface(stepper, state, error, deck)
     type(stepper_t), intent(inout) :: stepper
     type(dynamic_state_t), intent(in) :: state
-    integer :: i, c
-    do i = 1, size(stepper%held_rows)
-      c = stepper%held_rows(i)
-      stepper%du(c) = stepper%prescribed(c) + partner_sum(stepper, stepper%du, c)
-      stepper%dv(c) = partner_sum(stepper, state%v, c) + partner_sum(stepper, stepper%dv, c) - state%v(c)
-      stepper%da(c) = partner_sum(stepper, state%a, c) + partner_sum(stepper, stepper%da, c) - state%a(c)
-    end do
+    type(error_t), allocatable, intent(inout) :: error
+    type(deck_t), intent(in) :: deck
+    real(dp), allocatable :: vectors(:, :), targets(:, :)
+    integer, allocatable :: rows(:)
+    integer :: i, c, info
+    if (.not. stepper%contact%pad) then
+      do i = 1, size(stepper%held_rows)
+        c = stepper%held_rows(i)
+        stepper%du(c) = stepper%prescribed(c)
+        stepper%dv(c) = -state%v(c)
+        stepper%da(c) = -state%a(c)
+      end do
+      return
+    end if
+    rows = pack(stepper%held_rows, .not. stepper%supports(stepper%held_rows))
+    allocate(targets(size(rows), 3))
+    targets(:, 1) = stepper%prescribed(rows)
+    targets(:, 2:3) = 0.0_dp
+    vectors = reshape([stepper%du, state%v + stepper%dv, state%a + stepper%da], [size(stepper%du), 3])
+    call project_on_surface(stepper%contact%partner, stepper%contact%weight, stepper%mass, rows, targets, &
+                            vectors, info)
+    if (info /= 0) then
+      call set_error(error, 'the pad contact constraints are dependent (equation '//itoa(info)// &
+        ' of the held set): two body nodes hold the same pad surface equation in the same way', &
+        file=deck%cards%file, line=deck%pad%line, card='PAD')
+      return
+    end if
+    stepper%du = vectors(:, 1)
+    stepper%dv = vectors(:, 2) - state%v
+    stepper%da = vectors(:, 3) - state%a
   end subroutine follow_surface
 
   !> dU of eq. [34] with the held equations: the capacitance correction of
