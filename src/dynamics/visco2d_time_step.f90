@@ -360,7 +360,7 @@ contains
       call trial_stresses(stepper, point, state)
       call timer_stop(phase_constitutive)
       stepper%reaction_next = merge(stepper%mass*(state%a + stepper%da) + stepper%internal_next - stepper%load_next &
-                                    - stepper%gravity, 0.0_dp, stepper%fixed)
+                                    - stepper%gravity, 0.0_dp, rigid_reactions(stepper))
       if (.not. stepper%contact_on) exit
       call timer_start(phase_contact)
       call contact_search(deck, stepper%contact, state%u, stepper%du, stepper%reaction_solve, changed, fraction)
@@ -372,6 +372,22 @@ contains
     end do
     end associate
   end subroutine contact_repeat
+
+  !> The equations whose reactions are the rigid plate's and the supports':
+  !> the supports, and on the rigid plate the held equations. On a PAD the
+  !> held equations are the body's side of a constraint with the pad, an
+  !> internal force (the pad's side acts on the surface nodes), so they are
+  !> left out: the rigid plate's force then comes through the pad's supported
+  !> bottom only, and reaction_z_N is that force, not twice it.
+  pure function rigid_reactions(stepper) result(mask)
+    type(stepper_t), intent(in) :: stepper
+    logical :: mask(size(stepper%fixed))
+    if (stepper%contact_on) then
+      mask = stepper%supports .or. (stepper%held .and. .not. stepper%contact%pad)
+    else
+      mask = stepper%fixed
+    end if
+  end function rigid_reactions
 
   !> The contact set has changed: the held equations and rows, into every
   !> row's capacitance system (hold_contact); an error at the PLATE card if
