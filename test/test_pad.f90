@@ -18,8 +18,8 @@
 !>  3. Energy: the books close on every run (kinetic + strain energy of
 !>     fruit and pad + contact loss = initial kinetic energy + gravity work):
 !>     balance_error_max_rel below 2 % (the rigid plate's own is ~0.1 %; a
-!>     node arrested on a moving surface is booked with its velocity
-!>     relative to the surface, an estimate: measured up to ~1 % here).
+!>     node landing on the moving surface is booked as the pair's inelastic
+!>     collision, with their reduced mass, an estimate).
 !>  4. Hertz with the combined modulus 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2:
 !>     on a thick, wide pad of the fruit's own material at V = 0.2 m/s
 !>     (a/R ~ 0.1), the largest total approach (alpha + pad compression)
