@@ -15,14 +15,37 @@ src/ is grouped in floors, from the bottom up (see doc/architecture.md):
 
 A module may use modules of its own floor and of the floors below it, never
 one above: the base imports nothing of the extensions. Every Fortran file
-under src/ must be in one of the floors. Prints one PASS/FAIL line per file
-and exits 1 on any violation.
+under src/ must be in one of the floors.
+
+The reach: for every module of the base floor, the modules it depends on
+at compile time (the transitive closure of its `use` statements) must not
+outgrow the budget in REACH below, and a base module not in REACH fails
+too. The budgets are the reach measured when they were last lowered: a
+change that makes the legacy program drag in more of the reader fails here
+(lower a budget when a module's reach shrinks; doc/architecture.md).
+
+Prints one PASS/FAIL line per file and per base module, and exits 1 on any
+violation.
 
 usage: check_layers.py [SRC_DIR]
 """
 import os
 import re
 import sys
+
+# The largest reach (modules, all floors) of each base module, and how many of
+# them may be of the input floor.
+REACH = {
+    "visco2d_assembly": (37, 28),
+    "visco2d_banded": (2, 0),
+    "visco2d_cholmod": (3, 0),
+    "visco2d_constitutive": (5, 2),
+    "visco2d_element": (2, 1),
+    "visco2d_factor": (5, 0),
+    "visco2d_profile": (3, 0),
+    "visco2d_static": (45, 28),
+    "visco2d_viscoelastic": (2, 1),
+}
 
 FLOORS = ["core", "input", "base", "io", "bruise", "contact", "dynamics", ""]
 USE = re.compile(r"^\s*use\s+(visco2d_\w+)", re.IGNORECASE | re.MULTILINE)
@@ -60,7 +83,38 @@ def main():
             print(f"FAIL layers {path}: " + "; ".join(details))
         else:
             print(f"PASS layers {path}")
+    module_uses = {}
+    for path, (floor, used) in uses.items():
+        for module in MODULE.findall(open(path, encoding="utf-8").read()):
+            module_uses[module.lower()] = [u for u in used if u != module.lower()]
+    for module in sorted(m for m, f in floor_of.items() if f == "base"):
+        reached = reach(module, module_uses)
+        inputs = sum(1 for m in reached if floor_of.get(m) == "input")
+        if module not in REACH:
+            failures += 1
+            print(f"FAIL reach {module}: no budget in scripts/check_layers.py REACH (reaches {len(reached)} "
+                  f"modules, {inputs} of the input floor)")
+            continue
+        budget, input_budget = REACH[module]
+        if len(reached) > budget or inputs > input_budget:
+            failures += 1
+            print(f"FAIL reach {module}: reaches {len(reached)} modules ({inputs} of the input floor), "
+                  f"budget {budget} ({input_budget}); it now also depends on more of the code")
+        else:
+            print(f"PASS reach {module}: {len(reached)} modules ({inputs} of the input floor), budget {budget}")
     return 1 if failures else 0
+
+
+def reach(module, module_uses):
+    """The modules `module` depends on at compile time, transitively."""
+    seen, stack = set(), [module]
+    while stack:
+        for used in module_uses.get(stack.pop(), []):
+            if used not in seen:
+                seen.add(used)
+                stack.append(used)
+    seen.discard(module)
+    return seen
 
 
 if __name__ == "__main__":

@@ -20,10 +20,10 @@ count() {  # count PASS/FAIL lines of a log; echo the FAIL lines
   grep '^FAIL ' "$file" || true
 }
 
-echo "== source floors (scripts/check_layers.py: no module uses one of a floor above it)"
+echo "== source floors (scripts/check_layers.py: no module uses one of a floor above it; the base modules' reach)"
 python3 scripts/check_layers.py src > "$log/layers.log" 2>&1
 count "$log/layers.log"
-echo "   $(grep -c '^PASS ' "$log/layers.log") files checked"
+echo "   $(grep -c '^PASS layers ' "$log/layers.log") files checked, $(grep -c '^PASS reach ' "$log/layers.log") base modules within their reach"
 
 echo "== documentation links (scripts/check_links.py: links, anchors, quoted paths, tables of README.md and doc/)"
 python3 scripts/check_links.py > "$log/links.log" 2>&1

@@ -31,7 +31,8 @@ program test_factor
   use visco2d_error, only: error_t, error_text
   use visco2d_banded, only: band_matrix_t, band_create, band_multiply, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, &
-                            solver_band, solver_profile, solver_cholmod, solver_name
+                            solver_band, solver_profile, solver_cholmod, solver_name, solver_none
+  use visco2d_deck_types, only: solver_card_default, solver_card_band, solver_card_profile, solver_card_cholmod
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness
   use visco2d_testing, only: check, test_summary, write_deck
@@ -51,6 +52,10 @@ program test_factor
   call test_assembled()
   call test_singular()
   call test_solver_card()
+  ! The factor numbers its solvers as the SOLVER card does, without using the cards.
+  call check('the factor and the SOLVER card number the solvers alike', solver_none == solver_card_default .and. &
+             solver_band == solver_card_band .and. solver_profile == solver_card_profile .and. &
+             solver_cholmod == solver_card_cholmod)
   call test_summary('test_factor')
 
 contains

@@ -17,7 +17,6 @@
 module visco2d_factor
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
-  use visco2d_deck_types, only: solver_card_default, solver_card_band, solver_card_profile, solver_card_cholmod
   use visco2d_banded, only: band_matrix_t, band_constrain_matrix, band_factor, band_solve, band_solve_many
   use visco2d_profile, only: profile_matrix_t, profile_from_band, profile_factor, profile_solve, profile_solve_many
   use visco2d_cholmod, only: cholmod_factor_t, cholmod_compute, cholmod_solve, cholmod_solve_many, cholmod_entries
@@ -25,11 +24,15 @@ module visco2d_factor
   private
 
   public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries
-  public :: solver_band, solver_profile, solver_cholmod, solver_default, solver_name, solver_of_card
+  public :: solver_none, solver_band, solver_profile, solver_cholmod, solver_default, solver_name, solver_of_card
 
-  integer, parameter :: solver_band = solver_card_band        !< band storage, LAPACK dpbtrf/dpbtrs
-  integer, parameter :: solver_profile = solver_card_profile  !< envelope storage (visco2d_profile)
-  integer, parameter :: solver_cholmod = solver_card_cholmod  !< sparse supernodal, fill-reducing order (visco2d_cholmod)
+  !> The solvers, numbered as the SOLVER card's choices (BAND 1, PROFILE 2,
+  !> CHOLMOD 3; 0: none given, the default): the factor knows nothing of the
+  !> cards, and test_factor checks that the two numberings agree.
+  integer, parameter :: solver_none = 0
+  integer, parameter :: solver_band = 1          !< band storage, LAPACK dpbtrf/dpbtrs
+  integer, parameter :: solver_profile = 2       !< envelope storage (visco2d_profile)
+  integer, parameter :: solver_cholmod = 3       !< sparse supernodal, fill-reducing order (visco2d_cholmod)
   integer, parameter :: solver_default = solver_cholmod
 
   !> A factored constrained matrix: the band or the profile factor, as `solver` says.
@@ -45,11 +48,11 @@ module visco2d_factor
 
 contains
 
-  !> The solver of a deck's SOLVER card (deck%solver; solver_card_default: the default).
+  !> The solver of a deck's SOLVER card (deck%solver; solver_none: the default).
   pure integer function solver_of_card(card) result(solver)
     integer, intent(in) :: card
     solver = card
-    if (card == solver_card_default) solver = solver_default
+    if (card == solver_none) solver = solver_default
   end function solver_of_card
 
   !> The name of a solver, as a summary or a message writes it.
