@@ -238,6 +238,11 @@ contains
     character(:), allocatable :: text
     character(len=32) :: buffer
     character(len=12) :: form
+    if (digits == 0) then
+      write(buffer, '(i0)') nint(x)
+      text = trim(buffer)
+      return
+    end if
     write(form, '(a,i0,a)') '(f0.', digits, ')'
     write(buffer, form) x
     text = trim(buffer)
