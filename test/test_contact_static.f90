@@ -47,11 +47,10 @@ program test_contact_static
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_static, only: static_solution_t, solve_static
-  use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_pressure, &
-                             volume_weights
+  use visco2d_contact, only: contact_t, contact_create, contact_held_dofs, contact_pressure
   use visco2d_static_contact, only: solve_static_contact
   use visco2d_hertz, only: hertz_impact, hertz_t, hertz_time_constant
-  use visco2d_assembly, only: node_dof, band_vector
+  use visco2d_assembly, only: node_dof, band_vector, lumped_mass
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
@@ -354,7 +353,7 @@ contains
       mass = ieee_nan()
       return
     end if
-    weight = volume_weights(deck)
+    weight = lumped_mass(deck, volume=.true.)
     mass = 2.0_dp*pi*density*sum(weight(2::2))
   end function sphere_mass
 
@@ -624,7 +623,7 @@ contains
     end if
     u = band_vector(mesh, solution%displacement)
     reaction = band_vector(mesh, solution%reaction)
-    weight = volume_weights(deck)
+    weight = lumped_mass(deck, volume=.true.)
     call check_close(tag//': rebuilt state has the same alpha', -dot_product(weight(2::2), u(2::2))/sum(weight(2::2)), &
                      alpha, 1.0e-8_dp)
     call contact_pressure(deck, contact, reaction, pressure, q_check)

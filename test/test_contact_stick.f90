@@ -32,9 +32,9 @@ program test_contact_stick
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_static, only: static_solution_t, solve_static
-  use visco2d_contact, only: contact_t, contact_create, contact_gap, volume_weights
+  use visco2d_contact, only: contact_t, contact_create, contact_gap
   use visco2d_static_contact, only: solve_static_contact
-  use visco2d_assembly, only: node_dof, band_vector
+  use visco2d_assembly, only: node_dof, band_vector, lumped_mass
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa
@@ -98,7 +98,7 @@ contains
       call check(name//': reads', .false., error_text(error))
       return
     end if
-    weight = volume_weights(deck)
+    weight = lumped_mass(deck, volume=.true.)
     mass = 2.0_dp*pi*756.85_dp*sum(weight(2::2))
     call write_deck(file, pressed_sphere(title, level, mode, force/mass))
   end function sphere_deck
@@ -321,7 +321,7 @@ contains
     call contact_create(deck, contact)
     allocate(zero(2*deck%mesh%nnode), held(2*deck%mesh%nnode))
     zero = 0.0_dp
-    weight = volume_weights(deck)
+    weight = lumped_mass(deck, volume=.true.)
     do bonded = 1, 2
       held = .false.
       nodes = 0

@@ -178,17 +178,24 @@ contains
     end associate
   end function support_mask
 
-  !> Lumped (row-sum) mass per equation, eq. [32].
-  function lumped_mass(deck) result(mass)
+  !> Lumped (row-sum) mass per equation, eq. [32]. With volume = .true.
+  !> the same row sums at unit density, int N_i dV per equation (per radian
+  !> in axisymmetry): the weights of a volume average of a nodal field.
+  function lumped_mass(deck, volume) result(mass)
     type(deck_t), intent(in) :: deck
+    logical, intent(in), optional :: volume
     real(dp) :: mass(2*deck%mesh%nnode)
-    real(dp) :: m(4)
+    real(dp) :: m(4), density
+    logical :: unit_density
     integer :: e
+    unit_density = .false.
+    if (present(volume)) unit_density = volume
     mass = 0.0_dp
     associate (mesh => deck%mesh)
     do e = 1, mesh%nelem
-      m = element_lumped_mass(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
-                              deck%materials(mesh%element_material(e))%density)
+      density = 1.0_dp
+      if (.not. unit_density) density = deck%materials(mesh%element_material(e))%density
+      m = element_lumped_mass(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), density)
       call scatter_add(mesh, e, [m(1), m(1), m(2), m(2), m(3), m(3), m(4), m(4)], mass)
     end do
     end associate

@@ -22,7 +22,7 @@ module visco2d_viscoelastic
   public :: relaxation_integral, exp_minus_one
   public :: step_coefficients_t, step_coefficients
   public :: viscoelastic_state_t, viscoelastic_state_create, element_terms
-  public :: deviatoric_part, deviatoric_stress, history_stress, update_history
+  public :: deviatoric_part, deviatoric_stress, history_stress, update_history, stored_energy_density
 
   !> The per-step constants of one material for a step length dt.
   type :: step_coefficients_t
@@ -124,6 +124,31 @@ contains
     deviatoric(1:3) = strain(1:3) - volumetric/3.0_dp
     deviatoric(4) = strain(4)
   end subroutine deviatoric_part
+
+  !> The strain energy stored in the springs per unit volume, J/m^3, at one
+  !> Gauss point of strain `strain` and histories `history` (4, one column
+  !> per Prony term; none for an elastic material):
+  !>   K theta^2/2 + G_inf e:e + sum_m G_m C_m:C_m
+  !> (C_m the history of term m, whose spring carries s_m = 2 G_m C_m; e:e in
+  !> engineering form, gamma_rz = 2 e_rz). For an elastic material it is
+  !> 1/2 sigma:epsilon.
+  pure real(dp) function stored_energy_density(material, strain, history) result(density)
+    type(material_t), intent(in) :: material
+    real(dp), intent(in) :: strain(4), history(:, :)
+    real(dp) :: deviatoric(4), volumetric
+    integer :: m
+    call deviatoric_part(strain, deviatoric, volumetric)
+    density = 0.5_dp*material%bulk*volumetric**2 + material%long_term_shear*contracted(deviatoric)
+    do m = 1, size(history, 2)
+      density = density + material%prony_shear(m)*contracted(history(:, m))
+    end do
+  contains
+    !> e:e of a deviatoric strain in engineering form.
+    pure real(dp) function contracted(e)
+      real(dp), intent(in) :: e(4)
+      contracted = e(1)**2 + e(2)**2 + e(3)**2 + 0.5_dp*e(4)**2
+    end function contracted
+  end function stored_energy_density
 
   !> Deviatoric stress 2 mu e_ij of a deviatoric strain in engineering form.
   pure function deviatoric_stress(modulus, deviatoric) result(stress)

@@ -31,7 +31,7 @@ module visco2d_bruise
   use visco2d_record, only: record_t, gauss_field_t, record_put, record_put_real, record_put_integer
   use visco2d_element, only: gauss_count, element_b_matrices, element_gauss_points
   use visco2d_material, only: von_mises, max_shear
-  use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, deviatoric_part
+  use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, stored_energy_density
   use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
   use visco2d_strings, only: itoa
   use visco2d_pad_mesh, only: is_pad_element, body_nodes, body_elements
@@ -157,8 +157,7 @@ contains
     integer, intent(in) :: e, g
     real(dp), intent(in) :: stress(4), strain(4)
     type(viscoelastic_state_t), intent(in), optional :: state
-    real(dp) :: deviatoric(4), volumetric
-    integer :: m, nterm, slot
+    integer :: nterm, slot
     nterm = 0
     if (present(state)) then
       if (allocated(state%first)) nterm = element_terms(state, e)
@@ -167,21 +166,10 @@ contains
       density = 0.5_dp*dot_product(stress, strain)
       return
     end if
-    associate (material => deck%materials(deck%mesh%element_material(e)))
-    call deviatoric_part(strain, deviatoric, volumetric)
-    density = 0.5_dp*material%bulk*volumetric**2 + material%long_term_shear*contracted(deviatoric)
-    do m = 1, nterm
-      slot = state%first(e) + (g - 1)*nterm + m - 1
-      density = density + material%prony_shear(m)*contracted(state%history(:, slot))
-    end do
-    end associate
+    slot = state%first(e) + (g - 1)*nterm
+    density = stored_energy_density(deck%materials(deck%mesh%element_material(e)), strain, &
+                                    state%history(:, slot:slot + nterm - 1))
   end function energy_density
-
-  !> e:e of a deviatoric strain in engineering form (gamma_rz = 2 e_rz).
-  pure real(dp) function contracted(e)
-    real(dp), intent(in) :: e(4)
-    contracted = e(1)**2 + e(2)**2 + e(3)**2 + 0.5_dp*e(4)**2
-  end function contracted
 
   !> The bruise measures (with BRUISE cards) into the summary, and the
   !> envelope maxima and fields into the record.

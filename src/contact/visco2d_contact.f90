@@ -24,8 +24,7 @@ module visco2d_contact
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric, geometry_tolerance
   use visco2d_deck, only: deck_t
   use visco2d_mesh, only: boundary_sides
-  use visco2d_element, only: element_lumped_mass
-  use visco2d_assembly, only: node_dof, scatter_add, support_mask
+  use visco2d_assembly, only: node_dof, support_mask
   use visco2d_capacitance, only: constraint_sum
   use visco2d_hertz, only: hertz_t, hertz_impact
   use visco2d_pad_mesh, only: body_elements
@@ -36,7 +35,7 @@ module visco2d_contact
   public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
   public :: contact_release_tensile
   public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
-  public :: volume_weights, hertz_impact, contact_partner_sum, pad_compression
+  public :: hertz_impact, contact_partner_sum, pad_compression
 
   !> The state of contact with the plate.
   type :: contact_t
@@ -411,18 +410,4 @@ contains
     q = pressure(contact%pole)
     end associate
   end subroutine contact_pressure
-
-  !> Volume row sums int N_i dV per equation (per radian in axisymmetry):
-  !> the weights of a volume (or, times rho, mass) average of a nodal field.
-  function volume_weights(deck) result(weight)
-    type(deck_t), intent(in) :: deck
-    real(dp) :: weight(2*deck%mesh%nnode)
-    real(dp) :: m(4)
-    integer :: e
-    weight = 0.0_dp
-    do e = 1, deck%mesh%nelem
-      m = element_lumped_mass(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), 1.0_dp)
-      call scatter_add(deck%mesh, e, [m(1), m(1), m(2), m(2), m(3), m(3), m(4), m(4)], weight)
-    end do
-  end function volume_weights
 end module visco2d_contact

@@ -3,7 +3,7 @@
 !> and its keys in the summary (hertz_*).
 module visco2d_hertz
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use visco2d_kinds, only: dp, pi, geometry_tolerance
+  use visco2d_kinds, only: dp, pi, geometry_tolerance, hertz_time_constant
   use visco2d_strings, only: gtoa
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, record_put, record_put_real
@@ -13,8 +13,6 @@ module visco2d_hertz
 
   public :: hertz_t, hertz_impact, put_hertz_summary, hertz_time_constant, hertz_duration_constant
 
-  !> t_m = 1.4716 alpha_m / V: the exact constant of Hertz impact (the paper prints 1.47).
-  real(dp), parameter :: hertz_time_constant = 1.4716_dp
   !> Contact duration 2 t_m = 2.9432 alpha_m / V.
   real(dp), parameter :: hertz_duration_constant = 2.0_dp*hertz_time_constant
 

@@ -9,7 +9,7 @@ module visco2d_static_contact
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa
   use visco2d_deck, only: deck_t
-  use visco2d_assembly, only: node_dof, band_vector, support_mask, external_load, gravity_load
+  use visco2d_assembly, only: node_dof, band_vector, support_mask, external_load, gravity_load, lumped_mass
   use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
@@ -17,7 +17,7 @@ module visco2d_static_contact
   use visco2d_advice, only: deformation_warnings, largest_strain
   use visco2d_held_system, only: held_system_t, held_system_create, held_system_solve
   use visco2d_contact, only: contact_t, contact_create, contact_count, contact_force, contact_gap, &
-                             contact_pressure, contact_radius, volume_weights, contact_partner_sum, pad_compression
+                             contact_pressure, contact_radius, contact_partner_sum, pad_compression
   implicit none
   private
 
@@ -127,7 +127,7 @@ contains
     call bruise_static(deck, solution%stress, solution%strain, record)
     allocate(pressure(mesh%nnode))
     call contact_pressure(deck, contact, reaction, pressure, q)
-    weight = volume_weights(deck)
+    weight = lumped_mass(deck, volume=.true.)
     call record_put_integer(record, 'factorizations', path%solves + 1)
     call record_put_integer(record, 'contact_iterations', contact%iterations)
     call record_put_integer(record, 'contact_nodes', contact_count(contact))

@@ -7,6 +7,10 @@ module visco2d_kinds
   integer, parameter, public :: dp = selected_real_kind(15, 307)
   !> pi to working precision.
   real(dp), parameter, public :: pi = 3.14159265358979323846264338327950288_dp
+  !> Hertz impact's t_m V / alpha_m (eq. [44]; 0.4 B(0.4, 0.5) = 1.47162; the
+  !> paper prints 1.47): here because both the contact reference
+  !> (visco2d_hertz) and the progress estimate (core) need it.
+  real(dp), parameter, public :: hertz_time_constant = 1.4716_dp
   !> Relative tolerance for geometric coincidence tests (node on a line, etc.).
   real(dp), parameter, public :: geometry_tolerance = 1.0e-9_dp
 

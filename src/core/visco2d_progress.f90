@@ -22,7 +22,7 @@
 module visco2d_progress
   use, intrinsic :: iso_fortran_env, only: int64, error_unit
   use, intrinsic :: iso_c_binding, only: c_int
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, hertz_time_constant
   implicit none
   private
 
@@ -40,9 +40,6 @@ module visco2d_progress
   real(dp), parameter :: log_interval = 1.0_dp       !< s between whole lines (logs stay readable)
   real(dp), parameter :: left_cap = 1.0e6_dp         !< s; longer estimates print as "?"
   integer, parameter :: line_length = 200
-  !> Hertz's t_m V/alpha_m (eq. [44]; 0.4 B(0.4, 0.5) = 1.47162), as
-  !> visco2d_hertz's hertz_time_constant (not used here: no module cycle).
-  real(dp), parameter :: hertz_constant = 1.4716_dp
 
   interface
     !> POSIX isatty(3): 1 if the descriptor is a terminal.
@@ -182,7 +179,7 @@ contains
     lost = v_contact**2 - v**2
     if (.not. (alpha > 0.0_dp .and. lost > 0.0_dp .and. t_contact >= 0.0_dp)) return
     alpha_max = alpha*(v_contact**2/lost)**0.4_dp
-    t_max = hertz_constant*alpha_max/abs(v_contact)
+    t_max = hertz_time_constant*alpha_max/abs(v_contact)
     if (to_separation) then
       t_end = t_contact + 2.0_dp*t_max
     else

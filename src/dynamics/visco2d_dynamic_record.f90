@@ -8,7 +8,7 @@ module visco2d_dynamic_record
   use visco2d_deck, only: deck_t, total_steps, stop_name
   use visco2d_element, only: gauss_count
   use visco2d_assembly, only: node_dof, nodal_field
-  use visco2d_viscoelastic, only: element_terms, deviatoric_part
+  use visco2d_viscoelastic, only: element_terms, stored_energy_density
   use visco2d_static, only: node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot, record_insert_snapshot, record_warn
@@ -257,31 +257,25 @@ contains
     type(operators_t), intent(in) :: operators
     type(dynamic_state_t), intent(in) :: state
     logical, intent(in) :: memory
-    real(dp) :: deviatoric(4), volumetric, density
-    integer :: e, g, m, nterm, slot
+    real(dp), parameter :: no_history(4, 0) = 0.0_dp
+    integer :: e, g, nterm, slot
     energy = 0.0_dp
     do e = 1, deck%mesh%nelem
       associate (material => deck%materials(deck%mesh%element_material(e)))
       nterm = 0
       if (memory) nterm = element_terms(state%history, e)
       do g = 1, gauss_count
-        call deviatoric_part(state%strain(:, g, e), deviatoric, volumetric)
-        density = 0.5_dp*material%bulk*volumetric**2 + material%long_term_shear*contracted(deviatoric)
-        do m = 1, nterm
-          slot = state%history%first(e) + (g - 1)*nterm + m - 1
-          density = density + material%prony_shear(m)*contracted(state%history%history(:, slot))
-        end do
-        energy = energy + operators%weight(g, e)*density
+        if (nterm == 0) then
+          energy = energy + operators%weight(g, e)*stored_energy_density(material, state%strain(:, g, e), no_history)
+        else
+          slot = state%history%first(e) + (g - 1)*nterm
+          energy = energy + operators%weight(g, e)*stored_energy_density(material, state%strain(:, g, e), &
+                                                                         state%history%history(:, slot:slot + nterm - 1))
+        end if
       end do
       end associate
     end do
   end function stored_energy
-
-  !> e:e of a deviatoric strain in engineering form (gamma_rz = 2 e_rz).
-  pure real(dp) function contracted(e)
-    real(dp), intent(in) :: e(4)
-    contracted = e(1)**2 + e(2)**2 + e(3)**2 + 0.5_dp*e(4)**2
-  end function contracted
 
   !> The summary keys of the end state: centre of mass, energies on the
   !> energy_basis (the solver's per-radian integrals times 2 pi in
