@@ -42,8 +42,12 @@ REACH = {
     "visco2d_constitutive": (5, 2),
     "visco2d_element": (2, 1),
     "visco2d_factor": (5, 0),
+    "visco2d_field_summary": (40, 28),
     "visco2d_profile": (3, 0),
+    "visco2d_quasistatic": (48, 28),
+    "visco2d_solve_errors": (34, 28),
     "visco2d_static": (45, 28),
+    "visco2d_stress_recovery": (7, 4),
     "visco2d_viscoelastic": (2, 1),
 }
 

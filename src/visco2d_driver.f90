@@ -11,7 +11,8 @@ module visco2d_driver
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
   use visco2d_deck_types, only: solver_card_names
   use visco2d_scene, only: effects_t, scene_effects, effects_text
-  use visco2d_static, only: static_solution_t, solve_static, static_record, solve_quasistatic
+  use visco2d_static, only: static_solution_t, solve_static, static_record
+  use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_progress, only: progress_begin, progress_end
   use visco2d_static_contact, only: solve_static_contact

@@ -13,7 +13,8 @@ program test_solver_guards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_static, only: static_solution_t, solve_static, solve_quasistatic
+  use visco2d_static, only: static_solution_t, solve_static
+  use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck

@@ -21,7 +21,8 @@ program test_viscoelastic
   use visco2d_material, only: material_t, has_memory, shear_relaxation_modulus
   use visco2d_viscoelastic, only: relaxation_integral, exp_minus_one, step_coefficients, step_coefficients_t, &
                                   viscoelastic_state_t, viscoelastic_state_create
-  use visco2d_static, only: solve_quasistatic, solve_static, static_solution_t
+  use visco2d_static, only: solve_static, static_solution_t
+  use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_scene, only: scene_effects, effects_text
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value

@@ -15,7 +15,7 @@ module visco2d_held_system
                               prescribed_displacement
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
   use visco2d_factor, only: factor_t, factor_compute, factor_solve_many, factor_solve, solver_of_card
-  use visco2d_static, only: singular_message
+  use visco2d_solve_errors, only: singular_message
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_partners, capacitance_set, &
                                  capacitance_apply, constraint_sum
   use visco2d_lapack, only: dgels

@@ -9,7 +9,7 @@ module visco2d_impact
   use visco2d_strings, only: short_real
   use visco2d_deck, only: deck_t, probe_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
   use visco2d_assembly, only: node_dof, nodal_field
-  use visco2d_static, only: node_corners, corner_stress
+  use visco2d_stress_recovery, only: node_corners, corner_stress
   use visco2d_element, only: element_strains, gauss_count
   use visco2d_assembly, only: gather
   use visco2d_material, only: stress_from_strain

@@ -10,7 +10,8 @@ module visco2d_static_contact
   use visco2d_strings, only: itoa, gtoa
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof, band_vector, support_mask, external_load, gravity_load, lumped_mass
-  use visco2d_static, only: static_solution_t, solve_static, static_record, node_stress
+  use visco2d_static, only: static_solution_t, solve_static, static_record
+  use visco2d_stress_recovery, only: node_stress
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
   use visco2d_pad_mesh, only: is_pad_node, body_nodes, body_elements

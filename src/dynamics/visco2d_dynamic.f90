@@ -53,7 +53,8 @@ module visco2d_dynamic
   use visco2d_factor, only: factor_solve
   use visco2d_assembly, only: external_load, node_dof, prescribed_displacement, internal_force, nodal_field
   use visco2d_viscoelastic, only: viscoelastic_state_create
-  use visco2d_static, only: singular_error, node_text, put_field_summary, put_probe_summary
+  use visco2d_solve_errors, only: singular_error, node_text
+  use visco2d_field_summary, only: put_field_summary, put_probe_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer
   use visco2d_timers, only: timer_start, timer_stop, timers_enabled, timers_set_floor, timers_set_steps, &
                             phase_assembly, phase_factorization, phase_constitutive, phase_solve, phase_contact, &

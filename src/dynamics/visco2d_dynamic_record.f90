@@ -9,7 +9,8 @@ module visco2d_dynamic_record
   use visco2d_element, only: gauss_count
   use visco2d_assembly, only: node_dof, nodal_field
   use visco2d_viscoelastic, only: element_terms, stored_energy_density
-  use visco2d_static, only: node_corners, corner_stress, put_field_summary, put_probe_summary, set_snapshot_stress
+  use visco2d_stress_recovery, only: node_corners, corner_stress
+  use visco2d_field_summary, only: put_field_summary, put_probe_summary, set_snapshot_stress
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, history_define, &
                             history_append, record_add_snapshot, record_insert_snapshot, record_warn
   use visco2d_impact, only: impact_t, impact_columns, impact_row, sensor_acceleration

@@ -1,0 +1,234 @@
+!> The legacy program's quasi-static time loop for viscoelastic bodies
+!> (ANALYSIS QUASISTATIC): step 0 is the instantaneous response at t = 0
+!> (dt = 0, so mu = G(0)); each later step n solves
+!>   S_n dU = R(t_n) - F(sigma_{n-1} + s0_n)
+!> with S_n assembled from mu_n (eq. [21]) and the history stress s0_n
+!> (eq. [23]) as a pseudo-load, then updates stress and history
+!> (eqs. [13], [14], [24]; the history stress and update shared with the
+!> dynamic loop, module visco2d_constitutive). Writing the right-hand
+!> side as the full out-of-balance force (not Delta R alone) keeps round-off
+!> from accumulating into drift. S_n depends on dt only, so its factor is
+!> reused while dt is constant (elastic bodies: one factorization in all).
+module visco2d_quasistatic
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_kinds, only: dp, whole_body_factor, energy_basis
+  use visco2d_error, only: error_t
+  use visco2d_strings, only: rtoa
+  use visco2d_deck, only: deck_t, total_steps
+  use visco2d_progress, only: progress_step
+  use visco2d_material, only: stress_from_strain, has_memory
+  use visco2d_element, only: element_strains, element_internal_force
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card
+  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, &
+                              prescribed_displacement, internal_force, scatter_add, gravity_load, &
+                              nodal_field
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, viscoelastic_state_t, &
+                                  viscoelastic_state_create, element_terms
+  use visco2d_constitutive, only: history_stresses, commit_history
+  use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, record_put_integer, &
+                            history_define, history_append, record_add_snapshot
+  use visco2d_solve_errors, only: check_balance, singular_error, not_finite_error
+  use visco2d_field_summary, only: set_snapshot_stress, put_field_summary, put_probe_summary
+  use visco2d_stress_recovery, only: node_stress
+  implicit none
+  private
+
+  public :: solve_quasistatic
+
+contains
+
+  !> The quasi-static incremental analysis of a deck (ANALYSIS QUASISTATIC):
+  !> fills the record with the summary, one history row per step (step 0 at
+  !> t = 0 included) and snapshots at t = 0 and at the end.
+  subroutine solve_quasistatic(deck, record, error)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: error
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
+    type(step_coefficients_t), allocatable :: coefficients(:)
+    type(viscoelastic_state_t) :: state
+    real(dp), allocatable :: u(:), du(:), rhs(:), load(:), internal(:), stress(:, :, :), trial(:, :, :)
+    real(dp), allocatable :: shear(:), bulk(:), gravity(:)
+    logical, allocatable :: fixed(:)
+    logical :: memory
+    integer :: step, stage, k, e, g, factorizations, first_step
+    real(dp) :: t, dt, stage_start, equilibrium_error
+    real(dp), allocatable :: s0(:, :, :), increments(:, :, :)
+
+    associate (mesh => deck%mesh, materials => deck%materials)
+    memory = .false.
+    do k = 1, size(materials)
+      if (has_memory(materials(k)) .and. any(mesh%element_material == k)) memory = .true.
+    end do
+    if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
+    allocate(coefficients(size(materials)))
+    fixed = support_mask(deck)
+    gravity = gravity_load(deck)
+    allocate(u(2*mesh%nnode), du(2*mesh%nnode), internal(2*mesh%nnode))
+    u = 0.0_dp
+    internal = 0.0_dp
+    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem), &
+             s0(4, 4, mesh%nelem), increments(4, 4, mesh%nelem))
+    stress = 0.0_dp
+    factorizations = 0
+    equilibrium_error = 0.0_dp
+    call quasistatic_history_define(deck, record)
+
+    ! Step 0 (t = 0, dt = 0), then each TIME stage.
+    stage_start = 0.0_dp
+    do stage = 0, size(deck%stages)
+      if (stage == 0) then
+        first_step = 0
+        dt = 0.0_dp
+      else
+        first_step = 1
+        dt = deck%stages(stage)%dt
+      end if
+      do step = first_step, merge(0, deck%stages(max(stage, 1))%steps, stage == 0)
+        t = stage_start + step*dt
+        if (stage > 0) then                                ! (no stages(0): Fortran's .and. does not short-circuit)
+          if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
+        end if
+        if (coefficients(1)%dt /= dt .and. (memory .or. factorizations == 0)) then
+          call quasistatic_factor(dt)
+          if (allocated(error)) return
+        end if
+        call quasistatic_increment(t)
+        if (allocated(error)) return
+        if (stage > 0) call progress_step(sum(deck%stages(:stage - 1)%steps) + step, t, -1.0_dp)
+      end do
+      if (stage > 0) stage_start = deck%stages(stage)%end_time
+      if (stage == 0) call quasistatic_snapshot(deck, record, 'step_000000', 'initial', 0.0_dp, u, stress)
+    end do
+    call quasistatic_snapshot(deck, record, 'step_'//zero_padded(total_steps(deck)), 'final', t, u, stress)
+    call record_put_integer(record, 'factorizations', factorizations)
+    if (memory) then
+      call record_put_integer(record, 'history_values', size(state%history))
+    else
+      call record_put_integer(record, 'history_values', 0)     ! an elastic body allocates no history
+    end if
+    call record_put_real(record, 'time_end_s', t)
+    call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
+    call record_put(record, 'energy_basis', energy_basis(deck%geometry))   ! of the reaction columns
+    call put_field_summary(nodal_field(deck%mesh, u), stress, record)
+    call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
+    end associate
+
+  contains
+
+    !> S_n with the moduli (mu_n, K) of step length dt, constrained and factored.
+    subroutine quasistatic_factor(dt)
+      real(dp), intent(in) :: dt
+      integer :: info, m
+      do m = 1, size(deck%materials)
+        coefficients(m) = step_coefficients(deck%materials(m), dt)
+      end do
+      shear = coefficients(deck%mesh%element_material)%shear
+      bulk = coefficients(deck%mesh%element_material)%bulk
+      call assemble_stiffness(deck, shear, bulk, stiffness)
+      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
+      factorizations = factorizations + 1
+      if (info > 0) call singular_error(deck, info, error)
+    end subroutine quasistatic_factor
+
+    !> One increment to time t: pseudo-load, solve, stress and history update.
+    subroutine quasistatic_increment(t)
+      real(dp), intent(in) :: t
+      trial = stress
+      rhs = -internal                                   ! F(sigma_{n-1})
+      if (memory) then
+        call history_stresses(deck%materials, deck%mesh%element_material, state, coefficients, s0)   ! eq. [23]
+        do e = 1, deck%mesh%nelem
+          if (element_terms(state, e) == 0) cycle
+          trial(:, :, e) = trial(:, :, e) + s0(:, :, e)
+          call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
+            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e), deck%formulation), rhs)
+        end do
+      end if
+      load = external_load(deck, t) + gravity
+      rhs = rhs + load
+      du = prescribed_displacement(deck, t) - u          ! increments of the prescribed values
+      call band_constrain_rhs(stiffness, fixed, du, rhs)
+      call factor_solve(factor, rhs)
+      du = rhs
+      u = u + du
+      do e = 1, deck%mesh%nelem
+        increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                              gather(deck%mesh, e, du), deck%formulation)
+        do g = 1, 4
+          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increments(:, g, e))  ! [13], [14]
+        end do
+      end do
+      if (memory) call commit_history(deck%mesh%element_material, state, coefficients, increments)   ! eq. [24]
+      internal = internal_force(deck, stress)
+      if (.not. all(ieee_is_finite(u)) .or. .not. all(ieee_is_finite(stress))) then
+        call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)
+        return
+      end if
+      equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
+                              max(maxval(abs(internal)), tiny(1.0_dp)))
+      call check_balance(deck, internal - load, fixed, load, error)
+      if (allocated(error)) return
+      call quasistatic_row(deck, record, t, u, stress, fixed, internal - load)
+    end subroutine quasistatic_increment
+  end subroutine solve_quasistatic
+
+  !> The history columns of a quasi-static run: step, time, largest
+  !> displacement, support reactions, and per probe its u and nodal stresses.
+  subroutine quasistatic_history_define(deck, record)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    character(len=48), allocatable :: columns(:)
+    integer :: p
+    columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'reaction_r_N', 'reaction_z_N']
+    do p = 1, size(deck%probes)
+      columns = [character(len=48) :: columns, deck%probes(p)%name//'_ur_m', deck%probes(p)%name//'_uz_m', &
+                 deck%probes(p)%name//'_sr_Pa', deck%probes(p)%name//'_sz_Pa', &
+                 deck%probes(p)%name//'_st_Pa', deck%probes(p)%name//'_trz_Pa']
+    end do
+    call history_define(record, columns, total_steps(deck) + 1)
+  end subroutine quasistatic_history_define
+
+  !> One history row of a quasi-static run at time t (`residual` = F - R:
+  !> the support reactions on the fixed equations).
+  subroutine quasistatic_row(deck, record, t, u, stress, fixed, residual)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    real(dp), intent(in) :: t, u(:), stress(:, :, :), residual(:)
+    logical, intent(in) :: fixed(:)
+    real(dp), allocatable :: row(:)
+    integer :: p, node
+    row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
+           whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
+                                             sum(residual(2::2), mask=fixed(2::2))]]
+    do p = 1, size(deck%probes)
+      node = deck%probes(p)%node
+      row = [row, u(node_dof(deck%mesh, node, 1):node_dof(deck%mesh, node, 2)), node_stress(deck%mesh, stress, node)]
+    end do
+    call history_append(record, row)
+  end subroutine quasistatic_row
+
+  !> A snapshot of a quasi-static run: displacements and stresses.
+  subroutine quasistatic_snapshot(deck, record, name, label, time, u, stress)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: name, label
+    real(dp), intent(in) :: time, u(:), stress(:, :, :)
+    type(snapshot_t) :: snapshot
+    snapshot%name = name
+    snapshot%label = label
+    snapshot%time = time
+    snapshot%displacement = nodal_field(deck%mesh, u)
+    call set_snapshot_stress(deck%mesh, stress, snapshot)
+    call record_add_snapshot(record, snapshot)
+  end subroutine quasistatic_snapshot
+
+  !> n as a six-digit, zero-padded text (snapshot names sort in time order).
+  pure function zero_padded(n) result(text)
+    integer, intent(in) :: n
+    character(len=6) :: text
+    write(text, '(i6.6)') n
+  end function zero_padded
+end module visco2d_quasistatic
