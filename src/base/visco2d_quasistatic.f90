@@ -36,6 +36,23 @@ module visco2d_quasistatic
 
   public :: solve_quasistatic
 
+  !> The state of a quasi-static run between increments: the stiffness S_n
+  !> and its factor for the current step length, the step constants, the
+  !> displacement, stresses and Prony histories, and the work arrays.
+  type :: quasistatic_t
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
+    type(step_coefficients_t), allocatable :: coefficients(:)   !< per material, for the current dt
+    type(viscoelastic_state_t) :: history                        !< the Prony histories (with memory)
+    logical :: memory = .false.                                  !< a material of the mesh has memory
+    logical, allocatable :: fixed(:)                             !< supported equations
+    real(dp), allocatable :: u(:), du(:), rhs(:), load(:), internal(:), gravity(:)
+    real(dp), allocatable :: stress(:, :, :), trial(:, :, :), s0(:, :, :), increments(:, :, :)
+    real(dp), allocatable :: shear(:), bulk(:)                    !< per element, mu_n and K
+    integer :: factorizations = 0
+    real(dp) :: equilibrium_error = 0.0_dp                       !< largest |F - R| / |F| off the supports
+  end type quasistatic_t
+
 contains
 
   !> The quasi-static incremental analysis of a deck (ANALYSIS QUASISTATIC):
@@ -45,37 +62,12 @@ contains
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: error
-    type(band_matrix_t) :: stiffness
-    type(factor_t) :: factor
-    type(step_coefficients_t), allocatable :: coefficients(:)
-    type(viscoelastic_state_t) :: state
-    real(dp), allocatable :: u(:), du(:), rhs(:), load(:), internal(:), stress(:, :, :), trial(:, :, :)
-    real(dp), allocatable :: shear(:), bulk(:), gravity(:)
-    logical, allocatable :: fixed(:)
-    logical :: memory
-    integer :: step, stage, k, e, g, factorizations, first_step
-    real(dp) :: t, dt, stage_start, equilibrium_error
-    real(dp), allocatable :: s0(:, :, :), increments(:, :, :)
+    type(quasistatic_t) :: solution
+    integer :: step, stage, first_step
+    real(dp) :: t, dt, stage_start
 
-    associate (mesh => deck%mesh, materials => deck%materials)
-    memory = .false.
-    do k = 1, size(materials)
-      if (has_memory(materials(k)) .and. any(mesh%element_material == k)) memory = .true.
-    end do
-    if (memory) call viscoelastic_state_create(materials, mesh%element_material, state)
-    allocate(coefficients(size(materials)))
-    fixed = support_mask(deck)
-    gravity = gravity_load(deck)
-    allocate(u(2*mesh%nnode), du(2*mesh%nnode), internal(2*mesh%nnode))
-    u = 0.0_dp
-    internal = 0.0_dp
-    allocate(stress(4, 4, mesh%nelem), trial(4, 4, mesh%nelem), shear(mesh%nelem), bulk(mesh%nelem), &
-             s0(4, 4, mesh%nelem), increments(4, 4, mesh%nelem))
-    stress = 0.0_dp
-    factorizations = 0
-    equilibrium_error = 0.0_dp
+    call quasistatic_start(deck, solution)
     call quasistatic_history_define(deck, record)
-
     ! Step 0 (t = 0, dt = 0), then each TIME stage.
     stage_start = 0.0_dp
     do stage = 0, size(deck%stages)
@@ -91,89 +83,125 @@ contains
         if (stage > 0) then                                ! (no stages(0): Fortran's .and. does not short-circuit)
           if (step == deck%stages(stage)%steps) t = deck%stages(stage)%end_time
         end if
-        if (coefficients(1)%dt /= dt .and. (memory .or. factorizations == 0)) then
-          call quasistatic_factor(dt)
+        if (solution%coefficients(1)%dt /= dt .and. (solution%memory .or. solution%factorizations == 0)) then
+          call quasistatic_factor(deck, solution, dt, error)
           if (allocated(error)) return
         end if
-        call quasistatic_increment(t)
+        call quasistatic_increment(deck, solution, t, error)
         if (allocated(error)) return
+        call quasistatic_row(deck, record, t, solution%u, solution%stress, solution%fixed, &
+                             solution%internal - solution%load)
         if (stage > 0) call progress_step(sum(deck%stages(:stage - 1)%steps) + step, t, -1.0_dp)
       end do
       if (stage > 0) stage_start = deck%stages(stage)%end_time
-      if (stage == 0) call quasistatic_snapshot(deck, record, 'step_000000', 'initial', 0.0_dp, u, stress)
+      if (stage == 0) call quasistatic_snapshot(deck, record, 'step_000000', 'initial', 0.0_dp, solution%u, &
+                                                solution%stress)
     end do
-    call quasistatic_snapshot(deck, record, 'step_'//zero_padded(total_steps(deck)), 'final', t, u, stress)
-    call record_put_integer(record, 'factorizations', factorizations)
-    if (memory) then
-      call record_put_integer(record, 'history_values', size(state%history))
+    call quasistatic_snapshot(deck, record, 'step_'//zero_padded(total_steps(deck)), 'final', t, solution%u, &
+                              solution%stress)
+    call record_put_integer(record, 'factorizations', solution%factorizations)
+    if (solution%memory) then
+      call record_put_integer(record, 'history_values', size(solution%history%history))
     else
       call record_put_integer(record, 'history_values', 0)     ! an elastic body allocates no history
     end if
     call record_put_real(record, 'time_end_s', t)
-    call record_put_real(record, 'equilibrium_error_max', equilibrium_error)
+    call record_put_real(record, 'equilibrium_error_max', solution%equilibrium_error)
     call record_put(record, 'energy_basis', energy_basis(deck%geometry))   ! of the reaction columns
-    call put_field_summary(nodal_field(deck%mesh, u), stress, record)
-    call put_probe_summary(deck, nodal_field(deck%mesh, u), stress, record)
-    end associate
-
-  contains
-
-    !> S_n with the moduli (mu_n, K) of step length dt, constrained and factored.
-    subroutine quasistatic_factor(dt)
-      real(dp), intent(in) :: dt
-      integer :: info, m
-      do m = 1, size(deck%materials)
-        coefficients(m) = step_coefficients(deck%materials(m), dt)
-      end do
-      shear = coefficients(deck%mesh%element_material)%shear
-      bulk = coefficients(deck%mesh%element_material)%bulk
-      call assemble_stiffness(deck, shear, bulk, stiffness)
-      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
-      factorizations = factorizations + 1
-      if (info > 0) call singular_error(deck, info, error)
-    end subroutine quasistatic_factor
-
-    !> One increment to time t: pseudo-load, solve, stress and history update.
-    subroutine quasistatic_increment(t)
-      real(dp), intent(in) :: t
-      trial = stress
-      rhs = -internal                                   ! F(sigma_{n-1})
-      if (memory) then
-        call history_stresses(deck%materials, deck%mesh%element_material, state, coefficients, s0)   ! eq. [23]
-        do e = 1, deck%mesh%nelem
-          if (element_terms(state, e) == 0) cycle
-          trial(:, :, e) = trial(:, :, e) + s0(:, :, e)
-          call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
-            deck%mesh%xy(:, deck%mesh%connectivity(:, e)), trial(:, :, e) - stress(:, :, e), deck%formulation), rhs)
-        end do
-      end if
-      load = external_load(deck, t) + gravity
-      rhs = rhs + load
-      du = prescribed_displacement(deck, t) - u          ! increments of the prescribed values
-      call band_constrain_rhs(stiffness, fixed, du, rhs)
-      call factor_solve(factor, rhs)
-      du = rhs
-      u = u + du
-      do e = 1, deck%mesh%nelem
-        increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                              gather(deck%mesh, e, du), deck%formulation)
-        do g = 1, 4
-          stress(:, g, e) = trial(:, g, e) + stress_from_strain(shear(e), bulk(e), increments(:, g, e))  ! [13], [14]
-        end do
-      end do
-      if (memory) call commit_history(deck%mesh%element_material, state, coefficients, increments)   ! eq. [24]
-      internal = internal_force(deck, stress)
-      if (.not. all(ieee_is_finite(u)) .or. .not. all(ieee_is_finite(stress))) then
-        call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)
-        return
-      end if
-      equilibrium_error = max(equilibrium_error, maxval(abs(merge(0.0_dp, internal - load, fixed)))/ &
-                              max(maxval(abs(internal)), tiny(1.0_dp)))
-      call check_balance(deck, internal - load, fixed, load, error)
-      if (allocated(error)) return
-      call quasistatic_row(deck, record, t, u, stress, fixed, internal - load)
-    end subroutine quasistatic_increment
+    call put_field_summary(nodal_field(deck%mesh, solution%u), solution%stress, record)
+    call put_probe_summary(deck, nodal_field(deck%mesh, solution%u), solution%stress, record)
   end subroutine solve_quasistatic
+
+  !> The state at t = 0: no displacement or stress, the Prony histories at 0
+  !> (a body with memory), the supports and gravity, nothing factored.
+  subroutine quasistatic_start(deck, solution)
+    type(deck_t), intent(in) :: deck
+    type(quasistatic_t), intent(out) :: solution
+    integer :: k
+    associate (mesh => deck%mesh, materials => deck%materials)
+    solution%memory = .false.
+    do k = 1, size(materials)
+      if (has_memory(materials(k)) .and. any(mesh%element_material == k)) solution%memory = .true.
+    end do
+    if (solution%memory) call viscoelastic_state_create(materials, mesh%element_material, solution%history)
+    allocate(solution%coefficients(size(materials)))
+    solution%fixed = support_mask(deck)
+    solution%gravity = gravity_load(deck)
+    allocate(solution%u(2*mesh%nnode), solution%du(2*mesh%nnode), solution%internal(2*mesh%nnode))
+    solution%u = 0.0_dp
+    solution%internal = 0.0_dp
+    allocate(solution%stress(4, 4, mesh%nelem), solution%trial(4, 4, mesh%nelem), solution%shear(mesh%nelem), &
+             solution%bulk(mesh%nelem), solution%s0(4, 4, mesh%nelem), solution%increments(4, 4, mesh%nelem))
+    solution%stress = 0.0_dp
+    end associate
+  end subroutine quasistatic_start
+
+  !> S_n with the moduli (mu_n, K) of step length dt (eq. [21]), constrained
+  !> and factored; an error at an element's card if it is singular.
+  subroutine quasistatic_factor(deck, solution, dt, error)
+    type(deck_t), intent(in) :: deck
+    type(quasistatic_t), intent(inout) :: solution
+    real(dp), intent(in) :: dt
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: info, m
+    do m = 1, size(deck%materials)
+      solution%coefficients(m) = step_coefficients(deck%materials(m), dt)
+    end do
+    solution%shear = solution%coefficients(deck%mesh%element_material)%shear
+    solution%bulk = solution%coefficients(deck%mesh%element_material)%bulk
+    call assemble_stiffness(deck, solution%shear, solution%bulk, solution%stiffness)
+    call factor_compute(solution%factor, solution%stiffness, solution%fixed, info, solver_of_card(deck%solver))
+    solution%factorizations = solution%factorizations + 1
+    if (info > 0) call singular_error(deck, info, error)
+  end subroutine quasistatic_factor
+
+  !> One increment to time t: the pseudo-load of the history stress
+  !> (eq. [23]), the solve S_n dU = R(t_n) - F(sigma_{n-1} + s0_n), the
+  !> stress update (eqs. [13], [14]) and the histories (eq. [24]); an error
+  !> if a value is not finite or the solution is out of balance.
+  subroutine quasistatic_increment(deck, solution, t, error)
+    type(deck_t), intent(in) :: deck
+    type(quasistatic_t), intent(inout) :: solution
+    real(dp), intent(in) :: t
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: e, g
+    associate (q => solution)
+    q%trial = q%stress
+    q%rhs = -q%internal                                ! F(sigma_{n-1})
+    if (q%memory) then
+      call history_stresses(deck%materials, deck%mesh%element_material, q%history, q%coefficients, q%s0)   ! eq. [23]
+      do e = 1, deck%mesh%nelem
+        if (element_terms(q%history, e) == 0) cycle
+        q%trial(:, :, e) = q%trial(:, :, e) + q%s0(:, :, e)
+        call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
+          deck%mesh%xy(:, deck%mesh%connectivity(:, e)), q%trial(:, :, e) - q%stress(:, :, e), deck%formulation), q%rhs)
+      end do
+    end if
+    q%load = external_load(deck, t) + q%gravity
+    q%rhs = q%rhs + q%load
+    q%du = prescribed_displacement(deck, t) - q%u      ! increments of the prescribed values
+    call band_constrain_rhs(q%stiffness, q%fixed, q%du, q%rhs)
+    call factor_solve(q%factor, q%rhs)
+    q%du = q%rhs
+    q%u = q%u + q%du
+    do e = 1, deck%mesh%nelem
+      q%increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                              gather(deck%mesh, e, q%du), deck%formulation)
+      do g = 1, 4                                      ! eqs. [13], [14]
+        q%stress(:, g, e) = q%trial(:, g, e) + stress_from_strain(q%shear(e), q%bulk(e), q%increments(:, g, e))
+      end do
+    end do
+    if (q%memory) call commit_history(deck%mesh%element_material, q%history, q%coefficients, q%increments)   ! eq. [24]
+    q%internal = internal_force(deck, q%stress)
+    if (.not. all(ieee_is_finite(q%u)) .or. .not. all(ieee_is_finite(q%stress))) then
+      call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)
+      return
+    end if
+    q%equilibrium_error = max(q%equilibrium_error, maxval(abs(merge(0.0_dp, q%internal - q%load, q%fixed)))/ &
+                              max(maxval(abs(q%internal)), tiny(1.0_dp)))
+    call check_balance(deck, q%internal - q%load, q%fixed, q%load, error)
+    end associate
+  end subroutine quasistatic_increment
 
   !> The history columns of a quasi-static run: step, time, largest
   !> displacement, support reactions, and per probe its u and nodal stresses.
