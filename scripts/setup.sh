@@ -8,8 +8,21 @@
 set -euo pipefail
 
 packages=()
+# mpif90 and mpirun alone are not enough: openmpi-bin can be present (pulled in
+# by another package) without libopenmpi-dev, whose mpi_f08 module the farm
+# needs; so the check compiles a two-line program that uses it.
+mpi_usable() {
+  command -v mpif90 >/dev/null 2>&1 && command -v mpirun >/dev/null 2>&1 || return 1
+  local dir
+  dir=$(mktemp -d)
+  printf 'program probe\n  use mpi_f08\nend program probe\n' > "$dir/probe.f90"
+  (cd "$dir" && mpif90 -c probe.f90 -o probe.o) >/dev/null 2>&1
+  local status=$?
+  rm -rf "$dir"
+  return $status
+}
 if [ "${1:-}" = "mpi" ]; then
-  { command -v mpif90 && command -v mpirun; } >/dev/null 2>&1 || packages+=(openmpi-bin libopenmpi-dev)
+  mpi_usable || packages+=(openmpi-bin libopenmpi-dev)
 fi
 command -v gfortran >/dev/null 2>&1 || packages+=(gfortran)
 command -v pkg-config >/dev/null 2>&1 || packages+=(pkg-config)
