@@ -7,6 +7,7 @@
 #   make fuzz     N mutated decks through the release build (scripts/fuzz.py; N=10000: ~4 min)
 #   make checked  every deck under -fcheck=all and the address/undefined-behaviour sanitizers
 #   make mpi      the MPI task farm build/mpi/bin/visco2d-farm (installs OpenMPI if missing)
+#   make docs     the API pages of every module, from its !> comments, into build/docs/api/ (FORD)
 # and, on purpose only:
 #   make bless  update reference_outputs/ where the current code's outputs differ (say why in the commit)
 
@@ -40,6 +41,13 @@ run: build
 # make figures: PNGs of the paper's Figs. 2-6 and of the maximum shear at maximum
 # deformation into out/figures/ (runs any paper deck missing from out/, and Table 1 on a
 # level-4 mesh into out/figures/runs/); scripts/figures.py --help for options.
+.PHONY: docs
+docs: setup
+	@command -v ford > /dev/null || python3 -m pip install -q ford 2>/dev/null || python3 -m pip install -q --break-system-packages ford
+	@command -v pyenv > /dev/null && pyenv rehash || true
+	@echo "visco2d: API pages with FORD into build/docs/api/ (about a minute) ..."
+	@ford --quiet scripts/ford_project.md && echo "visco2d: open build/docs/api/index.html"
+
 .PHONY: figures
 figures: build
 	@python3 scripts/figures.py --out out --exe $(EXE)

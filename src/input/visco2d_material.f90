@@ -1,4 +1,4 @@
-!> Materials: isotropic elasticity split into deviatoric and volumetric
+!> The materials: isotropic elasticity split into deviatoric and volumetric
 !> parts (eqs. [1]-[4], [8]-[9]), and the constants of the viscoelastic-in-
 !> shear / elastic-in-bulk law (eqs. [10]-[12]): a shear relaxation modulus
 !> phi1(t) = G_inf + sum_m G_m exp(-beta_m t). Terms with beta = 0 have no
