@@ -229,7 +229,8 @@ check_rc "diff: a NaN in the run (the output under test) is a difference (exit 1
 # absolute /scratch/...) quotes two deck paths in its warning; the case folders must match
 mkdir -p "$tmp/local/decks" "$tmp/cluster/scratch/sweep/decks"
 cp inputs/apple_center_accel.inp "$tmp/local/decks/" && cp inputs/apple_center_accel.inp "$tmp/cluster/scratch/sweep/decks/"
-(cd "$tmp/local" && "$OLDPWD/$exe" -q -o out decks/apple_center_accel.inp) > "$tmp/run.log" 2>&1 \
+exe_absolute="$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"
+(cd "$tmp/local" && "$exe_absolute" -q -o out decks/apple_center_accel.inp) > "$tmp/run.log" 2>&1 \
   || fail "runs" "apple_center_accel did not run from $tmp/local: $(cat "$tmp/run.log")"
 "$exe" -q -o "$tmp/cluster/scratch/sweep" "$tmp/cluster/scratch/sweep/decks/apple_center_accel.inp" > "$tmp/run.log" 2>&1 \
   || fail "runs" "apple_center_accel did not run from $tmp/cluster: $(cat "$tmp/run.log")"
