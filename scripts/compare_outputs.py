@@ -43,8 +43,15 @@ Per deck, REFERENCE/<case>/tolerances.txt may override this, one line each:
     NAME = RTOL [ABS]                 for a summary key, a CSV column or an HDF5
                                       dataset (its name or its path): ABS, if
                                       given, replaces the floor
-('#' starts a comment). Differences are ranked by how far beyond tolerance
-they are, |a - b| / allowed (text, missing and shape differences first).
+('#' starts a comment). Differences are ranked by how far beyond the
+quantity's tolerance they are at its largest value, |a - b| / max(rtol * L,
+floor), L = max(|b|, the largest magnitude of the quantity in the reference:
+its CSV column or HDF5 dataset; for a summary key the history column of the
+same quantity, vz_cm_m_s or probe_centre_vz_m_s -> centre_vz_m_s), so a
+change at a zero crossing (a velocity at maximum deformation) ranks by its
+size against the quantity, not against the crossing, and is shown with
+`Nx at the quantity's largest, L` (text, missing and shape differences
+first; which differences fail is unchanged).
 Time-of-event keys (summary keys in s or ms but dt_s: t_force_max_ms,
 time_first_contact_s, envelope_*_time_s, contact_duration_ms, ...) move in
 whole time steps, so a peak that moves to the next step is at their
@@ -186,9 +193,13 @@ class Tolerances:
 class Difference:
     """One difference: where, the run's and the reference's values, and how far beyond tolerance."""
 
-    def __init__(self, where, run, reference, excess=math.inf, note="", shift=None):
+    def __init__(self, where, run, reference, excess=math.inf, note="", shift=None, significance=None,
+                 largest=None):
         self.where, self.run, self.reference, self.excess, self.note = where, run, reference, excess, note
         self.shift = shift  # an event time's move: (seconds, time steps or None), else None
+        # the rank: how far beyond the quantity's tolerance at its largest value (largest: that value)
+        self.significance = excess if significance is None else significance
+        self.largest = largest
 
     def line(self):
         if self.note:
@@ -201,6 +212,8 @@ class Difference:
             error = abs(self.run - self.reference)
             rel = error / abs(self.reference) if self.reference != 0 else math.inf
             beyond = f"{self.excess:.3g}x the tolerance" if math.isfinite(self.excess) else "tolerance 0"
+            if self.largest is not None:
+                beyond += f"; {self.significance:.3g}x at the quantity's largest, {self.largest:.4g}"
             return (f"   {self.where}: {self.run!r} vs reference {self.reference!r}"
                     f" (rel {rel:.2e}, {beyond})")
         return f"   {self.where}: '{self.run}' vs reference '{self.reference}'"
@@ -231,7 +244,7 @@ def ranked(differences):
     tolerance (text and missing first), event times by how many time steps they moved."""
     values = [d for d in differences if d.shift is None]
     events = [d for d in differences if d.shift is not None]
-    return sorted(values, key=lambda d: -d.excess), sorted(events, key=lambda d: -d.excess)
+    return sorted(values, key=lambda d: -d.significance), sorted(events, key=lambda d: -d.excess)
 
 
 class Comparer:
@@ -243,9 +256,11 @@ class Comparer:
         self.compared = 0
         self.dt = None  # the case's time step (s), for the event times of a summary
 
-    def numbers(self, where, a, b, names, unit_, scale, event=False):
+    def numbers(self, where, a, b, names, unit_, scale, event=False, largest=None):
         """Compare a (run) with b (reference) of unit unit_; names: the keys tolerances.txt may use;
-        event: a is the time of an event (unit s or ms), reported as a move in time steps."""
+        event: a is the time of an event (unit s or ms), reported as a move in time steps;
+        largest: the largest magnitude of the quantity in the reference (its column, its dataset),
+        which ranks the difference (not whether it is one)."""
         self.compared += 1
         if not math.isfinite(a):
             self.differences.append(Difference(where, a, b, note=f"{a!r} is not finite (reference {b!r})"))
@@ -269,6 +284,12 @@ class Comparer:
                 steps = seconds / self.dt if self.dt else None
                 self.differences.append(Difference(where, a, b, abs(steps if steps is not None else seconds),
                                                    shift=(seconds, steps)))
+            elif largest is not None and largest > abs(b):
+                # the same tolerance at the quantity's largest value: a change at a zero crossing of a
+                # history column ranks by its size against the column, not against the crossing
+                at_largest = max(rtol * largest, floor)
+                self.differences.append(Difference(where, a, b, excess, significance=error / at_largest,
+                                                   largest=largest))
             else:
                 self.differences.append(Difference(where, a, b, excess))
 
@@ -322,9 +343,27 @@ def read_summary(path, reference=False):
     return items
 
 
+def history_column(key):
+    """The history column a summary key takes a value of: the same name (vz_cm_m_s, kinetic_J), or a
+    probe's without `probe_` (probe_centre_vz_m_s: centre_vz_m_s)."""
+    return [key, key[len("probe_"):]] if key.startswith("probe_") else [key]
+
+
+def column_largest(path):
+    """{column: largest finite magnitude} of a history.csv; {} when it cannot be read (its own
+    comparison says why)."""
+    try:
+        header, table = read_table(path)
+    except Unusable:
+        return {}
+    return {name: max((abs(row[j]) for row in table if math.isfinite(row[j])), default=0.0)
+            for j, name in enumerate(header)}
+
+
 def compare_summary(reference, run, comparer):
     ref, new = read_summary(reference, reference=True), read_summary(run)
     comparer.dt = time_step(ref)
+    history = column_largest(os.path.join(os.path.dirname(reference), "history.csv"))
     scales = {}
     for key, value in ref.items():
         v = number(value)
@@ -340,7 +379,9 @@ def compare_summary(reference, run, comparer):
         if a is None or b is None:
             comparer.texts(key, new[key], value)
         else:
-            comparer.numbers(key, a, b, [key], unit(key), scales.get(unit(key), 0.0), is_event_time(key))
+            largest = next((history[name] for name in history_column(key) if name in history), None)
+            comparer.numbers(key, a, b, [key], unit(key), scales.get(unit(key), 0.0), is_event_time(key),
+                             largest)
     for key in new:
         if key not in ref and key not in SKIP_KEYS:
             comparer.note(key, f"new key (= {new[key]}) not in the reference")
@@ -386,18 +427,18 @@ def compare_table(reference, run, comparer):
             comparer.note(name, "new column not in the reference")
     if len(ref) != len(new):
         comparer.note("rows", f"{len(new)} rows vs {len(ref)} in the reference (the common ones compared)")
-    scales = {}
+    scales, largest = {}, {}
     for name in columns:
         j = ref_header.index(name)
-        largest = max((abs(row[j]) for row in ref if math.isfinite(row[j])), default=0.0)
-        scales[unit(name)] = max(scales.get(unit(name), 0.0), largest)
+        largest[name] = max((abs(row[j]) for row in ref if math.isfinite(row[j])), default=0.0)
+        scales[unit(name)] = max(scales.get(unit(name), 0.0), largest[name])
     pairs = [(ref_header.index(name), new_header.index(name), name) for name in columns]
     for i, (row_ref, row_new) in enumerate(zip(ref, new)):
         for j_ref, j_new, name in pairs:
             a, b = row_new[j_new], row_ref[j_ref]
             if a != b or not math.isfinite(a):
                 comparer.numbers(f"{row_label(ref_header, row_ref, i)} {name}", a, b, [name],
-                                 unit(name), scales[unit(name)])
+                                 unit(name), scales[unit(name)], largest=largest[name])
             else:
                 comparer.compared += 1
 
@@ -458,7 +499,7 @@ def compare_hdf5(reference, run, comparer):
                     datasets[where] = (ref[where][()], new[where][()])
                 except (OSError, RuntimeError, ValueError) as error:
                     raise Unusable(f"{reference} or {run}: cannot read {where}: {error}")
-        scales = {}
+        scales, largest = {}, {}
         for where, (b, _) in datasets.items():
             if numpy.asarray(b).dtype.kind in "iuf":
                 key = (where.rsplit("/", 1)[0], hdf5_unit(ref[where], where.rsplit("/", 1)[1]))
@@ -466,7 +507,8 @@ def compare_hdf5(reference, run, comparer):
                 if not numpy.isfinite(magnitude).all():
                     raise Unusable(f"{reference}: {where} holds a value that is not a finite number"
                                    " (a damaged reference)")
-                scales[key] = max(scales.get(key, 0.0), float(magnitude.max()) if magnitude.size else 0.0)
+                largest[where] = float(magnitude.max()) if magnitude.size else 0.0
+                scales[key] = max(scales.get(key, 0.0), largest[where])
         comparer.dt = time_step({name: decoded(values[()] if numpy.ndim(values) == 0 else "")
                                  for name, values in ((n, datasets[f"/summary/{n}"][0])
                                                       for n in ("dt_s", "time_stages")
@@ -474,13 +516,19 @@ def compare_hdf5(reference, run, comparer):
         for where, (b, a) in datasets.items():
             if where.startswith("/summary/") and where.rsplit("/", 1)[1] in SKIP_KEYS:
                 continue
-            compare_dataset(where, a, b, ref[where], comparer, scales)
+            name = where.rsplit("/", 1)[1]
+            if where.startswith("/summary/"):  # a summary value ranks against its history column
+                quantity = next((largest[f"/history/{column}"] for column in history_column(name)
+                                 if f"/history/{column}" in largest), None)
+            else:
+                quantity = largest.get(where)
+            compare_dataset(where, a, b, ref[where], comparer, scales, quantity)
     finally:
         ref_file.close()
         new_file.close()
 
 
-def compare_dataset(where, a, b, ref_item, comparer, scales):
+def compare_dataset(where, a, b, ref_item, comparer, scales, largest=None):
     import numpy
     a, b = numpy.asarray(a), numpy.asarray(b)
     name = where.rsplit("/", 1)[1]
@@ -501,7 +549,8 @@ def compare_dataset(where, a, b, ref_item, comparer, scales):
         index = numpy.unravel_index(flat, a.shape) if a.ndim else ()
         label = f"{where}[{','.join(str(int(i)) for i in index)}]" if a.ndim else where
         comparer.numbers(label, float(a.ravel()[flat]), float(b.ravel()[flat]), names,
-                         group_unit[1], scales.get(group_unit, 0.0), event and group_unit[1] in TIME_UNITS)
+                         group_unit[1], scales.get(group_unit, 0.0), event and group_unit[1] in TIME_UNITS,
+                         largest)
 
 
 COMPARE = {"summary.txt": compare_summary, "history.csv": compare_table,

@@ -301,6 +301,36 @@ check_grep "diff: ... which reads as one step later" \
   "^   t_force_max_ms: 1\.44 vs reference 1\.43 ms: one step later" "$tmp/out"
 check_grep "diff: ... and both count as differences" "^FAIL ref_step/summary.txt: 2 differences beyond" "$tmp/out"
 
+# a change at a zero crossing ranks by its size against the quantity's largest value: vz_cm_m_s of
+# table1_elastic crosses zero at maximum deformation (0.0136 m/s of an impact at 0.998 m/s); moved by
+# 1e-5 m/s it is 7e-4 relative (734x the tolerance) but 1e-5 of the column's largest (10x there),
+# so q_max_MPa changed by 1e-4 relative (100x) comes first; in history.csv the same with the row of
+# smallest |vz_cm_m_s| moved by 1e-6 m/s against alpha_mm at its largest changed by 1e-4
+cp -r reference_outputs/table1_elastic "$tmp/ref_crossing"
+vz=$(sed -n 's/^vz_cm_m_s = //p' "$tmp/ref_crossing/summary.txt")
+q=$(sed -n 's/^q_max_MPa = //p' "$tmp/ref_crossing/summary.txt")
+set_key "$tmp/ref_crossing/summary.txt" vz_cm_m_s "$(python3 -c "print(repr($vz + 1e-5))")"
+set_key "$tmp/ref_crossing/summary.txt" q_max_MPa "$(python3 -c "print(repr($q * 1.0001))")"
+python3 - "$tmp/ref_crossing/history.csv" <<'EOF'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+v, a = rows[0].index("vz_cm_m_s"), rows[0].index("alpha_mm")
+body = rows[1:]
+crossing = min((r for r in body if float(r[v]) != 0), key=lambda r: abs(float(r[v])))
+crossing[v] = repr(float(crossing[v]) + 1e-6)
+peak = max(body, key=lambda r: abs(float(r[a])))
+peak[a] = repr(float(peak[a]) * 1.0001)
+csv.writer(open(sys.argv[1], "w", newline=""), lineterminator="\n").writerows(rows)
+EOF
+$diff_tool "$tmp/ref_crossing" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_grep "diff: q_max_MPa changed by 1e-4 ranks before vz_cm_m_s moved by 1e-5 m/s at its zero crossing" \
+  "^   q_max_MPa: " <(first_difference "$tmp/out")
+check_grep "diff: ... which is shown against the largest |vz_cm_m_s| of the history" \
+  "^   vz_cm_m_s: .*; 10(\.[0-9]+)?x at the quantity's largest, 0\.998" "$tmp/out"
+sed -n '/^FAIL ref_crossing\/history.csv/,$p' "$tmp/out" > "$tmp/history_part"
+check_grep "diff: alpha_mm changed by 1e-4 at its largest ranks before the zero crossing of vz_cm_m_s" \
+  "^   line [0-9]+ step [0-9]+ t [0-9.e-]+ s alpha_mm: " <(first_difference "$tmp/history_part")
+
 # --- extra case folders in the run: listed apart, not failures --------------------------------
 mkdir -p "$tmp/refs_two" && cp -r reference_outputs/table1_elastic reference_outputs/block_cards "$tmp/refs_two/"
 cp -r "$tmp/run/table1_elastic" "$tmp/run_two/table1_elastic_copy"
