@@ -509,10 +509,12 @@ def compare_hdf5(reference, run, comparer):
                                    " (a damaged reference)")
                 largest[where] = float(magnitude.max()) if magnitude.size else 0.0
                 scales[key] = max(scales.get(key, 0.0), largest[where])
-        comparer.dt = time_step({name: decoded(values[()] if numpy.ndim(values) == 0 else "")
-                                 for name, values in ((n, datasets[f"/summary/{n}"][0])
-                                                      for n in ("dt_s", "time_stages")
-                                                      if f"/summary/{n}" in datasets)})
+        steps = {}  # the reference's dt_s and time_stages, for its /summary event times
+        for name in ("dt_s", "time_stages"):
+            values = datasets.get(f"/summary/{name}", (None,))[0]
+            if values is not None and numpy.ndim(values) == 0:
+                steps[name] = decoded(values[()])
+        comparer.dt = time_step(steps)
         for where, (b, a) in datasets.items():
             if where.startswith("/summary/") and where.rsplit("/", 1)[1] in SKIP_KEYS:
                 continue
@@ -621,8 +623,10 @@ def pairs(reference, run):
     if is_case(run):
         raise Unusable(f"{reference} is a folder of cases but {run} is a case folder")
     ref_cases, run_cases = cases(reference), cases(run)
-    # a reference folder named as a run's case but holding no case files has lost them (compare_case says which)
-    ref_cases += [name for name in run_cases if name not in ref_cases and os.path.isdir(os.path.join(reference, name))]
+    # a reference folder named as a run's case but holding no case files has lost them
+    # (compare_case says which): it is a damaged reference, not an extra case of the run
+    ref_cases += [name for name in run_cases
+                  if name not in ref_cases and os.path.isdir(os.path.join(reference, name))]
     if not ref_cases:
         raise Unusable(f"{reference}: no case folders in the reference")
     return [(case, os.path.join(reference, case) if case in ref_cases else None,
