@@ -54,7 +54,8 @@ def reasons(reference_path, candidate_path, name, tolerances):
         compare_outputs.COMPARE[name](reference_path, candidate_path, comparer)
     except compare_outputs.Unusable as error:
         return [f"the reference is unusable: {error}"]
-    worst = sorted(comparer.differences, key=lambda d: -d.excess)
+    values, events = compare_outputs.ranked(comparer.differences)
+    worst = values + events
     lines = [d.line().strip() for d in worst[:SHOWN]]
     if len(worst) > SHOWN:
         lines.append(f"... and {len(worst) - SHOWN} more")

@@ -9,10 +9,18 @@ against a folder of cases is compared with the case of the same name in it.
 Compared, when the reference case has them: summary.txt, history.csv,
 pressure.csv and results.h5 (every numeric dataset element-wise, its text
 datasets and attributes exactly, /summary included; needs h5py). A file the
-reference has and the run lacks, a case on one side only, a key, column,
+reference has and the run lacks, a case only the reference has, a key, column,
 row or dataset on one side only, or a different shape is a difference; a file
 only the run has is not compared (archived references keep summary.txt and
-history.csv only).
+history.csv only). A case folder only the run has is listed as
+`EXTRA <case>: in the run, not in the reference (not compared)`, and is no
+difference.
+
+A damaged reference is unusable input: a reference case folder without
+summary.txt or history.csv (every visco2d case folder has both), a reference
+file that cannot be parsed, is truncated (its last line has no end of line)
+or holds a number that is not finite (NaN, Inf) names the file (and line and
+key or column) and exits 2. A non-finite number in the run is a difference.
 
 Tolerance model. Two numbers a (run) and b (reference) agree when
     |a - b| <= allowed = max(rtol * |b|, floor)
@@ -25,29 +33,53 @@ below anything physical in these models), so a hydrostatic zero of -8.7e-11
 Pa against -1.2e-10 Pa never fails while a change of 1 part in 1e6 of any
 physical value does. The relative equilibrium and energy-balance errors
 (ROUNDOFF_KEYS) agree when both are below 1e-10. Text values must match
-exactly. cpu_s and wall_s (the machine, not the model) are skipped.
+exactly, but for the folder of a `FILE:LINE:` location they quote: visco2d's
+warnings start with the deck's path as given, under the output root in a
+sweep (OUT/decks/<case>.inp), so `out/decks/x.inp:64:` and
+`/scratch/run/decks/x.inp:64:` are the same (the file name and line still
+count). cpu_s and wall_s (the machine, not the model) are skipped.
 Per deck, REFERENCE/<case>/tolerances.txt may override this, one line each:
     default = RTOL                    the case's rtol (instead of --rtol)
     NAME = RTOL [ABS]                 for a summary key, a CSV column or an HDF5
                                       dataset (its name or its path): ABS, if
                                       given, replaces the floor
-('#' starts a comment). Differences are ranked by how far beyond tolerance
-they are, |a - b| / allowed (text, missing and shape differences first).
+('#' starts a comment). Differences are ranked by how far beyond the
+quantity's tolerance they are at its largest value, |a - b| / max(rtol * L,
+floor), L = max(|b|, the largest magnitude of the quantity in the reference:
+its CSV column or HDF5 dataset; for a summary key the history column of the
+same quantity, vz_cm_m_s or probe_centre_vz_m_s -> centre_vz_m_s), so a
+change at a zero crossing (a velocity at maximum deformation) ranks by its
+size against the quantity, not against the crossing, and is shown with
+`Nx at the quantity's largest, L` (text, missing and shape differences
+first; which differences fail is unchanged).
+Time-of-event keys (summary keys in s or ms but dt_s: t_force_max_ms,
+time_first_contact_s, envelope_*_time_s, contact_duration_ms, ...) move in
+whole time steps, so a peak that moves to the next step is at their
+resolution, not 13 % beyond any rtol: they are listed apart, after the
+values, each as a move in steps of the summary's DT (dt_s of a one-stage run;
+in seconds otherwise), `t_force_max_ms: 1.44 vs reference 1.43 ms: one step
+later`, the largest move first. They still count as differences.
 
 Output: one line per compared file, `PASS <case>/<file>` or
 `FAIL <case>/<file>: N differences beyond tolerance`, the FAIL followed by its
 worst differences (the worst 20 unless --max N; all with --all), each with
-both values and the relative error; then one line of totals.
-Exit status: 0 no difference beyond tolerance, 1 differences, 2 unusable input
-(a missing folder, an unreadable or corrupt file or tolerances.txt, bad options).
+both values and the relative error, then its time-of-event keys; then one line
+of totals (the matching cases of the reference, and the extra cases).
+Exit status: 0 no difference beyond tolerance (extra cases in the run
+allowed), 1 differences, 2 unusable input (a missing folder, a damaged
+reference, an unreadable or corrupt file or tolerances.txt, bad options).
 """
+import argparse
 import csv
 import math
 import os
+import re
 import signal
 import sys
 
 FILES = ("summary.txt", "history.csv", "pressure.csv", "results.h5")
+# Every visco2d case folder has these (bless.py archives them): a reference case without one is damaged.
+REQUIRED = ("summary.txt", "history.csv")
 TOLERANCE_FILE = "tolerances.txt"
 SKIP_KEYS = {"cpu_s", "wall_s"}
 FLOOR = 1e-9
@@ -62,6 +94,14 @@ HDF5_UNITS = {"m/s": "m_s", "m/s^2": "m_s2", "J/m^3": "J_m3", "m^3": "m3", "1": 
 ROUNDOFF_KEYS = {"equilibrium_error_max", "balance_error_max_rel"}
 ROUNDOFF_LEVEL = 1e-10
 SHOWN = 20
+# The location of a message, `FILE:LINE:` (visco2d's warnings start with the deck's path as given on
+# the command line, under the run's output root in a sweep): its folder is not part of the result.
+LOCATION = re.compile(r"(?<![^\s('\"])(?:[^\s:'\"()]*/)?([^\s:/'\"()]+:[0-9]+:)")
+LOCATION_FOLDER = "<dir>/"
+# Summary keys in these units are times of an event (t_force_max_ms, time_first_contact_s, ...) or
+# durations between events (contact_duration_ms): they move in whole time steps; dt_s is the step.
+TIME_UNITS = {"s": 1.0, "ms": 1e-3}
+NOT_EVENT_TIMES = {"dt_s"}
 
 
 class Unusable(Exception):
@@ -85,6 +125,20 @@ def hdf5_unit(dataset, name):
         units = units.decode("utf-8", "replace")
     units = str(units).split(" ")[0] if str(units).strip() else ""
     return HDF5_UNITS.get(units, units) or unit(name)
+
+
+def is_event_time(key):
+    """A summary key that is the time of an event or a duration between events (seconds or ms)."""
+    return unit(key) in TIME_UNITS and key not in NOT_EVENT_TIMES and key not in SKIP_KEYS
+
+
+def without_folders(value):
+    """A text with the folder of every `FILE:LINE:` location replaced by <dir>/ (lists: each element)."""
+    if isinstance(value, str):
+        return LOCATION.sub(lambda m: LOCATION_FOLDER + m.group(1), value)
+    if isinstance(value, list):
+        return [without_folders(item) for item in value]
+    return value
 
 
 def number(text):
@@ -139,19 +193,58 @@ class Tolerances:
 class Difference:
     """One difference: where, the run's and the reference's values, and how far beyond tolerance."""
 
-    def __init__(self, where, run, reference, excess=math.inf, note=""):
+    def __init__(self, where, run, reference, excess=math.inf, note="", shift=None, significance=None,
+                 largest=None):
         self.where, self.run, self.reference, self.excess, self.note = where, run, reference, excess, note
+        self.shift = shift  # an event time's move: (seconds, time steps or None), else None
+        # the rank: how far beyond the quantity's tolerance at its largest value (largest: that value)
+        self.significance = excess if significance is None else significance
+        self.largest = largest
 
     def line(self):
         if self.note:
             return f"   {self.where}: {self.note}"
+        if self.shift is not None:
+            key = self.where.rsplit("/", 1)[-1]
+            return (f"   {self.where}: {self.run!r} vs reference {self.reference!r} {unit(key)}:"
+                    f" {shift_text(*self.shift)}")
         if isinstance(self.run, float) and isinstance(self.reference, float):
             error = abs(self.run - self.reference)
             rel = error / abs(self.reference) if self.reference != 0 else math.inf
             beyond = f"{self.excess:.3g}x the tolerance" if math.isfinite(self.excess) else "tolerance 0"
+            if self.largest is not None:
+                beyond += f"; {self.significance:.3g}x at the quantity's largest, {self.largest:.4g}"
             return (f"   {self.where}: {self.run!r} vs reference {self.reference!r}"
                     f" (rel {rel:.2e}, {beyond})")
         return f"   {self.where}: '{self.run}' vs reference '{self.reference}'"
+
+
+def shift_text(seconds, steps):
+    """How far an event time moved: in time steps when the summary gives one DT, else in seconds."""
+    direction = "later" if seconds > 0 else "earlier"
+    if steps is None:
+        return f"{abs(seconds):.3g} s {direction}"
+    whole = round(steps)
+    if abs(steps - whole) <= 1e-6 * max(1.0, abs(steps)):
+        return f"one step {direction}" if abs(whole) == 1 else f"{abs(whole)} steps {direction}"
+    return f"{abs(steps):.3g} steps {direction}"
+
+
+def time_step(items):
+    """DT in seconds of a case from its summary's {key: text}: dt_s of a one-stage run, else None."""
+    dt = number(str(items.get("dt_s", "")))
+    stages = number(str(items.get("time_stages", "1")))
+    if dt is None or not math.isfinite(dt) or dt <= 0 or stages != 1:
+        return None
+    return dt
+
+
+def ranked(differences):
+    """(values, event times) of a file's differences, each worst first: values by how far beyond
+    tolerance (text and missing first), event times by how many time steps they moved."""
+    values = [d for d in differences if d.shift is None]
+    events = [d for d in differences if d.shift is not None]
+    return sorted(values, key=lambda d: -d.significance), sorted(events, key=lambda d: -d.excess)
 
 
 class Comparer:
@@ -161,9 +254,13 @@ class Comparer:
         self.tolerances = tolerances
         self.differences = []
         self.compared = 0
+        self.dt = None  # the case's time step (s), for the event times of a summary
 
-    def numbers(self, where, a, b, names, unit_, scale):
-        """Compare a (run) with b (reference) of unit unit_; names: the keys tolerances.txt may use."""
+    def numbers(self, where, a, b, names, unit_, scale, event=False, largest=None):
+        """Compare a (run) with b (reference) of unit unit_; names: the keys tolerances.txt may use;
+        event: a is the time of an event (unit s or ms), reported as a move in time steps;
+        largest: the largest magnitude of the quantity in the reference (its column, its dataset),
+        which ranks the difference (not whether it is one)."""
         self.compared += 1
         if not math.isfinite(a):
             self.differences.append(Difference(where, a, b, note=f"{a!r} is not finite (reference {b!r})"))
@@ -182,11 +279,24 @@ class Comparer:
         allowed = max(rtol * abs(b), floor)
         if error > allowed:
             excess = error / allowed if allowed > 0 else math.inf
-            self.differences.append(Difference(where, a, b, excess))
+            if event:
+                seconds = (a - b) * TIME_UNITS[unit_]
+                steps = seconds / self.dt if self.dt else None
+                self.differences.append(Difference(where, a, b, abs(steps if steps is not None else seconds),
+                                                   shift=(seconds, steps)))
+            elif largest is not None and largest > abs(b):
+                # the same tolerance at the quantity's largest value: a change at a zero crossing of a
+                # history column ranks by its size against the column, not against the crossing
+                at_largest = max(rtol * largest, floor)
+                self.differences.append(Difference(where, a, b, excess, significance=error / at_largest,
+                                                   largest=largest))
+            else:
+                self.differences.append(Difference(where, a, b, excess))
 
     def texts(self, where, a, b):
+        """Texts must be equal, but for the folders of the FILE:LINE: locations they quote."""
         self.compared += 1
-        if a != b:
+        if without_folders(a) != without_folders(b):
             self.differences.append(Difference(where, a, b))
 
     def note(self, where, text):
@@ -201,22 +311,59 @@ def read_text(path):
         raise Unusable(f"{path}: cannot read: {error}")
 
 
-def read_summary(path):
+def read_lines(path):
+    """The lines of a text output: visco2d ends every line, so a last line without its end is truncated."""
+    text = read_text(path)
+    if text and not text.endswith("\n"):
+        last = text.rsplit("\n", 1)[-1]
+        raise Unusable(f"{path}: truncated: its last line has no end of line ('{last[-60:]}')")
+    return text.splitlines()
+
+
+def not_finite(path, line, name, text):
+    return Unusable(f"{path}:{line}: {name} = {text} is not a finite number (a damaged reference)")
+
+
+def read_summary(path, reference=False):
+    """{key: text} of a summary.txt; a reference's numbers must be finite."""
     items = {}
-    for number_, line in enumerate(read_text(path).splitlines(), start=1):
+    for number_, line in enumerate(read_lines(path), start=1):
         if not line.strip():
             continue
         if " = " not in line:
             raise Unusable(f"{path}:{number_}: expected 'key = value', found '{line[:60]}'")
         key, value = line.split(" = ", 1)
-        items[key.strip()] = value.strip()
+        key, value = key.strip(), value.strip()
+        v = number(value)
+        if reference and v is not None and not math.isfinite(v):
+            raise not_finite(path, number_, key, value)
+        items[key] = value
     if not items:
         raise Unusable(f"{path}: empty")
     return items
 
 
+def history_column(key):
+    """The history column a summary key takes a value of: the same name (vz_cm_m_s, kinetic_J), or a
+    probe's without `probe_` (probe_centre_vz_m_s: centre_vz_m_s)."""
+    return [key, key[len("probe_"):]] if key.startswith("probe_") else [key]
+
+
+def column_largest(path):
+    """{column: largest finite magnitude} of a history.csv; {} when it cannot be read (its own
+    comparison says why)."""
+    try:
+        header, table = read_table(path)
+    except Unusable:
+        return {}
+    return {name: max((abs(row[j]) for row in table if math.isfinite(row[j])), default=0.0)
+            for j, name in enumerate(header)}
+
+
 def compare_summary(reference, run, comparer):
-    ref, new = read_summary(reference), read_summary(run)
+    ref, new = read_summary(reference, reference=True), read_summary(run)
+    comparer.dt = time_step(ref)
+    history = column_largest(os.path.join(os.path.dirname(reference), "history.csv"))
     scales = {}
     for key, value in ref.items():
         v = number(value)
@@ -232,14 +379,17 @@ def compare_summary(reference, run, comparer):
         if a is None or b is None:
             comparer.texts(key, new[key], value)
         else:
-            comparer.numbers(key, a, b, [key], unit(key), scales.get(unit(key), 0.0))
+            largest = next((history[name] for name in history_column(key) if name in history), None)
+            comparer.numbers(key, a, b, [key], unit(key), scales.get(unit(key), 0.0), is_event_time(key),
+                             largest)
     for key in new:
         if key not in ref and key not in SKIP_KEYS:
             comparer.note(key, f"new key (= {new[key]}) not in the reference")
 
 
-def read_table(path):
-    rows = list(csv.reader(read_text(path).splitlines()))
+def read_table(path, reference=False):
+    """(header, rows of numbers) of a CSV output; a reference's numbers must be finite."""
+    rows = list(csv.reader(read_lines(path)))
     if not rows or not rows[0]:
         raise Unusable(f"{path}: empty")
     header, table = rows[0], []
@@ -247,6 +397,10 @@ def read_table(path):
         values = [number(field) for field in row]
         if len(row) != len(header) or any(v is None for v in values):
             raise Unusable(f"{path}:{line}: expected {len(header)} numbers, found '{','.join(row)[:80]}'")
+        if reference:
+            for name, field, value in zip(header, row, values):
+                if not math.isfinite(value):
+                    raise not_finite(path, line, name, field)
         table.append(values)
     return header, table
 
@@ -262,7 +416,7 @@ def row_label(header, row, index):
 
 
 def compare_table(reference, run, comparer):
-    ref_header, ref = read_table(reference)
+    ref_header, ref = read_table(reference, reference=True)
     new_header, new = read_table(run)
     columns = [name for name in ref_header if name in new_header]
     for name in ref_header:
@@ -273,18 +427,18 @@ def compare_table(reference, run, comparer):
             comparer.note(name, "new column not in the reference")
     if len(ref) != len(new):
         comparer.note("rows", f"{len(new)} rows vs {len(ref)} in the reference (the common ones compared)")
-    scales = {}
+    scales, largest = {}, {}
     for name in columns:
         j = ref_header.index(name)
-        largest = max((abs(row[j]) for row in ref if math.isfinite(row[j])), default=0.0)
-        scales[unit(name)] = max(scales.get(unit(name), 0.0), largest)
+        largest[name] = max((abs(row[j]) for row in ref if math.isfinite(row[j])), default=0.0)
+        scales[unit(name)] = max(scales.get(unit(name), 0.0), largest[name])
     pairs = [(ref_header.index(name), new_header.index(name), name) for name in columns]
     for i, (row_ref, row_new) in enumerate(zip(ref, new)):
         for j_ref, j_new, name in pairs:
             a, b = row_new[j_new], row_ref[j_ref]
             if a != b or not math.isfinite(a):
                 comparer.numbers(f"{row_label(ref_header, row_ref, i)} {name}", a, b, [name],
-                                 unit(name), scales[unit(name)])
+                                 unit(name), scales[unit(name)], largest=largest[name])
             else:
                 comparer.compared += 1
 
@@ -345,23 +499,38 @@ def compare_hdf5(reference, run, comparer):
                     datasets[where] = (ref[where][()], new[where][()])
                 except (OSError, RuntimeError, ValueError) as error:
                     raise Unusable(f"{reference} or {run}: cannot read {where}: {error}")
-        scales = {}
+        scales, largest = {}, {}
         for where, (b, _) in datasets.items():
             if numpy.asarray(b).dtype.kind in "iuf":
                 key = (where.rsplit("/", 1)[0], hdf5_unit(ref[where], where.rsplit("/", 1)[1]))
-                finite = numpy.abs(numpy.asarray(b, dtype=float))
-                finite = finite[numpy.isfinite(finite)]
-                scales[key] = max(scales.get(key, 0.0), float(finite.max()) if finite.size else 0.0)
+                magnitude = numpy.abs(numpy.asarray(b, dtype=float))
+                if not numpy.isfinite(magnitude).all():
+                    raise Unusable(f"{reference}: {where} holds a value that is not a finite number"
+                                   " (a damaged reference)")
+                largest[where] = float(magnitude.max()) if magnitude.size else 0.0
+                scales[key] = max(scales.get(key, 0.0), largest[where])
+        steps = {}  # the reference's dt_s and time_stages, for its /summary event times
+        for name in ("dt_s", "time_stages"):
+            values = datasets.get(f"/summary/{name}", (None,))[0]
+            if values is not None and numpy.ndim(values) == 0:
+                steps[name] = decoded(values[()])
+        comparer.dt = time_step(steps)
         for where, (b, a) in datasets.items():
             if where.startswith("/summary/") and where.rsplit("/", 1)[1] in SKIP_KEYS:
                 continue
-            compare_dataset(where, a, b, ref[where], comparer, scales)
+            name = where.rsplit("/", 1)[1]
+            if where.startswith("/summary/"):  # a summary value ranks against its history column
+                quantity = next((largest[f"/history/{column}"] for column in history_column(name)
+                                 if f"/history/{column}" in largest), None)
+            else:
+                quantity = largest.get(where)
+            compare_dataset(where, a, b, ref[where], comparer, scales, quantity)
     finally:
         ref_file.close()
         new_file.close()
 
 
-def compare_dataset(where, a, b, ref_item, comparer, scales):
+def compare_dataset(where, a, b, ref_item, comparer, scales, largest=None):
     import numpy
     a, b = numpy.asarray(a), numpy.asarray(b)
     name = where.rsplit("/", 1)[1]
@@ -374,6 +543,7 @@ def compare_dataset(where, a, b, ref_item, comparer, scales):
         return
     group_unit = (where.rsplit("/", 1)[0], hdf5_unit(ref_item, name))
     names = [where, where.lstrip("/"), name]
+    event = where.startswith("/summary/") and a.ndim == 0 and is_event_time(name)
     a, b = a.astype(float), b.astype(float)
     differ = numpy.flatnonzero((a != b).ravel() | ~numpy.isfinite(a).ravel())
     comparer.compared += a.size - differ.size
@@ -381,7 +551,8 @@ def compare_dataset(where, a, b, ref_item, comparer, scales):
         index = numpy.unravel_index(flat, a.shape) if a.ndim else ()
         label = f"{where}[{','.join(str(int(i)) for i in index)}]" if a.ndim else where
         comparer.numbers(label, float(a.ravel()[flat]), float(b.ravel()[flat]), names,
-                         group_unit[1], scales.get(group_unit, 0.0))
+                         group_unit[1], scales.get(group_unit, 0.0), event and group_unit[1] in TIME_UNITS,
+                         largest)
 
 
 COMPARE = {"summary.txt": compare_summary, "history.csv": compare_table,
@@ -394,6 +565,10 @@ def is_case(folder):
 
 def compare_case(reference, run, case, rtol, shown, out):
     """Compare one case folder; print its lines; return (files compared, files differing)."""
+    for name in REQUIRED:
+        if not os.path.isfile(os.path.join(reference, name)):
+            raise Unusable(f"{os.path.join(reference, name)}: missing from the reference (every visco2d"
+                           f" case folder has {' and '.join(REQUIRED)})")
     tolerances = Tolerances(rtol, os.path.join(reference, TOLERANCE_FILE))
     compared = failed = 0
     for name in FILES:
@@ -410,15 +585,21 @@ def compare_case(reference, run, case, rtol, shown, out):
             print(f"PASS {case}/{name}", file=out)
             continue
         failed += 1
-        worst = sorted(comparer.differences, key=lambda d: -d.excess)  # stable: file order on ties
-        print(f"FAIL {case}/{name}: {len(worst)} difference{'s' * (len(worst) != 1)} beyond tolerance"
+        values, events = ranked(comparer.differences)  # stable: file order on ties
+        total = len(values) + len(events)
+        print(f"FAIL {case}/{name}: {total} difference{'s' * (total != 1)} beyond tolerance"
               f" ({comparer.compared} values compared; worst first)", file=out)
-        for difference in worst[:shown]:
+        for difference in values[:shown]:
             print(difference.line(), file=out)
-        if len(worst) > shown:
-            print(f"   ... and {len(worst) - shown} more (--all to list them)", file=out)
-    if not os.path.exists(os.path.join(reference, "summary.txt")) and not compared:
-        raise Unusable(f"{reference}: no {', '.join(FILES)}: not a case folder")
+        if len(values) > shown:
+            print(f"   ... and {len(values) - shown} more (--all to list them)", file=out)
+        if events:
+            step = f"in steps of DT = {comparer.dt:g} s" if comparer.dt else "in seconds: no single DT"
+            print(f"   time-of-event keys ({step}): {len(events)} differ", file=out)
+            for difference in events[:shown]:
+                print(difference.line(), file=out)
+            if len(events) > shown:
+                print(f"   ... and {len(events) - shown} more (--all to list them)", file=out)
     return compared, failed
 
 
@@ -442,22 +623,28 @@ def pairs(reference, run):
     if is_case(run):
         raise Unusable(f"{reference} is a folder of cases but {run} is a case folder")
     ref_cases, run_cases = cases(reference), cases(run)
-    if not ref_cases and not run_cases:
-        raise Unusable(f"{reference} and {run}: no case folders in either")
+    # a reference folder named as a run's case but holding no case files has lost them
+    # (compare_case says which): it is a damaged reference, not an extra case of the run
+    ref_cases += [name for name in run_cases
+                  if name not in ref_cases and os.path.isdir(os.path.join(reference, name))]
+    if not ref_cases:
+        raise Unusable(f"{reference}: no case folders in the reference")
     return [(case, os.path.join(reference, case) if case in ref_cases else None,
              os.path.join(run, case) if case in run_cases else None)
             for case in sorted(set(ref_cases) | set(run_cases))]
 
 
 def compare(reference, run, rtol=1e-6, shown=SHOWN, out=sys.stdout):
-    """Compare two case folders or folders of cases; print; return 0 (same) or 1 (different)."""
+    """Compare two case folders or folders of cases; print; return 0 (same) or 1 (different).
+    A case only the run has is listed as extra, not compared and not a difference."""
     differing = files = 0
     work = pairs(reference, run)
+    extras = [case for case, ref_case, _ in work if ref_case is None]
+    for case in extras:
+        print(f"EXTRA {case}: in the run, not in the reference (not compared)", file=out)
+    work = [item for item in work if item[1] is not None]
     for case, ref_case, run_case in work:
-        if ref_case is None:
-            print(f"FAIL {case}: in the run, not in the reference", file=out)
-            differing += 1
-        elif run_case is None:
+        if run_case is None:
             print(f"FAIL {case}: in the reference, not in the run", file=out)
             differing += 1
         else:
@@ -466,44 +653,50 @@ def compare(reference, run, rtol=1e-6, shown=SHOWN, out=sys.stdout):
             differing += failed > 0
     print(f"# {len(work) - differing} of {len(work)} case{'s' * (len(work) != 1)} match"
           f" ({files} files compared, --rtol {rtol:g})"
-          + (f"; {differing} differ" if differing else ""), file=out)
+          + (f"; {differing} differ" if differing else "")
+          + (f"; {len(extras)} extra case{'s' * (len(extras) != 1)} in the run, not compared" if extras else ""),
+          file=out)
     return 1 if differing else 0
+
+
+def non_negative(kind):
+    """An argparse type: a finite number >= 0 of the given kind (float or int)."""
+    def parse(text):
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"not a number: '{text}'")
+        if not math.isfinite(value) or value < 0 or (kind is int and value != int(value)):
+            raise argparse.ArgumentTypeError(f"expected a finite {'whole ' * (kind is int)}number >= 0,"
+                                             f" found '{text}'")
+        return kind(value)
+    return parse
+
+
+def parser():
+    result = argparse.ArgumentParser(
+        prog=os.path.basename(sys.argv[0]) or "visco2d-diff",
+        description=__doc__.split("\n\n", 1)[0] + "\n\n" + __doc__.split("\n\n", 2)[2],
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        usage="%(prog)s REFERENCE RUN [--rtol R] [--all] [--max N] [--quiet]")
+    result.add_argument("reference", metavar="REFERENCE", help="a reference case folder or folder of cases")
+    result.add_argument("run", metavar="RUN", help="the run's case folder or folder of cases")
+    result.add_argument("--rtol", type=non_negative(float), default=1e-6, metavar="R",
+                        help="relative tolerance (default 1e-6; a case's tolerances.txt wins)")
+    result.add_argument("--all", action="store_true", help="list every difference")
+    result.add_argument("--max", type=non_negative(int), default=SHOWN, metavar="N",
+                        help=f"list the worst N differences per file (default {SHOWN})")
+    result.add_argument("--quiet", action="store_true", help="print nothing; the exit status only")
+    return result
 
 
 def main(argv):
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # quiet when piped into head
-    args = list(argv)
-    rtol, shown, quiet = 1e-6, SHOWN, False
+    args = parser().parse_args(argv)  # a usage error exits 2
+    shown = sys.maxsize if args.all else args.max
+    out = open(os.devnull, "w") if args.quiet else sys.stdout
     try:
-        if "-h" in args or "--help" in args:
-            print(__doc__)
-            return 0
-        if "--all" in args:
-            args.remove("--all")
-            shown = sys.maxsize
-        if "--quiet" in args:
-            args.remove("--quiet")
-            quiet = True
-        for option in ("--rtol", "--max"):
-            if option in args:
-                k = args.index(option)
-                value = float(args[k + 1])
-                if not math.isfinite(value) or value < 0:
-                    raise ValueError(value)
-                del args[k:k + 2]
-                if option == "--rtol":
-                    rtol = value
-                else:
-                    shown = int(value)
-        if len(args) != 2 or any(arg.startswith("-") for arg in args):
-            raise ValueError(args)
-    except (ValueError, IndexError):
-        print("usage: compare_outputs.py REFERENCE RUN [--rtol R] [--all] [--max N] [--quiet]"
-              " (--help for more)", file=sys.stderr)
-        return 2
-    out = open(os.devnull, "w") if quiet else sys.stdout
-    try:
-        return compare(args[0], args[1], rtol, shown, out)
+        return compare(args.reference, args.run, args.rtol, shown, out)
     except Unusable as error:
         print(f"compare_outputs.py: unusable input: {error}", file=sys.stderr)
         return 2

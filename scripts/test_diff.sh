@@ -21,7 +21,7 @@ check_rc() {
 }
 # check_grep NAME PATTERN FILE: PASS if FILE has a line matching PATTERN
 check_grep() {
-  if grep -qE -- "$2" "$3"; then pass "$1"; else fail "$1" "no line matching '$2' in: $(head -c 600 "$3")"; fi
+  if grep -qE -- "$2" "$3"; then pass "$1"; else fail "$1" "no line matching '$2' in: $(head -c 600 "$3" | tr '\n' '|')"; fi
 }
 # first_difference FILE: the first difference line the diff printed (indented by 3 spaces)
 first_difference() { grep -m1 '^   ' "$1"; }
@@ -179,6 +179,171 @@ check_rc "diff: a truncated results.h5 is unusable input (exit 2)" 2 $?
 $diff_tool reference_outputs/table1_elastic > "$tmp/out" 2>&1
 check_rc "diff: a missing argument is a usage error (exit 2)" 2 $?
 
+# --- a reference that has lost or damaged a file: unusable input (exit 2), the file named ----
+cp -r reference_outputs/table1_elastic "$tmp/ref_nosummary" && rm "$tmp/ref_nosummary/summary.txt"
+$diff_tool "$tmp/ref_nosummary" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: a reference case without its summary.txt is unusable input (exit 2)" 2 $?
+check_grep "diff: ... naming the missing file" "ref_nosummary/summary.txt: missing from the reference" "$tmp/out"
+mkdir -p "$tmp/refs_lost/table1_elastic" && cp reference_outputs/table1_elastic/history.csv "$tmp/refs_lost/table1_elastic/"
+cp -r reference_outputs/block_cards "$tmp/refs_lost/"
+mkdir -p "$tmp/run_two" && cp -r "$tmp/run/table1_elastic" "$tmp/run/block_cards" "$tmp/run_two/"
+$diff_tool "$tmp/refs_lost" "$tmp/run_two" > "$tmp/out" 2>&1
+check_rc "diff: ... also in a folder of cases (exit 2)" 2 $?
+mkdir -p "$tmp/refs_empty/table1_elastic"
+$diff_tool "$tmp/refs_empty" "$tmp/run_two" > "$tmp/out" 2>&1
+check_rc "diff: a reference case folder left empty is unusable input, not an extra run case (exit 2)" 2 $?
+cp -r reference_outputs/table1_elastic "$tmp/ref_nohistory" && rm "$tmp/ref_nohistory/history.csv"
+$diff_tool "$tmp/ref_nohistory" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: a reference case without its history.csv is unusable input (exit 2)" 2 $?
+check_grep "diff: ... naming it" "ref_nohistory/history.csv: missing from the reference" "$tmp/out"
+cp -r reference_outputs/table1_elastic "$tmp/ref_truncated"
+size=$(stat -c %s reference_outputs/table1_elastic/summary.txt)
+head -c $((size * 2 / 3)) reference_outputs/table1_elastic/summary.txt > "$tmp/ref_truncated/summary.txt"
+$diff_tool "$tmp/ref_truncated" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: a truncated reference summary.txt (cut mid-line) is unusable input (exit 2)" 2 $?
+check_grep "diff: ... named, as truncated" "ref_truncated/summary.txt: truncated" "$tmp/out"
+cp -r reference_outputs/table1_elastic "$tmp/ref_truncated_csv"
+size=$(stat -c %s reference_outputs/table1_elastic/history.csv)
+head -c $((size - 3)) reference_outputs/table1_elastic/history.csv > "$tmp/ref_truncated_csv/history.csv"
+$diff_tool "$tmp/ref_truncated_csv" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: a reference history.csv cut inside its last number is unusable input (exit 2)" 2 $?
+check_grep "diff: ... named, as truncated" "ref_truncated_csv/history.csv: truncated" "$tmp/out"
+cp -r reference_outputs/table1_elastic "$tmp/ref_nan"
+set_key "$tmp/ref_nan/summary.txt" alpha_max_mm NaN
+$diff_tool "$tmp/ref_nan" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: a NaN in the reference summary.txt is unusable input (exit 2)" 2 $?
+check_grep "diff: ... with its file, line and key" "ref_nan/summary.txt:[0-9]+: alpha_max_mm = NaN is not a finite number" "$tmp/out"
+cp -r reference_outputs/table1_elastic "$tmp/ref_nan_csv"
+sed -i '5s/^\([^,]*\),[^,]*,/\1,inf,/' "$tmp/ref_nan_csv/history.csv"
+$diff_tool "$tmp/ref_nan_csv" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: an Inf in the reference history.csv is unusable input (exit 2)" 2 $?
+check_grep "diff: ... with its file, line and column" "ref_nan_csv/history.csv:5: t_s = inf is not a finite number" "$tmp/out"
+cp -r reference_outputs/table1_elastic "$tmp/ref_garbled" && echo "alpha_max_mm 1.0" >> "$tmp/ref_garbled/summary.txt"
+$diff_tool "$tmp/ref_garbled" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_rc "diff: an unparseable line in the reference summary.txt is unusable input (exit 2)" 2 $?
+cp -r "$tmp/run/table1_elastic" "$tmp/run_nan" && set_key "$tmp/run_nan/summary.txt" alpha_max_mm NaN
+$diff_tool reference_outputs/table1_elastic "$tmp/run_nan" > "$tmp/out" 2>&1
+check_rc "diff: a NaN in the run (the output under test) is a difference (exit 1)" 1 $?
+
+# --- paths in messages: the same deck run from two roots (a laptop's relative out/, a cluster's
+# absolute /scratch/...) quotes two deck paths in its warning; the case folders must match
+mkdir -p "$tmp/local/decks" "$tmp/cluster/scratch/sweep/decks"
+cp inputs/apple_center_accel.inp "$tmp/local/decks/" && cp inputs/apple_center_accel.inp "$tmp/cluster/scratch/sweep/decks/"
+exe_absolute="$(cd "$(dirname "$exe")" && pwd)/$(basename "$exe")"
+(cd "$tmp/local" && "$exe_absolute" -q -o out decks/apple_center_accel.inp) > "$tmp/run.log" 2>&1 \
+  || fail "runs" "apple_center_accel did not run from $tmp/local: $(cat "$tmp/run.log")"
+"$exe" -q -o "$tmp/cluster/scratch/sweep" "$tmp/cluster/scratch/sweep/decks/apple_center_accel.inp" > "$tmp/run.log" 2>&1 \
+  || fail "runs" "apple_center_accel did not run from $tmp/cluster: $(cat "$tmp/run.log")"
+grep -q "^warning_1 = decks/apple_center_accel.inp:64: PROBE" "$tmp/local/out/apple_center_accel/summary.txt" \
+  && grep -q "^warning_1 = $tmp/cluster/scratch/sweep/decks/apple_center_accel.inp:64: PROBE" \
+       "$tmp/cluster/scratch/sweep/apple_center_accel/summary.txt" \
+  && pass "diff: the two runs' warnings quote two different deck paths" \
+  || fail "diff: the two runs' warnings quote two different deck paths" "$(grep warning_1 "$tmp"/*/out/*/summary.txt)"
+$diff_tool "$tmp/local/out/apple_center_accel" "$tmp/cluster/scratch/sweep/apple_center_accel" > "$tmp/out" 2>&1
+check_rc "diff: the same deck run under two output roots matches, results.h5 included (exit 0)" 0 $?
+$diff_tool reference_outputs/apple_center_accel "$tmp/cluster/scratch/sweep/apple_center_accel" > "$tmp/out" 2>&1
+check_rc "diff: the archived reference (deck in inputs/) matches the run under /scratch (exit 0)" 0 $?
+cp -r reference_outputs/apple_center_accel "$tmp/ref_warning"
+sed -i 's/^\(warning_1 = .*\)RADIUS=0.005 m/\1RADIUS=0.006 m/' "$tmp/ref_warning/summary.txt"
+$diff_tool "$tmp/ref_warning" "$tmp/local/out/apple_center_accel" > "$tmp/out" 2>&1
+check_rc "diff: a warning whose text differs still fails (exit 1)" 1 $?
+cp -r reference_outputs/apple_center_accel "$tmp/ref_warning_line"
+sed -i 's/^\(warning_1 = .*\.inp\):64:/\1:65:/' "$tmp/ref_warning_line/summary.txt"
+$diff_tool "$tmp/ref_warning_line" "$tmp/local/out/apple_center_accel" > "$tmp/out" 2>&1
+check_rc "diff: ... and so does one whose deck line differs (exit 1)" 1 $?
+cp -r reference_outputs/apple_center_accel "$tmp/ref_warning_deck"
+sed -i 's/^\(warning_1 = .*\)apple_center_accel\.inp:64:/\1other_deck.inp:64:/' "$tmp/ref_warning_deck/summary.txt"
+$diff_tool "$tmp/ref_warning_deck" "$tmp/local/out/apple_center_accel" > "$tmp/out" 2>&1
+check_rc "diff: ... and one quoting another deck's file name (exit 1)" 1 $?
+
+# --- worst first: time-of-event keys apart, in time steps ------------------------------------
+# table2_viscoelastic with its moduli (K, G) raised by 0.1 %: the time of peak surface pressure
+# jumps 20 steps (between two near-equal maxima); the real changes must come first
+mkdir -p "$tmp/modulus"
+python3 - inputs/table2_viscoelastic.inp "$tmp/modulus/table2_viscoelastic.inp" <<'EOF'
+import re, sys
+text = open(sys.argv[1]).read()
+text, n = re.subn(r'^(MATERIAL .* K=|PRONY G=)([0-9.e+]+)', lambda m: f"{m.group(1)}{float(m.group(2)) * 1.001!r}",
+                  text, flags=re.M)
+assert n == 2, n
+open(sys.argv[2], 'w').write(text)
+EOF
+"$exe" -q -o "$tmp/modulus/out" "$tmp/modulus/table2_viscoelastic.inp" > "$tmp/run.log" 2>&1 \
+  || fail "runs" "the modified table2_viscoelastic did not run: $(cat "$tmp/run.log")"
+$diff_tool reference_outputs/table2_viscoelastic "$tmp/modulus/out/table2_viscoelastic" --all > "$tmp/out" 2>&1
+check_rc "diff: a 0.1 % modulus change fails (exit 1)" 1 $?
+sed -n '/^FAIL table2_viscoelastic\/summary.txt/,/^[A-Z#]/p' "$tmp/out" > "$tmp/summary_part"
+if first_difference "$tmp/summary_part" | grep -qE '^   (t_|time_)'; then
+  fail "diff: ... a time-of-event key is not the worst summary difference" "$(first_difference "$tmp/summary_part")"
+else
+  pass "diff: ... a time-of-event key is not the worst summary difference"
+fi
+check_grep "diff: ... the event times are listed apart, in steps of the summary's DT" \
+  "^   time-of-event keys \(in steps of DT = 1e-05 s\): [0-9]+ differ" "$tmp/summary_part"
+check_grep "diff: ... t_q_surface_max_ms reads as 20 steps earlier" \
+  "^   t_q_surface_max_ms: 1\.36 vs reference 1\.56 ms: 20 steps earlier" "$tmp/summary_part"
+rank=$(grep '^   ' "$tmp/summary_part" | grep -n '^   q_max_MPa:' | cut -d: -f1)
+event_rank=$(grep '^   ' "$tmp/summary_part" | grep -n '^   time-of-event' | cut -d: -f1)
+if [ -n "$rank" ] && [ -n "$event_rank" ] && [ "$rank" -lt "$event_rank" ]; then
+  pass "diff: ... q_max_MPa (rank $rank) is listed before every event time"
+else
+  fail "diff: ... q_max_MPa is listed before every event time" "rank '$rank', events at '$event_rank'"
+fi
+# a one-step shift against a real 1e-3 change: the change first, the shift read as "one step"
+cp -r reference_outputs/table1_elastic "$tmp/ref_step"
+alpha=$(sed -n 's/^alpha_max_mm = //p' "$tmp/ref_step/summary.txt")
+set_key "$tmp/ref_step/summary.txt" alpha_max_mm "$(python3 -c "print(repr($alpha * 1.001))")"
+set_key "$tmp/ref_step/summary.txt" t_force_max_ms 1.430000000E+000   # the run's is 1.44 ms, DT = 0.01 ms
+$diff_tool "$tmp/ref_step" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_grep "diff: a 1e-3 change of alpha_max_mm is named before a one-step shift of t_force_max_ms" \
+  "^   alpha_max_mm: " <(first_difference "$tmp/out")
+check_grep "diff: ... which reads as one step later" \
+  "^   t_force_max_ms: 1\.44 vs reference 1\.43 ms: one step later" "$tmp/out"
+check_grep "diff: ... and both count as differences" "^FAIL ref_step/summary.txt: 2 differences beyond" "$tmp/out"
+
+# a change at a zero crossing ranks by its size against the quantity's largest value: vz_cm_m_s of
+# table1_elastic crosses zero at maximum deformation (0.0136 m/s of an impact at 0.998 m/s); moved by
+# 1e-5 m/s it is 7e-4 relative (734x the tolerance) but 1e-5 of the column's largest (10x there),
+# so q_max_MPa changed by 1e-4 relative (100x) comes first; in history.csv the same with the row of
+# smallest |vz_cm_m_s| moved by 1e-6 m/s against alpha_mm at its largest changed by 1e-4
+cp -r reference_outputs/table1_elastic "$tmp/ref_crossing"
+vz=$(sed -n 's/^vz_cm_m_s = //p' "$tmp/ref_crossing/summary.txt")
+q=$(sed -n 's/^q_max_MPa = //p' "$tmp/ref_crossing/summary.txt")
+set_key "$tmp/ref_crossing/summary.txt" vz_cm_m_s "$(python3 -c "print(repr($vz + 1e-5))")"
+set_key "$tmp/ref_crossing/summary.txt" q_max_MPa "$(python3 -c "print(repr($q * 1.0001))")"
+python3 - "$tmp/ref_crossing/history.csv" <<'EOF'
+import csv, sys
+rows = list(csv.reader(open(sys.argv[1])))
+v, a = rows[0].index("vz_cm_m_s"), rows[0].index("alpha_mm")
+body = rows[1:]
+crossing = min((r for r in body if float(r[v]) != 0), key=lambda r: abs(float(r[v])))
+crossing[v] = repr(float(crossing[v]) + 1e-6)
+peak = max(body, key=lambda r: abs(float(r[a])))
+peak[a] = repr(float(peak[a]) * 1.0001)
+csv.writer(open(sys.argv[1], "w", newline=""), lineterminator="\n").writerows(rows)
+EOF
+$diff_tool "$tmp/ref_crossing" "$tmp/run/table1_elastic" > "$tmp/out" 2>&1
+check_grep "diff: q_max_MPa changed by 1e-4 ranks before vz_cm_m_s moved by 1e-5 m/s at its zero crossing" \
+  "^   q_max_MPa: " <(first_difference "$tmp/out")
+check_grep "diff: ... which is shown against the largest |vz_cm_m_s| of the history" \
+  "^   vz_cm_m_s: .*; 10(\.[0-9]+)?x at the quantity's largest, 0\.998" "$tmp/out"
+sed -n '/^FAIL ref_crossing\/history.csv/,$p' "$tmp/out" > "$tmp/history_part"
+check_grep "diff: alpha_mm changed by 1e-4 at its largest ranks before the zero crossing of vz_cm_m_s" \
+  "^   line [0-9]+ step [0-9]+ t [0-9.e-]+ s alpha_mm: " <(first_difference "$tmp/history_part")
+
+# --- extra case folders in the run: listed apart, not failures --------------------------------
+mkdir -p "$tmp/refs_two" && cp -r reference_outputs/table1_elastic reference_outputs/block_cards "$tmp/refs_two/"
+cp -r "$tmp/run/table1_elastic" "$tmp/run_two/table1_elastic_copy"
+$diff_tool "$tmp/refs_two" "$tmp/run_two" > "$tmp/out" 2>&1
+check_rc "diff: a case folder only the run has is not a failure (exit 0)" 0 $?
+check_grep "diff: ... it is listed as extra" "^EXTRA table1_elastic_copy: in the run, not in the reference \(not compared\)" "$tmp/out"
+check_grep "diff: ... and counted apart in the totals" "^# 2 of 2 cases match .*; 1 extra case in the run, not compared" "$tmp/out"
+rm -r "$tmp/refs_two/block_cards"
+$diff_tool "$tmp/refs_two" "$tmp/run_two" > "$tmp/out" 2>&1
+check_rc "diff: ... two extras, everything else matching (exit 0)" 0 $?
+cp -r reference_outputs/sphere_pressure "$tmp/refs_two/"
+$diff_tool "$tmp/refs_two" "$tmp/run_two" > "$tmp/out" 2>&1
+check_rc "diff: ... while a case only the reference has still fails (exit 1)" 1 $?
 installed="$(dirname "$exe")/visco2d-diff"
 if [ -x "$installed" ] && "$installed" reference_outputs/table1_elastic "$tmp/run" > "$tmp/out" 2>&1; then
   pass "visco2d-diff is installed beside visco2d and runs"
