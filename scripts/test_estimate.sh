@@ -42,13 +42,13 @@ OUTPUT EVERY=1 FIELDS=$fields
 END
 EOF
 sed 's/LEVEL=1 GRID=LEGACY/LEVEL=5 GRID=LEGACY/' inputs/sphere_pressure.inp > "$tmp/fine_static.inp"
-sed 's/LEVEL=1 /LEVEL=5 /; s/TEND=4e-3/TEND=1e-4/; s/^END/SOLVER BAND\nEND/' inputs/table1_elastic.inp \
+sed 's/LEVEL=1 /LEVEL=4 /; s/TEND=4e-3/TEND=1e-4/; s/^END/SOLVER BAND\nEND/' inputs/table1_elastic.inp \
   > "$tmp/fine_band.inp"
 sed 's/LEVEL=1 /LEVEL=4 /; s/TEND=20e-3/TEND=5e-4/' inputs/apple_pad_pu.inp > "$tmp/pad_fine.inp"
-sed 's/NR=2 NZ=2/NR=150 NZ=150/' inputs/relaxation_step.inp > "$tmp/quasistatic_fine.inp"
+sed 's/NR=2 NZ=2/NR=100 NZ=100/' inputs/relaxation_step.inp > "$tmp/quasistatic_fine.inp"
 sed 's/LEVEL=1 /LEVEL=4 /; s/TEND=5e-3/TEND=3e-4/' inputs/table2_viscoelastic.inp > "$tmp/prony_fine.inp"
 # each edit must have changed its deck (a shipped deck edited elsewhere would silently test less)
-for pair in fine_static:LEVEL=5 fine_band:SOLVER pad_fine:LEVEL=4 quasistatic_fine:NR=150 prony_fine:LEVEL=4; do
+for pair in fine_static:LEVEL=5 fine_band:SOLVER pad_fine:LEVEL=4 quasistatic_fine:NR=100 prony_fine:LEVEL=4; do
   deck=${pair%%:*}
   grep -q "${pair#*:}" "$tmp/$deck.inp" || fail "deck_$deck" "the edit of its shipped deck found nothing to change"
 done
