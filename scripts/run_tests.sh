@@ -69,6 +69,11 @@ bash scripts/test_mpi.sh "$exe" > "$log/mpi.log" 2>&1
 count "$log/mpi.log"
 echo "   $(grep -c '^PASS ' "$log/mpi.log") checks passed; $(grep '^# ' "$log/mpi.log" | tr '\n' ' ')"
 
+echo "== memory estimate (scripts/test_estimate.sh: estimate / measured peak of a spread of decks, refusal over the limit)"
+bash scripts/test_estimate.sh "$exe" > "$log/estimate.log" 2>&1
+count "$log/estimate.log"
+echo "   $(grep -c '^PASS ' "$log/estimate.log") checks passed"
+
 echo "== batch runs and sweeps (scripts/test_batch.sh: visco2d-batch sweeps, -j, shards, collect, threshold, MPI)"
 bash scripts/test_batch.sh "$exe" > "$log/batch.log" 2>&1
 count "$log/batch.log"

@@ -410,7 +410,12 @@ contains
     call check('million_steps_steps', size%steps == 1000000_int64)
     call check('million_steps_rows', size%history_rows == 1000002_int64)
     call check_close('million_steps_history_bytes', size%history_bytes, 1000002.0_dp*(14 + 10)*8, 1.0e-12_dp)
-    call check_close('million_steps_band_bytes', size%band_bytes, 2.0_dp*212*(35 + 1)*8, 1.0e-12_dp)
+    ! CHOLMOD (the default solver): one band matrix and its sparse factor, 80 bytes per n log2(n).
+    call check_close('million_steps_band_bytes', size%band_bytes, 1.0_dp*212*(35 + 1)*8, 1.0e-12_dp)
+    call check_close('million_steps_factor_bytes', size%factor_bytes, 80.0_dp*212*log(212.0_dp)/log(2.0_dp), 1.0e-12_dp)
+    ! Writing results.h5: the history table in the record, and twice (buffer 1.125 x, and its copy) in results.h5.
+    call check('million_steps_write_peak', size%total_bytes == size%write_bytes .and. &
+               size%image_bytes > 2.1_dp*size%history_bytes, bytes_text(size%image_bytes))
     call set_memory_limit('100M', 'the test', message)
     call check_run_size(deck, size, error)
     call check('million_steps_refused', allocated(error))

@@ -3,12 +3,16 @@
 !> is allocated, and the memory limit a run must stay under.
 !>
 !> The memory model counts what the solvers allocate, in bytes (as real(dp),
-!> so no product of counts can overflow):
-!>  - the banded stiffness (or effective stiffness, eq. [35]) and its Cholesky
-!>    factor: n (b + 1) 8 bytes each for n equations of half-bandwidth b, and a
-!>    third copy in a run that assembles a new matrix while the factor of the
-!>    previous one is still held (a new Delta t in a later TIME stage, or the
-!>    relaxed moduli of a viscoelastic QUASISTATIC run);
+!> so no product of counts can overflow), at the larger of two peaks. While
+!> solving:
+!>  - the banded stiffness (or effective stiffness, eq. [35]): n (b + 1)
+!>    8 bytes for n equations of half-bandwidth b; with CHOLMOD (the default
+!>    solver) its sparse factor, about 80 bytes per n log2(n) (fitted to level 4
+!>    to 6 spheres; twice that in a run that refactors at a new Delta t), with
+!>    the band or profile solvers a second band copy for
+!>    the factor, and a third in a run that assembles a new matrix while the
+!>    factor of the previous one is still held (a new Delta t in a later TIME
+!>    stage, or the relaxed moduli of a viscoelastic QUASISTATIC run);
 !>  - per element: B at the Gauss points, the stresses, strains and trial
 !>    states, and 128 bytes per Prony term with memory (the history of
 !>    eq. [24]: 4 components at 4 Gauss points);
@@ -16,9 +20,14 @@
 !>  - the history table (rows x columns x 8 bytes, as preallocated) and the
 !>    kept contact columns S~^-1 e_c of the capacitance system;
 !>  - a fixed base (program, libraries, the deck and its listing).
-!> The per-item constants are fitted to the peak resident size of runs of
-!> every analysis kind (from 100 to 1.8 million equations); the estimate is
-!> within about 15 % of what those runs used.
+!> While writing (the solver's arrays are freed): the mesh, the history
+!> table, every field snapshot (held in the record until results.h5 is
+!> written) and the in-memory image of results.h5 (HDF5's core driver
+!> allocates 1.125 times the file's expected size, at least 1 MiB, and the
+!> image is copied out once more to be written: 2.125 times the file).
+!> The per-item constants are fitted to the peak resident size (VmHWM) of
+!> runs of every analysis kind; scripts/test_estimate.sh checks the estimate
+!> against the measured peak of a spread of decks (within -10 % / +25 %).
 !>
 !> The limit is the smaller of the user's limit (`--max-memory SIZE`, or the
 !> environment variable VISCO2D_MAX_MEMORY) and this machine's memory
@@ -58,7 +67,7 @@ module visco2d_budget
 
   ! Fitted constants of the memory model (bytes), at the peak of each analysis
   ! (STATIC: while the factor is held, before the snapshot is made).
-  real(dp), parameter :: base_bytes = 17.5e6_dp           !< program, libraries, deck
+  real(dp), parameter :: base_bytes = 22.0e6_dp           !< program, libraries (HDF5, CHOLMOD, BLAS), deck
   real(dp), parameter :: mesh_node_bytes = 64.0_dp        !< coordinates, numbers, lookup, renumbering
   real(dp), parameter :: mesh_element_bytes = 96.0_dp     !< connectivity, numbers, lines, material names
   real(dp), parameter :: static_element_bytes = 260.0_dp  !< strains and stresses at 4 Gauss points
@@ -70,8 +79,19 @@ module visco2d_budget
   real(dp), parameter :: dynamic_equation_bytes = 240.0_dp !< the Wilson-theta vectors
   real(dp), parameter :: snapshot_node_bytes = 96.0_dp    !< u, v, a, 4 stresses, 2 invariants
   real(dp), parameter :: snapshot_element_bytes = 128.0_dp !< stresses at 4 Gauss points
-  !> Kept contact columns per equation the plate may hold (their array grows by doubling).
-  real(dp), parameter :: contact_column_factor = 1.5_dp
+  !> Kept contact columns per equation the plate may hold (their array grows
+  !> by doubling; the plate holds fewer nodes than the lowest 2 % of the mesh).
+  real(dp), parameter :: contact_column_factor = 0.75_dp
+  !> CHOLMOD's factor and its copy of the matrix, per n log2(n) (n equations).
+  real(dp), parameter :: sparse_factor_bytes = 80.0_dp
+  !> results.h5 besides its arrays: groups, attributes (see h5_bytes in visco2d_output).
+  real(dp), parameter :: h5_fixed_bytes = 65536.0_dp
+  !> results.h5's mesh arrays: per node coordinates and ids, per element two
+  !> connectivities, ids and materials.
+  real(dp), parameter :: h5_node_bytes = 20.0_dp, h5_element_bytes = 40.0_dp
+  !> The core driver's buffer (1.125 times the expected file, at least 1 MiB)
+  !> and the copy of the image written to disk (h5_open_file, write_image).
+  real(dp), parameter :: h5_buffer_factor = 1.125_dp, h5_minimum_buffer = 1048576.0_dp
 
   ! Fitted constants of the time model (s), measured on one core of the
   ! development machine (AMD EPYC, OpenBLAS); see `run_size`.
@@ -95,11 +115,17 @@ module visco2d_budget
     integer(int64) :: history_rows = 0     !< rows of the history table
     integer :: band_copies = 2             !< band matrices held at the peak
     real(dp) :: band_bytes = 0.0_dp        !< all band copies
+    real(dp) :: factor_bytes = 0.0_dp      !< CHOLMOD's sparse factor (0 with the band or profile solver)
     real(dp) :: element_bytes = 0.0_dp     !< per-element arrays, Prony history included
     real(dp) :: vector_bytes = 0.0_dp      !< per-equation arrays and snapshots
     real(dp) :: history_bytes = 0.0_dp     !< the history table
     real(dp) :: contact_bytes = 0.0_dp     !< kept contact columns
-    real(dp) :: total_bytes = 0.0_dp       !< all of the above and the base
+    real(dp) :: solve_bytes = 0.0_dp       !< the peak while solving: all of the above and the base
+    integer :: written_snapshots = 0       !< field snapshots in results.h5
+    real(dp) :: snapshot_bytes = 0.0_dp    !< all of them, held in the record until results.h5 is written
+    real(dp) :: image_bytes = 0.0_dp       !< the in-memory results.h5 while it is written (buffer and copy)
+    real(dp) :: write_bytes = 0.0_dp       !< the peak while writing: mesh, history, snapshots, image, base
+    real(dp) :: total_bytes = 0.0_dp       !< the larger of solve_bytes and write_bytes
     real(dp) :: disk_bytes = 0.0_dp        !< the output files (history and snapshots)
     real(dp) :: seconds = 0.0_dp           !< rough CPU time on one core
   end type run_size_t
@@ -167,7 +193,8 @@ contains
   !> STOP AT= may end a run before its last step, so the steps (and the time)
   !> are an upper bound.
   pure function run_size(analysis, nodes, elements, half_bandwidth, steps, stages, history_terms, &
-                         history_rows, history_columns, snapshots, contact_equations) result(size)
+                         history_rows, history_columns, snapshots, contact_equations, written_snapshots, sparse) &
+                         result(size)
     integer, intent(in) :: analysis                  !< budget_static, budget_quasistatic or budget_dynamic
     integer(int64), intent(in) :: nodes, elements, half_bandwidth
     integer(int64), intent(in) :: steps              !< time steps (0 for STATIC)
@@ -177,8 +204,12 @@ contains
     integer, intent(in) :: history_columns           !< its columns
     integer, intent(in) :: snapshots                 !< field snapshots held at the peak
     integer(int64), intent(in) :: contact_equations  !< equations the plate may hold (kept columns)
+    integer, intent(in), optional :: written_snapshots !< field snapshots written to results.h5 (default: snapshots)
+    logical, intent(in), optional :: sparse          !< CHOLMOD factors the matrix (default: a band or profile factor)
     type(run_size_t) :: size
     real(dp) :: n, b, elements_real, element_each, equation_each, factorizations, element_time, term_time
+    real(dp) :: snapshot_each, h5_bytes
+    logical :: sparse_factor
 
     size%nodes = nodes
     size%elements = elements
@@ -190,6 +221,10 @@ contains
     b = real(size%half_bandwidth, dp)
     elements_real = real(elements, dp)
 
+    sparse_factor = .false.
+    if (present(sparse)) sparse_factor = sparse
+    size%written_snapshots = snapshots
+    if (present(written_snapshots)) size%written_snapshots = written_snapshots
     size%band_copies = 2
     factorizations = 1.0_dp
     select case (analysis)
@@ -217,17 +252,34 @@ contains
       factorizations = real(max(stages, 1), dp)
     end select
 
+    if (sparse_factor) then                           ! the band matrix and CHOLMOD's factor of it
+      size%factor_bytes = sparse_factor_bytes*n*log(max(n, 2.0_dp))/log(2.0_dp)
+      ! Refactored at a new Delta t: the peak grows by about one more factor (measured on
+      ! viscoelastic QUASISTATIC blocks of 20,402 and 45,602 equations, 11 stages).
+      if (size%band_copies == 3) size%factor_bytes = 2.0_dp*size%factor_bytes
+      size%band_copies = 1
+    end if
     size%band_bytes = size%band_copies*n*(b + 1.0_dp)*8.0_dp
     size%element_bytes = elements_real*(mesh_element_bytes + element_each + snapshots*snapshot_element_bytes) &
                          + real(history_terms, dp)*term_bytes
     size%vector_bytes = real(nodes, dp)*(mesh_node_bytes + snapshots*snapshot_node_bytes) + n*equation_each
     size%history_bytes = real(history_rows, dp)*history_columns*8.0_dp
     size%contact_bytes = n*contact_column_factor*real(contact_equations, dp)*8.0_dp
-    size%total_bytes = base_bytes + size%band_bytes + size%element_bytes + size%vector_bytes &
+    size%solve_bytes = base_bytes + size%band_bytes + size%factor_bytes + size%element_bytes + size%vector_bytes &
                        + size%history_bytes + size%contact_bytes
 
+    ! Writing: the record (mesh, history, every snapshot) and results.h5 in memory.
+    snapshot_each = real(nodes, dp)*snapshot_node_bytes + elements_real*snapshot_element_bytes
+    size%snapshot_bytes = size%written_snapshots*snapshot_each
+    h5_bytes = h5_fixed_bytes + real(nodes, dp)*h5_node_bytes + elements_real*h5_element_bytes + size%history_bytes &
+               + size%snapshot_bytes
+    size%image_bytes = max(h5_minimum_buffer, h5_buffer_factor*h5_bytes) + h5_bytes
+    size%write_bytes = base_bytes + real(nodes, dp)*mesh_node_bytes + elements_real*mesh_element_bytes &
+                       + size%history_bytes + size%snapshot_bytes + size%image_bytes
+    size%total_bytes = max(size%solve_bytes, size%write_bytes)
+
     size%disk_bytes = real(history_rows, dp)*history_columns*output_value_bytes &
-                      + max(snapshots, 1)*(real(nodes, dp)*snapshot_node_bytes + elements_real*snapshot_element_bytes)
+                      + max(size%written_snapshots, 1)*snapshot_each
 
     size%seconds = output_value_seconds*real(history_rows, dp)*history_columns &
                    + factorizations*factor_seconds*n*(b + 1.0_dp)**2 &

@@ -175,19 +175,26 @@ contains
     record%history(:, record%nrow) = row
   end subroutine history_append
 
-  !> Keep a snapshot.
+  !> Keep a snapshot, last. Its arrays are moved into the record (`snapshot`
+  !> is left without them), and the snapshots already kept are moved, not
+  !> copied, into the longer list: a deep copy of every kept snapshot at each
+  !> append held the fields twice and left the freed copies resident, which
+  !> doubled the memory of a run with 60 FIELDS= times.
   subroutine record_add_snapshot(record, snapshot)
     type(record_t), intent(inout) :: record
-    type(snapshot_t), intent(in) :: snapshot
-    if (.not. allocated(record%snapshots)) allocate(record%snapshots(0))
-    record%snapshots = [record%snapshots, snapshot]
+    type(snapshot_t), intent(inout) :: snapshot
+    integer :: n
+    n = 0
+    if (allocated(record%snapshots)) n = size(record%snapshots)
+    call place_snapshot(record, snapshot, n + 1)
   end subroutine record_add_snapshot
 
-  !> Keep a snapshot in time order; one taken at the time of a kept snapshot
-  !> adds its label to that one ('final; maximum deformation').
+  !> Keep a snapshot in time order (moved, as record_add_snapshot); one taken
+  !> at the time of a kept snapshot adds its label to that one ('final;
+  !> maximum deformation').
   subroutine record_insert_snapshot(record, snapshot)
     type(record_t), intent(inout) :: record
-    type(snapshot_t), intent(in) :: snapshot
+    type(snapshot_t), intent(inout) :: snapshot
     integer :: k, position
     if (.not. allocated(record%snapshots)) allocate(record%snapshots(0))
     position = size(record%snapshots) + 1
@@ -201,6 +208,44 @@ contains
         exit
       end if
     end do
-    record%snapshots = [record%snapshots(1:position - 1), snapshot, record%snapshots(position:)]
+    call place_snapshot(record, snapshot, position)
   end subroutine record_insert_snapshot
+
+  !> Put `snapshot` at `position` (1 to size + 1) of the record's list, moving
+  !> it and the kept ones into a list one longer.
+  subroutine place_snapshot(record, snapshot, position)
+    type(record_t), intent(inout) :: record
+    type(snapshot_t), intent(inout) :: snapshot
+    integer, intent(in) :: position
+    type(snapshot_t), allocatable :: kept(:)
+    integer :: k, n
+    n = 0
+    if (allocated(record%snapshots)) then
+      n = size(record%snapshots)
+      call move_alloc(record%snapshots, kept)
+    end if
+    allocate(record%snapshots(n + 1))
+    do k = 1, position - 1
+      call move_snapshot(kept(k), record%snapshots(k))
+    end do
+    call move_snapshot(snapshot, record%snapshots(position))
+    do k = position, n
+      call move_snapshot(kept(k), record%snapshots(k + 1))
+    end do
+  end subroutine place_snapshot
+
+  !> Move a snapshot's arrays from `from` to `to` (no copy of the fields).
+  subroutine move_snapshot(from, to)
+    type(snapshot_t), intent(inout) :: from, to
+    if (allocated(from%name)) to%name = from%name
+    if (allocated(from%label)) to%label = from%label
+    to%time = from%time
+    call move_alloc(from%displacement, to%displacement)
+    call move_alloc(from%velocity, to%velocity)
+    call move_alloc(from%acceleration, to%acceleration)
+    call move_alloc(from%stress, to%stress)
+    call move_alloc(from%stress_gauss, to%stress_gauss)
+    call move_alloc(from%max_shear, to%max_shear)
+    call move_alloc(from%von_mises, to%von_mises)
+  end subroutine move_snapshot
 end module visco2d_record

@@ -189,6 +189,7 @@ contains
     character(*), intent(in) :: label
     integer, intent(in) :: step
     type(dynamic_state_t), intent(in) :: state
+    type(snapshot_t) :: snapshot
     if (allocated(record%snapshots)) then
       if (size(record%snapshots) > 0) then
         associate (last => record%snapshots(size(record%snapshots)))
@@ -199,8 +200,8 @@ contains
         end associate
       end if
     end if
-    call record_add_snapshot(record, fields_snapshot(log, deck, label, step, state%t, state%u, state%v, state%a, &
-                                                     state%stress))
+    snapshot = fields_snapshot(log, deck, label, step, state%t, state%u, state%v, state%a, state%stress)
+    call record_add_snapshot(record, snapshot)
   end subroutine log_snapshot
 
   !> A snapshot named after its step: nodal displacement, velocity,
@@ -245,9 +246,10 @@ contains
     type(record_t), intent(inout) :: record
     type(kept_state_t), intent(in) :: kept
     character(*), intent(in) :: label
+    type(snapshot_t) :: snapshot
     if (.not. kept%kept) return
-    call record_insert_snapshot(record, fields_snapshot(log, deck, label, kept%step, kept%time, kept%u, kept%v, &
-                                                        kept%a, kept%stress))
+    snapshot = fields_snapshot(log, deck, label, kept%step, kept%time, kept%u, kept%v, kept%a, kept%stress)
+    call record_insert_snapshot(record, snapshot)
   end subroutine insert_kept_snapshot
 
   !> Strain energy stored in the springs: per Gauss point

@@ -7,6 +7,7 @@ module visco2d_estimate
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
   use visco2d_deck, only: deck_t, analysis_static, analysis_quasistatic, analysis_dynamic
+  use visco2d_deck_types, only: solver_card_default, solver_card_cholmod
   use visco2d_material, only: has_memory
   use visco2d_mesh, only: side_nodes
   use visco2d_budget, only: run_size_t, run_size, time_limit, budget_static, budget_quasistatic, budget_dynamic, &
@@ -27,7 +28,7 @@ contains
     type(deck_t), intent(in) :: deck
     type(run_size_t) :: estimate
     integer(int64) :: steps, terms, rows, contact
-    integer :: analysis, columns, snapshots, probes, stages, k
+    integer :: analysis, columns, snapshots, written, probes, stages, k
     logical :: plate
 
     probes = 0
@@ -53,6 +54,7 @@ contains
       rows = steps + 1
       columns = 5 + 6*probes
       snapshots = 1                                   ! the initial one, at the second factorization
+      written = 2                                     ! the initial and the final one
       contact = 0
     case (analysis_dynamic)
       analysis = budget_dynamic
@@ -61,38 +63,46 @@ contains
       if (plate) columns = columns + 9
       snapshots = 4                                   ! initial, final, the kept maxima
       if (allocated(deck%output%field_times)) snapshots = snapshots + size(deck%output%field_times)
+      written = snapshots
     case default
       analysis = budget_static
       steps = 0
       rows = 1
       columns = 10 + 6*probes
       snapshots = 0                                   ! made after the factor is freed
+      written = 1
       contact = 0
     end select
     estimate = run_size(analysis, int(deck%mesh%nnode, int64), int(deck%mesh%nelem, int64), &
-                        int(deck%mesh%half_bandwidth, int64), steps, stages, terms, rows, columns, snapshots, contact)
+                        int(deck%mesh%half_bandwidth, int64), steps, stages, terms, rows, columns, snapshots, contact, &
+                        written_snapshots=written, &
+                        sparse=deck%solver == solver_card_default .or. deck%solver == solver_card_cholmod)
     if (analysis == budget_static .and. plate) estimate%seconds = static_contact_iterations*estimate%seconds
   end function estimate_run
 
-  !> Boundary nodes in the lowest 2 % of the mesh's height: those a plate
+  !> Boundary nodes in the lowest 2 % of the body's height: those a plate
   !> below the body may hold (the Table 1 impact, alpha = 1.1 mm, holds the
   !> nodes of the lowest 0.75 %). Each held node keeps up to 2 contact columns.
+  !> With a PAD, the body is the mesh without the pad (nodes before
+  !> pad%first_node): the body touches the pad's top.
   function lowest_boundary_nodes(deck) result(nodes)
     type(deck_t), intent(in) :: deck
     integer(int64) :: nodes
     logical, allocatable :: low(:)
     real(dp) :: bottom, reach
-    integer :: k, a, b
+    integer :: k, a, b, body
     associate (mesh => deck%mesh)
+    body = mesh%nnode
+    if (deck%pad%first_node > 0) body = deck%pad%first_node - 1
     allocate(low(mesh%nnode))
     low = .false.
-    bottom = minval(mesh%xy(2, :))
-    reach = bottom + 0.02_dp*(maxval(mesh%xy(2, :)) - bottom)
+    bottom = minval(mesh%xy(2, :body))
+    reach = bottom + 0.02_dp*(maxval(mesh%xy(2, :body)) - bottom)
     if (allocated(mesh%edge_element)) then
       do k = 1, size(mesh%edge_element)
         call side_nodes(mesh, mesh%edge_element(k), mesh%edge_side(k), a, b)
-        if (mesh%xy(2, a) <= reach) low(a) = .true.
-        if (mesh%xy(2, b) <= reach) low(b) = .true.
+        if (a <= body .and. mesh%xy(2, a) <= reach) low(a) = .true.
+        if (b <= body .and. mesh%xy(2, b) <= reach) low(b) = .true.
       end do
     end if
     nodes = count(low)
@@ -147,16 +157,22 @@ contains
     end if
   end subroutine check_run_time
 
-  !> "stiffness and factor 1.2 GiB, elements 30 MiB, ...": the parts of an estimate.
+  !> "stiffness and factor 1.2 GiB, elements 30 MiB, ...": the parts of an
+  !> estimate (and those of the writing of results.h5 when it is the peak).
   function parts_text(size) result(text)
     type(run_size_t), intent(in) :: size
     character(:), allocatable :: text
-    text = 'stiffness and factor '//bytes_text(size%band_bytes)//' for '//count_text(size%equations)// &
+    text = trim(merge('stiffness           ', 'stiffness and factor', size%factor_bytes > 0.0_dp))//' '// &
+      bytes_text(size%band_bytes)//' for '//count_text(size%equations)// &
       ' equations of half-bandwidth '//count_text(size%half_bandwidth)//', elements '// &
       bytes_text(size%element_bytes)//', vectors and fields '//bytes_text(size%vector_bytes)
     if (size%history_bytes >= 1.0e6_dp) text = text//', history table '//bytes_text(size%history_bytes)// &
       ' ('//count_text(size%history_rows)//' rows)'
+    if (size%factor_bytes > 0.0_dp) text = text//', sparse factor '//bytes_text(size%factor_bytes)
     if (size%contact_bytes >= 1.0e6_dp) text = text//', contact columns '//bytes_text(size%contact_bytes)
+    if (size%write_bytes > size%solve_bytes) text = text//'; then, writing results.h5, '// &
+      count_text(int(size%written_snapshots, int64))//' field snapshots '//bytes_text(size%snapshot_bytes)// &
+      ' and the file''s image in memory '//bytes_text(size%image_bytes)
   end function parts_text
 
   !> Line k (1 to 4) of what `visco2d check` prints about the run's size:
@@ -175,9 +191,13 @@ contains
       line = '  memory          about '//bytes_text(size%total_bytes)//' (limit '//bytes_text(limit)//')'
     case (2)
       line = '                  stiffness '//bytes_text(size%band_bytes)//' ('// &
-        count_text(int(size%band_copies, int64))//' band copies), elements '//bytes_text(size%element_bytes)// &
+        count_text(int(size%band_copies, int64))//trim(merge(' band copy)  ', ' band copies)', &
+        size%band_copies == 1))//', elements '//bytes_text(size%element_bytes)// &
         ', vectors '//bytes_text(size%vector_bytes)//', history '//bytes_text(size%history_bytes)
+      if (size%factor_bytes > 0.0_dp) line = line//', sparse factor '//bytes_text(size%factor_bytes)
       if (size%contact_bytes > 0.0_dp) line = line//', contact '//bytes_text(size%contact_bytes)
+      line = line//'; writing: snapshots '//bytes_text(size%snapshot_bytes)//' ('// &
+        count_text(int(size%written_snapshots, int64))//'), results.h5 image '//bytes_text(size%image_bytes)
     case (3)
       line = '  output          about '//bytes_text(size%disk_bytes)//' on disk ('//count_text(size%history_rows)// &
              ' history rows)'
