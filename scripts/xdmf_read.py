@@ -6,9 +6,8 @@ usage: xdmf_read.py READER CASE_FOLDER OUT.npz
   READER  vtkXdmfReader   VTK's legacy XDMF reader (the `vtk` wheel, or ParaView's VTK)
           vtkXdmf3Reader  VTK's XDMF3 reader (in ParaView's VTK; not in the `vtk` wheel)
           XDMFReader, Xdmf3ReaderS, Xdmf3ReaderT
-                          ParaView's reader proxies, as its File > Open offers them
-                          ("Xdmf Reader", "XDMF Reader (Xdmf3ReaderS)", "(Xdmf3ReaderT)"):
-                          run under pvpython
+                          ParaView's reader proxies (paraview.simple; the readers its
+                          File > Open offers for .xmf): run under pvpython
 Every time step the reader reports is read, and the point set warped by the
 nodal `displacement` (vtkWarpVector, ParaView's Warp By Vector, scale 1).
 OUT.npz holds, per step k: time_k, points_k, cells_k (connectivity),
