@@ -64,6 +64,12 @@ bash scripts/test_cli.sh "$exe" > "$log/cli.log" 2>&1
 count "$log/cli.log"
 echo "   $(grep -c '^PASS ' "$log/cli.log") checks passed"
 
+echo "== results.xmf in ParaView's readers (scripts/test_xdmf.sh: every field against results.h5, Warp By Vector)"
+bash scripts/test_xdmf.sh "$exe" > "$log/xdmf.log" 2>&1
+count "$log/xdmf.log"
+grep '^SKIP ' "$log/xdmf.log" | sed 's/^/   /' || true
+echo "   $(grep -c '^PASS ' "$log/xdmf.log") checks passed"
+
 echo "== MPI task farm (2 ranks; built first: the batch stage runs --mpi through it)"
 bash scripts/test_mpi.sh "$exe" > "$log/mpi.log" 2>&1
 count "$log/mpi.log"

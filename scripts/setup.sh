@@ -2,9 +2,12 @@
 # Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS
 # (reference and OpenBLAS serial),
 # HDF5 (Fortran), CHOLMOD, pkg-config, numdiff, h5dump (Debian packages), fpm,
-# h5py, matplotlib and meshio (PyPI). Safe to run again; quiet when everything is present.
-#   bash scripts/setup.sh mpi   also OpenMPI (openmpi-bin libopenmpi-dev: mpif90, mpirun) for the
-#                               MPI task farm (make mpi, the MPI stage of make test; ~25 s to install)
+# h5py, matplotlib, meshio and vtk (PyPI). Safe to run again; quiet when everything is present.
+#   bash scripts/setup.sh mpi       also OpenMPI (openmpi-bin libopenmpi-dev: mpif90, mpirun) for the
+#                                   MPI task farm (make mpi, the MPI stage of make test; ~25 s to install)
+#   bash scripts/setup.sh paraview  also ParaView (Debian's python3-paraview, 5.11 on Debian 12: pvpython),
+#                                   whose XDMF readers scripts/test_xdmf.sh then tries too (about 210
+#                                   packages, 207 MB to download, 2-3 min to install)
 set -euo pipefail
 
 packages=()
@@ -45,6 +48,13 @@ if [ ${#packages[@]} -gt 0 ]; then
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq "${packages[@]}" >/dev/null
 fi
+if [ "${1:-}" = "paraview" ] && ! command -v pvpython >/dev/null 2>&1; then
+  echo "setup: installing python3-paraview (ParaView and pvpython; 2-3 min)"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends python3-paraview >/dev/null
+fi
 
 python=$(command -v python3 || true)
 if [ -z "$python" ]; then
@@ -56,6 +66,8 @@ command -v fpm >/dev/null 2>&1 || pip_missing+=(fpm)
 "$python" -c "import h5py" 2>/dev/null || pip_missing+=(h5py)
 "$python" -c "import matplotlib" 2>/dev/null || pip_missing+=(matplotlib)   # make study, make figures
 "$python" -c "import meshio" 2>/dev/null || pip_missing+=(meshio)           # the results.xmf test (make test)
+# VTK's legacy XDMF reader, the one ParaView's "Xdmf Reader" is (scripts/test_xdmf.sh; ~20 s, one wheel)
+"$python" -c "import vtkmodules.vtkIOXdmf2" 2>/dev/null || pip_missing+=(vtk)
 if [ ${#pip_missing[@]} -gt 0 ]; then
   echo "setup: pip installing ${pip_missing[*]}"
   if ! "$python" -m pip --version >/dev/null 2>&1; then

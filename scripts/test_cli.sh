@@ -614,7 +614,8 @@ cd "$work" || exit 0
 # units) where the text is a number, the text otherwise; snapshots carry both
 # time bases (deck time, time from first contact); results.xmf (XDMF 3) read
 # back with meshio gives the mesh, every snapshot, its time and its fields as
-# results.h5 read with h5py; pressure.csv (p(r) at the largest force and
+# results.h5 read with h5py (vectors with a third component 0, the stress as a
+# 3x3 tensor; ParaView's readers: scripts/test_xdmf.sh); pressure.csv (p(r) at the largest force and
 # approach) agrees with the history and with /pressure. A drop with a 0.5 mm
 # gap (first contact at t > 0) and the static sphere (no contact, no time
 # from contact, no pressure.csv).
@@ -674,6 +675,19 @@ def units(f, key):
     return value.decode() if isinstance(value, bytes) else str(value)
 
 
+def xdmf_view(group, field):
+    # what results.xmf shows of a /fields dataset: vectors (u_r, u_z, 0), the
+    # stress as the 3x3 tensor row by row (doc/outputs.md, results.xmf)
+    values = group[field][()]
+    zero = np.zeros(len(values))
+    if field in ("displacement", "velocity", "acceleration"):
+        return np.column_stack([values, zero])
+    if field == "stress":
+        s = values
+        return np.column_stack([s[:, 0], s[:, 3], zero, s[:, 3], s[:, 1], zero, zero, zero, s[:, 2]])
+    return values
+
+
 def check_xdmf(case, folder, f):
     names = sorted(f["/fields"])
     times = [float(f["/fields"][name].attrs["time"]) for name in names]
@@ -694,7 +708,7 @@ def check_xdmf(case, folder, f):
             for field in ("displacement", "velocity", "acceleration", "stress", "max_shear", "von_mises"):
                 if (field in group) != (field in point_data):
                     field_bad.append(f"{names[k]}/{field}: in h5 {field in group}, in xdmf {field in point_data}")
-                elif field in group and not np.array_equal(point_data[field], group[field][()]):
+                elif field in group and not np.array_equal(point_data[field], xdmf_view(group, field)):
                     field_bad.append(f"{names[k]}/{field} differs")
             material = cell_data.get("material", [None])[0]
             if material is None or not np.array_equal(material, f["/mesh/element_material"][()]):
@@ -702,32 +716,6 @@ def check_xdmf(case, folder, f):
         report(f"xdmf_times_{case}", got_times == times, f"xdmf {got_times[:4]}, h5 {times[:4]}")
         report(f"xdmf_fields_{case}", not field_bad, "; ".join(field_bad[:3]))
     return names
-
-
-def check_vtk(case, folder, f, names):
-    # ParaView's reader family, when VTK is installed (optional: not in setup.sh).
-    try:
-        import vtk
-        from vtk.util.numpy_support import vtk_to_numpy
-    except ImportError:
-        print(f"# vtk not available: the vtkXdmfReader check of {case} skipped")
-        return
-    reader = vtk.vtkXdmfReader()
-    reader.SetFileName(os.path.join(folder, "results.xmf"))
-    reader.UpdateInformation()
-    steps = reader.GetOutputInformation(0).Get(vtk.vtkStreamingDemandDrivenPipeline.TIME_STEPS()) or ()
-    reader.Update()
-    grid = reader.GetOutputDataObject(0)
-    first = f["/fields"][names[0]]
-    stress = grid.GetPointData().GetArray("stress")
-    ok = (len(steps) == len(names) or (len(names) == 1 and len(steps) == 0)) \
-        and grid.GetNumberOfPoints() == len(f["/mesh/nodes"]) and grid.GetNumberOfCells() == len(f["/mesh/elements"]) \
-        and stress is not None and stress.GetNumberOfComponents() == 4 \
-        and np.array_equal(vtk_to_numpy(stress), first["stress"][()]) \
-        and np.array_equal(vtk_to_numpy(grid.GetPointData().GetArray("displacement"))[:, :2], first["displacement"][()])
-    report(f"xdmf_vtk_reads_{case}", ok, f"{len(steps)} time steps for {len(names)} snapshots, "
-           f"{grid.GetNumberOfPoints()} points, {grid.GetNumberOfCells()} cells, stress "
-           f"{stress.GetNumberOfComponents() if stress else None} components")
 
 
 def read_csv(path):
@@ -787,7 +775,6 @@ for case in ("gap", "sphere"):
     with h5py.File(os.path.join(folder, "results.h5"), "r") as f:
         text = check_summary(case, folder, f)
         names = check_xdmf(case, folder, f)
-        check_vtk(case, folder, f, names)
         groups = [f["/fields"][name] for name in names]
         if case == "gap":
             expected = {"alpha_max_mm": "mm", "body_mass_kg": "kg", "t_alpha_max_ms": "ms", "nodes": "1",

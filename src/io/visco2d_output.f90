@@ -14,6 +14,7 @@ module visco2d_output
   use visco2d_hdf5, only: h5_writer_t, h5_open_file, h5_close_file, h5_group, h5_close_group, &
                           h5_write, h5_attribute
   use visco2d_text_file, only: text_file_t, text_open, text_put, text_close
+  use visco2d_xdmf, only: write_xdmf_view, xdmf_view_bytes
   implicit none
   private
 
@@ -152,6 +153,7 @@ contains
     if (allocated(record%history)) bytes = bytes + 8_int64*size(record%history, 1, kind=int64)*record%nrow
     if (allocated(record%bruise_fields)) bytes = bytes + 8_int64*size(record%bruise_fields, kind=int64)* &
                                                  (4_int64*deck%mesh%nelem + deck%mesh%nnode)
+    bytes = bytes + xdmf_view_bytes(record)
     if (.not. allocated(record%snapshots)) return
     do i = 1, size(record%snapshots)
       associate (s => record%snapshots(i))
@@ -249,7 +251,7 @@ contains
     end do
   end function time_first_contact
 
-  !> results.h5: /mesh, /summary/<key>, /history/<column>, /fields/<snapshot>/...
+  !> results.h5: /mesh, /summary/<key>, /history/<column>, /fields/<snapshot>/..., /xdmf/<snapshot>/...
   !> HDF5 is closed (h5fclose, h5close) also after a failure; `message` says
   !> what failed first ('' if all went well).
   subroutine write_results_h5(path, case_name, deck, record, message)
@@ -328,6 +330,7 @@ contains
       end do
     end if
     call h5_close_group(writer, fields)
+    call write_xdmf_view(writer, record)                     ! what results.xmf shows (visco2d_xdmf)
     if (allocated(record%bruise_fields)) then                ! BRUISE envelopes (visco2d_bruise)
       group = h5_group(writer, writer%file, 'bruise')
       do i = 1, size(record%bruise_fields)
