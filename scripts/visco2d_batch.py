@@ -1037,6 +1037,10 @@ def main(argv=None):
     except RuntimeError as error:
         print(f'{PROGRAM}: error: {error}', file=sys.stderr)
         return 1
+    except Interrupted as stopped:     # a threshold search: the runs that ended keep their folders
+        ended = sum(not case.not_run for case in stopped.cases)
+        print(f'{PROGRAM}: interrupted: {ended} of the {len(stopped.cases)} runs of this round ended', file=sys.stderr)
+        return 130
     except KeyboardInterrupt:
         print(f'{PROGRAM}: interrupted', file=sys.stderr)
         return 130
