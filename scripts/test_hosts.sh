@@ -206,6 +206,20 @@ check mpi_resume_passes_only_those "mpi/decks/mpi.log: $(grep -o 'drop__height=[
   test "$(head -1 mpi/decks/mpi.log | grep -o 'decks/drop__height=[0-9.]*\.inp' | wc -l)" = $(( 6 - done_before ))
 check mpi_resume_table "mpi/table.csv: $(count_ok mpi/table.csv) ok rows" test "$(count_ok mpi/table.csv)" = 6
 
+# Ctrl-C during --mpi: mpirun (the stand-in) is sent SIGINT; the table of what ended, exit 130.
+set -m
+PATH="$work/fakempi:$PATH" python3 "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm -q \
+  -o mpi_interrupted > mpi_interrupted.log 2>&1 &
+batch_pid=$!
+set +m
+wait_for "mpi_interrupted/$first_case/summary.txt"
+kill -INT "$batch_pid"
+wait "$batch_pid"
+check_rc mpi_interrupt_exit_130 130 $?
+ran=$(count_ok mpi_interrupted/table.csv)
+check mpi_interrupt_table "mpi_interrupted/table.csv: $ran ok, $(grep -c ',not run,' mpi_interrupted/table.csv) not run" \
+  test "$ran" -ge 1 -a "$(grep -c ',not run,' mpi_interrupted/table.csv)" = $(( 6 - ran ))
+
 # A reused output root: the table holds this run's cases; collect gathers the folder on purpose.
 batch run quick.inp --param height=0.1,0.2 -q -o reused > /dev/null 2>&1
 batch run quick.inp --param height=0.15 -q -o reused > reused.log 2>&1

@@ -476,8 +476,11 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
         except OSError as error:
             stdout, stderr, status = '', f'visco2d: error: cannot run {exe}: {error.strerror}', 1
         if status not in (0, EXPECT_MISSED) and (stop.is_set() or status == -signal.SIGINT):
-            case.not_run = True          # stopped by the interrupt: no result, and no error of its own
-            return
+            folder = os.path.join(root, case.name)   # cleared before the run: what it holds is this run's
+            if not all(os.path.isfile(os.path.join(folder, name)) for name in CASE_FILES):
+                case.not_run = True      # stopped by the interrupt: no result, and no error of its own
+                return
+            status = 0                   # the signal came after its folder was moved into place: it ended
         if status == EXPECT_MISSED:
             case.missed = located_error(stderr)
         if status not in (0, EXPECT_MISSED):
