@@ -196,18 +196,26 @@ contains
     character(*), intent(in) :: out_root, case_name
     type(case_lock_t), intent(out) :: lock
     type(error_t), allocatable, intent(inout) :: error
-    character(:), allocatable :: holder, parent
-    integer :: status, slash
-    allocate(lock%created(0))
-    parent = out_root
-    do while (len(parent) > 1 .and. parent(len(parent):) == '/')
-      parent = parent(:len(parent) - 1)
+    character(:), allocatable :: holder, parent, root
+    integer :: status, slash, missing, k
+    root = out_root
+    do while (len(root) > 1 .and. root(len(root):) == '/')
+      root = root(:len(root) - 1)
     end do
+    missing = 0                                   ! the levels of the root that do not exist yet
+    parent = root
     do while (len(parent) > 0 .and. .not. path_exists(parent))
-      lock%created = [lock%created, path_t(parent)]
+      missing = missing + 1
       slash = index(parent, '/', back=.true.)
       if (slash <= 1) exit
       parent = parent(:slash - 1)
+    end do
+    allocate(lock%created(missing))               ! element by element: no array constructor of path_t
+    parent = root
+    do k = 1, missing
+      lock%created(k)%path = parent
+      slash = index(parent, '/', back=.true.)
+      if (slash > 1) parent = parent(:slash - 1)
     end do
     if (make_directory(out_root) /= 0) then
       call set_error(error, 'cannot create the output folder '//out_root//'; nothing was written')
