@@ -86,6 +86,12 @@ count "$log/batch.log"
 grep -E '^(NOTE|# )' "$log/batch.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/batch.log") checks passed"
 
+echo "== processes and hosts (scripts/test_hosts.sh: shared output roots, case locks; batch interrupt, resume, guards)"
+bash scripts/test_hosts.sh "$exe" > "$log/hosts.log" 2>&1
+count "$log/hosts.log"
+grep -E '^(NOTE|# )' "$log/hosts.log" | sed 's/^/   /' || true
+echo "   $(grep -c '^PASS ' "$log/hosts.log") checks passed"
+
 echo "== study (make study-fast)"
 bash scripts/test_study.sh "$exe" > "$log/study.log" 2>&1
 count "$log/study.log"

@@ -970,7 +970,7 @@ check stale_dead_old_removed_beside_case "out holds: $(ls -A out | tr '\n' ' ')"
 check stale_live_partials_kept "out holds: $(ls -A out | tr '\n' ' ')" \
   test -d out/.first.partial.1 -a -d "out/.first.partial.$$"
 check stale_notes "stderr: $(first_lines stale.err)" \
-  test "$(grep -c "^visco2d: note: .*(left by process $dead, which no longer runs)$" stale.err)" = 4
+  test "$(grep -c "^visco2d: note: .*(left by process $dead on host [^ ]*, which no longer runs)$" stale.err)" = 4
 check stale_run_result "out/first/summary.txt missing" test -s out/first/summary.txt
 cd "$work" || exit 0
 

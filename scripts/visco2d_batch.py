@@ -19,7 +19,9 @@ when the run ends. The table of the batch: OUT/table.csv and OUT/table.md.
 
 Exit status: 0 every case ran, 1 a case failed or missed its own EXPECT cards
 (visco2d exit 3: its results are written, its table row says `missed`; or no
-onset in a bracket), 2 a usage error (nothing run). Details: doc/batch.md.
+onset in a bracket), 2 a usage error (nothing run), 130 interrupted (Ctrl-C:
+the cases that finished are kept, the table says which did not run; `--resume`
+runs those). Details: doc/batch.md.
 """
 
 import argparse
@@ -31,6 +33,7 @@ import os
 import re
 import shlex
 import shutil
+import signal
 import string
 import subprocess
 import sys
@@ -43,10 +46,20 @@ DEFAULT_KEYS = ['alpha_max_mm', 't_alpha_max_ms', 'q_max_MPa', 'force_max_N', 'c
 MAX_NAME = 150          # longer case names fall back to <stem>__case=<index>
 EXPECT_MISSED = 3        # visco2d's exit status: the deck ran (results written) and missed its own EXPECT cards
 DECKS_DIR = 'decks'     # OUT/decks/: the expanded decks, their parameters, the errors of failed cases
+MAX_CASES = 10000        # a larger sweep is refused unless --max-cases allows it
+CASE_FILES = ('summary.txt', 'history.csv', 'listing.txt', 'results.h5', 'results.xmf')   # of every case folder
 
 
 class UsageError(Exception):
     """Bad command line, sweep or template: exit 2 before anything runs."""
+
+
+class Interrupted(Exception):
+    """SIGINT (Ctrl-C) or SIGTERM during the runs: the cases that finished are kept; `cases` are the batch's."""
+
+    def __init__(self, cases):
+        super().__init__('interrupted')
+        self.cases = cases
 
 
 # ---------------------------------------------------------------- sweeps and templates
@@ -57,8 +70,9 @@ def format_number(value):
     return '0' if text in ('-0', '0') else text
 
 
-def parse_values(name, text, where):
-    """The values of one --param: a list v1,v2,... or a range a:b:n (n values, a and b included)."""
+def parse_values(name, text, where, limit=None):
+    """The values of one --param: a list v1,v2,... or a range a:b:n (n values, a and b included).
+    A range of more than `limit` values is refused before it is made."""
     text = text.strip()
     if ':' in text and ',' not in text:
         fields = text.split(':')
@@ -72,6 +86,8 @@ def parse_values(name, text, where):
                              f'got "{text}"') from None
         if count < 1 or not (math.isfinite(start) and math.isfinite(stop)):
             raise UsageError(f'{where}: {name}: a range needs finite ends and COUNT >= 1, got "{text}"')
+        if limit is not None and count > limit:
+            raise UsageError(too_many(f'{where}: {name}: a range of {count} values', limit))
         if count == 1:
             return [format_number(start)]
         return [format_number(start + (stop - start) * k / (count - 1)) for k in range(count)]
@@ -79,6 +95,11 @@ def parse_values(name, text, where):
     if not text or any(not value for value in values):
         raise UsageError(f'{where}: {name}: empty value in "{text}"')
     return values
+
+
+def too_many(what, limit):
+    return (f'{what} makes more than the {limit} cases a sweep may have; nothing was expanded or run '
+            f'(give --max-cases N to allow up to N cases)')
 
 
 def check_name(name, where):
@@ -93,13 +114,13 @@ def check_value(name, value, where):
     return value
 
 
-def param_axis(spec, where='--param'):
+def param_axis(spec, where='--param', limit=None):
     """One --param NAME=VALUES as an axis: a list of {name: value} points."""
     if '=' not in spec:
         raise UsageError(f'{where}: expected NAME=VALUES, got "{spec}"')
     name, text = spec.split('=', 1)
     name = check_name(name.strip(), where)
-    return [{name: check_value(name, value, where)} for value in parse_values(name, text, f'{where} {name}')]
+    return [{name: check_value(name, value, where)} for value in parse_values(name, text, f'{where} {name}', limit)]
 
 
 def table_axis(path):
@@ -131,7 +152,7 @@ def table_axis(path):
     return axis
 
 
-def sweep_file(path):
+def sweep_file(path, limit=None):
     """A TOML sweep: [param] name = [values] or "a:b:n"; table = "rows.csv"; zip = true; keys = [...]."""
     import tomllib
     try:
@@ -145,6 +166,16 @@ def sweep_file(path):
     for key in data:
         if key not in known:
             raise UsageError(f'{path}: unknown entry "{key}" (known: {", ".join(sorted(known))})')
+    kinds = {'param': (dict, 'a table: [param] then name = [values] or name = "START:STOP:COUNT" lines'),
+             'table': (str, 'a file name in quotes, table = "rows.csv"'),
+             'zip': (bool, 'true or false'),
+             'keys': (list, 'a list of summary keys, keys = ["alpha_max_mm"]'),
+             'decks': (list, 'a list of deck files, decks = ["peach.inp"]')}
+    for key, (kind, expected) in kinds.items():
+        if key in data and not isinstance(data[key], kind):
+            raise UsageError(f'{path}: {key}: expected {expected}, got {data[key]!r}')
+    if not all(isinstance(deck, str) for deck in data.get('decks', [])):
+        raise UsageError(f'{path}: decks: expected {kinds["decks"][1]}, got {data["decks"]!r}')
     base = os.path.dirname(path)
     axes = []
     for name, values in data.get('param', {}).items():
@@ -154,8 +185,8 @@ def sweep_file(path):
             if not texts:
                 raise UsageError(f'{path}: [param] {name}: no values')
             axes.append([{name: check_value(name, text, f'{path}: [param]')} for text in texts])
-        elif isinstance(values, (str, int, float)):
-            axes.append(param_axis(f'{name}={values}', f'{path}: [param]'))
+        elif isinstance(values, (str, int, float)) and not isinstance(values, bool):
+            axes.append(param_axis(f'{name}={values}', f'{path}: [param]', limit))
         else:
             raise UsageError(f'{path}: [param] {name}: a list of values or "START:STOP:COUNT"')
     if 'table' in data:
@@ -231,6 +262,7 @@ class Case:
         self.index = 0
         self.error = None
         self.missed = None        # the located EXPECT misses of a run that exited 3 (its results are written)
+        self.not_run = False      # interrupted before it ran or while it ran: no result, no error
 
 
 def deck_stem(path):
@@ -418,15 +450,37 @@ def clear_case(out, case):
 
 def run_local(cases, out, exe, jobs, progress, stage=None):
     """Each case by its own `visco2d -o ROOT DECK` process, `jobs` at a time. With `stage`, into
-    that root and then moved into OUT/ (shards on several hosts never see each other's temporary folders)."""
+    that root and then moved into OUT/ (shards on several hosts never see each other's temporary folders).
+    On SIGINT (Ctrl-C) or SIGTERM no further case starts, the running ones are sent SIGINT (visco2d
+    removes what it was writing), and Interrupted is raised once they have ended."""
     root = stage or out
+    stop = threading.Event()
+    running = {}
+    guard = threading.Lock()
 
     def run_one(case):
+        if stop.is_set():
+            case.not_run = True
+            return
         try:
-            done = subprocess.run([exe, '-o', root, case.deck], capture_output=True, text=True)
-            stdout, stderr, status = done.stdout, done.stderr, done.returncode
+            with guard:
+                process = subprocess.Popen([exe, '-o', root, case.deck], stdout=subprocess.PIPE,
+                                           stderr=subprocess.PIPE, text=True)
+                running[case.name] = process
+            if stop.is_set():
+                process.send_signal(signal.SIGINT)
+            stdout, stderr = process.communicate()
+            status = process.returncode
+            with guard:
+                running.pop(case.name, None)
         except OSError as error:
             stdout, stderr, status = '', f'visco2d: error: cannot run {exe}: {error.strerror}', 1
+        if status not in (0, EXPECT_MISSED) and (stop.is_set() or status == -signal.SIGINT):
+            folder = os.path.join(root, case.name)   # cleared before the run: what it holds is this run's
+            if not all(os.path.isfile(os.path.join(folder, name)) for name in CASE_FILES):
+                case.not_run = True      # stopped by the interrupt: no result, and no error of its own
+                return
+            status = 0                   # the signal came after its folder was moved into place: it ended
         if status == EXPECT_MISSED:
             case.missed = located_error(stderr)
         if status not in (0, EXPECT_MISSED):
@@ -438,9 +492,43 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
         finish_case(case, out)
         progress.update(case, result_message(case, stdout))
 
-    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        for future in [pool.submit(run_one, case) for case in cases]:
-            future.result()
+    pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs))
+    futures = [pool.submit(run_one, case) for case in cases]
+    try:
+        with interrupts_raised():
+            for future in futures:
+                future.result()
+    except KeyboardInterrupt:
+        stop.set()
+        with guard:
+            for process in running.values():
+                try:
+                    process.send_signal(signal.SIGINT)
+                except OSError:
+                    pass
+        pool.shutdown(wait=True, cancel_futures=True)
+        for case, future in zip(cases, futures):
+            if future.cancelled():
+                case.not_run = True
+        raise Interrupted(cases) from None
+    finally:
+        pool.shutdown(wait=True)
+
+
+class interrupts_raised:
+    """Within: SIGTERM (a scheduler ending the job) is raised as KeyboardInterrupt, as SIGINT is."""
+
+    def __enter__(self):
+        self.previous = signal.signal(signal.SIGTERM, self.handler)
+        return self
+
+    @staticmethod
+    def handler(number, frame):
+        raise KeyboardInterrupt
+
+    def __exit__(self, *details):
+        signal.signal(signal.SIGTERM, self.previous)
+        return False
 
 
 def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
@@ -459,12 +547,28 @@ def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
     if not progress.quiet:
         print(f'{PROGRAM}: {" ".join(shlex.quote(part) for part in command[:8])} ... ({len(cases)} decks)',
               flush=True)
-    done = subprocess.run(command, capture_output=True, text=True, env=environment)
+    process = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=environment)
+    interrupted = False
+    try:
+        with interrupts_raised():
+            stdout, stderr = process.communicate()
+    except KeyboardInterrupt:          # mpirun passes SIGINT on to the ranks; after 10 s it is killed
+        interrupted = True
+        process.send_signal(signal.SIGINT)
+        try:
+            stdout, stderr = process.communicate(timeout=10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+            stdout, stderr = process.communicate()
+    done = subprocess.CompletedProcess(command, process.returncode, stdout, stderr)
     with open(os.path.join(out, DECKS_DIR, 'mpi.log'), 'w') as handle:
         handle.write(f'$ {" ".join(shlex.quote(part) for part in command)}\n# exit status {done.returncode}\n'
                      f'# stdout\n{done.stdout}# stderr\n{done.stderr}')
     for case in cases:
         summary = os.path.join(out, case.name, 'summary.txt')
+        if interrupted and not os.path.isfile(summary):
+            case.not_run = True
+            continue
         if not os.path.isfile(summary):
             case.error = located_error(done.stderr, case.deck) if case.deck in done.stderr else (
                 f'no results (mpirun exit status {done.returncode}; see {out}/{DECKS_DIR}/mpi.log)')
@@ -474,8 +578,11 @@ def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
         finish_case(case, out)
         lines = [line for line in done.stdout.splitlines() if line.startswith(case.name + ':')]
         progress.update(case, result_message(case, lines[-1] if lines else ''))
+    if interrupted:
+        raise Interrupted(cases)
     if done.returncode not in (0, 1, EXPECT_MISSED):
-        print(f'{PROGRAM}: mpirun exited with status {done.returncode}: see {out}/{DECKS_DIR}/mpi.log',
+        print(f'{PROGRAM}: mpirun exited with status {done.returncode}: see {out}/{DECKS_DIR}/mpi.log '
+              f'(the cases without results are failed: {PROGRAM} run ... --resume runs only those)',
               file=sys.stderr)
 
 
@@ -504,21 +611,56 @@ def execute(cases, out, options):
             raise UsageError('no visco2d executable: run `make build` (build/install/bin/visco2d), '
                              'or give --exe PATH')
     os.makedirs(out, exist_ok=True)
+    todo = cases
+    if getattr(options, 'resume', False):
+        todo = [case for case in cases if not verified_result(case, out)]
+        if not options.quiet:
+            print(f'{PROGRAM}: --resume: {len(cases) - len(todo)} of {len(cases)} cases have a complete, '
+                  f'verified result in {out}; running the other {len(todo)}', flush=True)
     write_decks(cases, out, total)
-    for case in cases:
+    for case in todo:
         clear_case(out, case)
-    progress = Progress(len(cases), options.quiet)
-    if options.mpi:
-        run_mpi(cases, out, options.mpi, farm, options.mpirun_args, progress)
-    elif options.shard:
-        stage = os.path.join(out, '.shard-%d-of-%d' % parse_shard(options.shard))
-        os.makedirs(stage, exist_ok=True)
-        run_local(cases, out, exe, options.jobs, progress, stage)
-        shutil.rmtree(stage, ignore_errors=True)
-    else:
-        run_local(cases, out, exe, options.jobs, progress)
+    progress = Progress(len(todo), options.quiet)
+    try:
+        if not todo:
+            pass
+        elif options.mpi:
+            run_mpi(todo, out, options.mpi, farm, options.mpirun_args, progress)
+        elif options.shard:
+            stage = os.path.join(out, '.shard-%d-of-%d' % parse_shard(options.shard))
+            os.makedirs(stage, exist_ok=True)
+            try:
+                run_local(todo, out, exe, options.jobs, progress, stage)
+            finally:
+                shutil.rmtree(stage, ignore_errors=True)
+        else:
+            run_local(todo, out, exe, options.jobs, progress)
+    except Interrupted:
+        progress.finish()
+        raise Interrupted(cases) from None
     progress.finish()
     return cases
+
+
+def verified_result(case, out):
+    """True if OUT/<case>/ holds a complete result of this very deck: every file of a case folder
+    (visco2d moves a folder into place only when all are written), a summary of this case with
+    its cpu_s, and the copy of the deck it ran (made when the run ended) equal to this sweep's deck."""
+    folder = os.path.join(out, case.name)
+    if not all(os.path.isfile(os.path.join(folder, name)) for name in CASE_FILES):
+        return False
+    try:
+        with open(os.path.join(folder, case.name + '.inp')) as handle:
+            ran = handle.read()
+        if case.text is not None:
+            expected = case.text
+        else:
+            with open(case.deck) as handle:
+                expected = handle.read()
+        summary = read_summary(os.path.join(folder, 'summary.txt'))
+    except (OSError, UnicodeDecodeError):
+        return False
+    return ran == expected and summary.get('case') == case.name and 'cpu_s' in summary
 
 
 # ---------------------------------------------------------------- the table
@@ -539,8 +681,10 @@ def read_summary(path):
     return values
 
 
-def gather(out):
-    """Every case of OUT: the expanded decks (OUT/decks/*.json) and any case folder with a summary."""
+def gather(out, names=None, not_run=()):
+    """Every case of OUT: the expanded decks (OUT/decks/*.json) and any case folder with a summary;
+    with `names`, only those cases (a run's own; an earlier sweep into the same OUT is left out).
+    The cases of `not_run` without results are `not run` (an interrupted batch)."""
     rows = {}
     folder = os.path.join(out, DECKS_DIR)
     if os.path.isdir(folder):
@@ -556,6 +700,9 @@ def gather(out):
         if entry != DECKS_DIR and not entry.startswith('.') and \
                 os.path.isfile(os.path.join(out, entry, 'summary.txt')):
             rows.setdefault(entry, {'case': entry, 'params': {}})
+    if names is not None:
+        names = set(names)
+        rows = {name: record for name, record in rows.items() if name in names}
     table = []
     for name, record in rows.items():
         summary_path = os.path.join(out, name, 'summary.txt')
@@ -567,6 +714,8 @@ def gather(out):
             missed = missed_expectations(row['summary'])
             if missed:                       # it ran (visco2d exit 3): a verification deck that failed
                 row['status'], row['error'] = 'missed', 'outside the RTOL of its EXPECT card(s): ' + ', '.join(missed)
+        elif name in not_run:
+            row['status'], row['error'] = 'not run', 'interrupted before it ended'
         elif os.path.isfile(error_path):
             with open(error_path) as handle:
                 row['status'], row['error'] = 'failed', handle.read().strip()
@@ -587,9 +736,10 @@ def short(value):
     return '%.4g' % number
 
 
-def write_table(out, keys, quiet=False):
-    """OUT/table.csv (full precision) and OUT/table.md (4 digits): case, status, parameters, keys, error."""
-    rows = gather(out)
+def write_table(out, keys, quiet=False, names=None, not_run=()):
+    """OUT/table.csv (full precision) and OUT/table.md (4 digits): case, status, parameters, keys, error;
+    of the cases `names` (a run's), or of every case OUT holds (collect)."""
+    rows = gather(out, names, not_run)
     params = []
     for row in rows:
         for name in row['params']:
@@ -732,7 +882,7 @@ def threshold(options):
     print(f'runs = {len(runs)} ({rounds} rounds of at most {points_per_round} runs after the two ends)'
           if points_per_round > 1 else f'runs = {len(runs)}')
     write_table(options.out, parse_keys(options.keys) if options.keys else [key] + [
-        other for other in DEFAULT_KEYS if other != key], quiet=True)
+        other for other in DEFAULT_KEYS if other != key], quiet=True, names=[run[3] for run in runs])
     with open(os.path.join(options.out, 'threshold.txt'), 'w') as handle:
         handle.write(f'parameter = {name}\ncondition = {key} {operator} {format_number(limit)}\n'
                      f'tolerance = {format_number(options.tol)}\ncritical = {format_number(critical)}\n'
@@ -759,6 +909,11 @@ def add_run_options(parser, sweep=True):
         parser.add_argument('--mpi', type=int, metavar='N', help='run through mpirun -np N visco2d-farm')
         parser.add_argument('--farm', metavar='PATH', help='the MPI farm (default build/mpi/bin/visco2d-farm)')
         parser.add_argument('--mpirun-args', metavar='ARGS', help='more mpirun options, e.g. "--hostfile hosts"')
+    if sweep:
+        parser.add_argument('--resume', action='store_true',
+                            help='run only the cases without a complete, verified result in OUT')
+        parser.add_argument('--max-cases', type=int, default=MAX_CASES, metavar='N',
+                            help='refuse a sweep of more than N cases (default %(default)s; 0: no limit)')
     parser.add_argument('--keys', metavar='K1,K2', help='summary keys of the table (default: '
                         + ','.join(DEFAULT_KEYS) + ')')
     parser.add_argument('--exe', metavar='PATH', help='visco2d (default: beside this tool, build/install/bin)')
@@ -785,22 +940,45 @@ def build_parser():
     search.add_argument('--when', required=True, metavar="'KEY>VALUE'", help='>, >=, < or <= on a summary key')
     search.add_argument('--tol', type=float, required=True, help='final bracket width (parameter unit)')
     add_run_options(search, sweep=False)
-    search.set_defaults(jobs=1, mpi=None, farm=None, mpirun_args=None, shard=None)
+    search.set_defaults(jobs=1, mpi=None, farm=None, mpirun_args=None, shard=None, resume=False)
     return parser
 
 
+def check_axes(axes, zipped, limit):
+    """Refuse a parameter given by two axes (the later one would replace the earlier's values)
+    and, before anything is expanded, a sweep of more than `limit` cases."""
+    given = {}
+    for axis, where in axes:
+        for name in dict.fromkeys(key for point in axis for key in point):
+            if name in given:
+                raise UsageError(f'{where}: the parameter "{name}" is already given by {given[name]}: '
+                                 f'give each parameter once (one --param with all its values, v1,v2,...)')
+            given[name] = where
+    lengths = [len(axis) for axis, _ in axes]
+    count = (max(lengths) if zipped else math.prod(lengths)) if lengths else 1
+    if limit and count > limit:
+        shape = ' x '.join(str(length) for length in lengths)
+        raise UsageError(too_many(f'the sweep ({shape} values{" zipped" if zipped else ""}) has {count} cases '
+                                  f'per deck and', limit))
+
+
 def sweep_cases(options):
-    axes = [param_axis(spec) for spec in options.param]
+    limit = options.max_cases
+    if limit is not None and limit < 0:
+        raise UsageError(f'--max-cases: 0 (no limit) or more, got {limit}')
+    axes = [(param_axis(spec, limit=limit), f'--param {spec.split("=", 1)[0].strip()}') for spec in options.param]
     zipped, keys, decks = options.zip, options.keys, list(options.decks)
     if options.table:
-        axes.append(table_axis(options.table))
+        axes.append((table_axis(options.table), f'--table {options.table}'))
     if options.sweep:
-        file_axes, file_zip, file_keys, file_decks = sweep_file(options.sweep)
-        axes += file_axes
+        file_axes, file_zip, file_keys, file_decks = sweep_file(options.sweep, limit)
+        axes += [(axis, options.sweep) for axis in file_axes]
         zipped = zipped or file_zip
         decks += file_decks
         if keys is None and file_keys:
             keys = ','.join(file_keys)
+    check_axes(axes, zipped, limit)
+    axes = [axis for axis, _ in axes]
     if not decks:
         raise UsageError('no deck given')
     if options.jobs < 1:
@@ -810,6 +988,19 @@ def sweep_cases(options):
     if options.shard:
         parse_shard(options.shard)
     return expand(decks, combine(axes, zipped), options.out), parse_keys(keys)
+
+
+def report_interrupt(cases, options, keys):
+    """After Ctrl-C (or SIGTERM): the table of the cases as they are, what did not run; exit 130."""
+    not_run = [case.name for case in cases if case.not_run]
+    if not options.shard:
+        write_table(options.out, keys, True, names=[case.name for case in cases], not_run=set(not_run))
+    shown = ', '.join(not_run[:10]) + (f', ... ({len(not_run) - 10} more)' if len(not_run) > 10 else '')
+    table = '' if options.shard else f' (their table: {os.path.join(options.out, "table.csv")})'
+    print(f'{PROGRAM}: interrupted: {len(cases) - len(not_run)} of {len(cases)} cases ended{table}; '
+          f'{len(not_run)} did not run{": " + shown if not_run else ""}. The same command with --resume '
+          f'runs only those', file=sys.stderr)
+    return 130
 
 
 def main(argv=None):
@@ -832,13 +1023,16 @@ def main(argv=None):
             for case in cases:
                 print(os.path.join(options.out, DECKS_DIR, case.name + '.inp'))
             return 0
-        cases = execute(cases, options.out, options)
+        try:
+            cases = execute(cases, options.out, options)
+        except Interrupted as stopped:
+            return report_interrupt(stopped.cases, options, keys)
         if options.shard:
             if not options.quiet:
                 print(f'{PROGRAM}: shard {options.shard}: {len(cases)} cases; the table: '
                       f'{PROGRAM} collect {options.out}')
         else:
-            write_table(options.out, keys, options.quiet)
+            write_table(options.out, keys, options.quiet, names=[case.name for case in cases])
         return 1 if any(case.error is not None or case.missed is not None for case in cases) else 0
     except UsageError as error:
         print(f'{PROGRAM}: error: {error}', file=sys.stderr)
@@ -846,6 +1040,10 @@ def main(argv=None):
     except RuntimeError as error:
         print(f'{PROGRAM}: error: {error}', file=sys.stderr)
         return 1
+    except Interrupted as stopped:     # a threshold search: the runs that ended keep their folders
+        ended = sum(not case.not_run for case in stopped.cases)
+        print(f'{PROGRAM}: interrupted: {ended} of the {len(stopped.cases)} runs of this round ended', file=sys.stderr)
+        return 130
     except KeyboardInterrupt:
         print(f'{PROGRAM}: interrupted', file=sys.stderr)
         return 130

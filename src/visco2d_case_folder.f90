@@ -1,7 +1,9 @@
 !> The case folders of a run: the output root checked (and cleared of what
-!> dead runs left) before any deck runs, and the files of one case written
-!> under a temporary name and renamed into place only when every file is
-!> complete, so a failed deck never leaves half-written output.
+!> dead runs left) before any deck runs, the lock of a case held while it
+!> runs (a second run of the same case into the same root fails instead of
+!> overwriting the first), and the files of one case written under a
+!> temporary name and renamed into place only when every file is complete,
+!> so a failed deck never leaves half-written output.
 module visco2d_case_folder
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa
@@ -12,11 +14,20 @@ module visco2d_case_folder
   use visco2d_xdmf, only: write_results_xdmf
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
                             directory_exists, path_exists, remove_tree, process_alive, matching_paths, path_t, &
-                            interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
+                            interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm, &
+                            host_name, lock_take, lock_release, lock_close, interrupt_lock_arm, interrupt_lock_disarm
   implicit none
   private
 
-  public :: write_case_folder, prepare_output_root, remove_stale_folders
+  public :: write_case_folder, prepare_output_root, remove_stale_folders, lock_case, unlock_case, case_lock_t
+
+  !> The lock of a case while it runs: an flock(2) on OUT/.<case>.lock, which
+  !> names its holder ("process <pid> on host <host>").
+  type :: case_lock_t
+    integer :: fd = -1                             !< the lock file's descriptor (-1: not held)
+    character(:), allocatable :: path              !< OUT/.<case>.lock
+    type(path_t), allocatable :: created(:)        !< folders made for it (the root and missing parents, deepest first)
+  end type case_lock_t
 
   !> The files of a case folder.
   character(len=*), parameter :: case_files(6) = [character(len=12) :: 'summary.txt', 'history.csv', &
@@ -37,8 +48,8 @@ contains
     logical :: replaced
 
     final_dir = out_root//'/'//case_name
-    temporary_dir = out_root//'/.'//case_name//'.partial.'//itoa(process_id())
-    old_dir = out_root//'/.'//case_name//'.old.'//itoa(process_id())
+    temporary_dir = out_root//'/.'//case_name//'.partial.'//owner_tag()
+    old_dir = out_root//'/.'//case_name//'.old.'//owner_tag()
     call interrupt_cleanup_arm(temporary_dir, file_paths(temporary_dir))   ! SIGINT/SIGTERM/SIGHUP undo what follows
     call write_and_move(error)
     call interrupt_cleanup_disarm()
@@ -169,62 +180,198 @@ contains
     if (directory_exists(out_root)) call remove_stale_folders(out_root)
   end subroutine prepare_output_root
 
+  !> `<host>.<pid>` of this process: the end of the names of its temporary folders.
+  function owner_tag() result(tag)
+    character(:), allocatable :: tag
+    tag = host_name()//'.'//itoa(process_id())
+  end function owner_tag
+
+  !> Take the lock of case `case_name` in out_root (OUT/.<case>.lock; the root
+  !> and its missing parents are made for it and removed again by unlock_case
+  !> if they are then empty). The lock lasts until unlock_case or the end of
+  !> the process, however it ends. If another run (of this host or another)
+  !> holds it, an error naming that run: two runs of one case would overwrite
+  !> each other's results.
+  subroutine lock_case(out_root, case_name, lock, error)
+    character(*), intent(in) :: out_root, case_name
+    type(case_lock_t), intent(out) :: lock
+    type(error_t), allocatable, intent(inout) :: error
+    character(:), allocatable :: holder, parent, root
+    integer :: status, slash, missing, k
+    root = out_root
+    do while (len(root) > 1 .and. root(len(root):) == '/')
+      root = root(:len(root) - 1)
+    end do
+    missing = 0                                   ! the levels of the root that do not exist yet
+    parent = root
+    do while (len(parent) > 0 .and. .not. path_exists(parent))
+      missing = missing + 1
+      slash = index(parent, '/', back=.true.)
+      if (slash <= 1) exit
+      parent = parent(:slash - 1)
+    end do
+    allocate(lock%created(missing))               ! element by element: no array constructor of path_t
+    parent = root
+    do k = 1, missing
+      lock%created(k)%path = parent
+      slash = index(parent, '/', back=.true.)
+      if (slash > 1) parent = parent(:slash - 1)
+    end do
+    if (make_directory(out_root) /= 0) then
+      call set_error(error, 'cannot create the output folder '//out_root//'; nothing was written')
+      return
+    end if
+    lock%path = out_root//'/.'//case_name//'.lock'
+    call lock_take(lock%path, 'process '//itoa(process_id())//' on host '//host_name(), lock%fd, status, holder, &
+                   patient=.true.)
+    if (status == 0) then
+      call interrupt_lock_arm(lock%path)
+      return
+    end if
+    lock%fd = -1
+    if (status == 1) then
+      if (len(holder) == 0) holder = 'a process that has not yet said which'
+      call set_error(error, 'the case '//case_name//' is being run into '//out_root//' by another run ('// &
+        holder//', which holds '//lock%path//'): two runs of one case would overwrite each other''s '// &
+        out_root//'/'//case_name//'/; wait for that run to end, or give this one another -o folder')
+    else
+      call set_error(error, 'cannot lock '//lock%path//' ('//holder//'): the case is not run, so that no '// &
+        'other run of it can overwrite its results unnoticed')
+    end if
+    call remove_created(lock)
+  end subroutine lock_case
+
+  !> Release the lock of a case (its file removed), and remove the folders
+  !> lock_case made if they are empty (a deck that failed leaves nothing).
+  subroutine unlock_case(lock)
+    type(case_lock_t), intent(inout) :: lock
+    if (lock%fd >= 0) then
+      call interrupt_lock_disarm()
+      call lock_release(lock%fd, lock%path)
+      lock%fd = -1
+    end if
+    call remove_created(lock)
+  end subroutine unlock_case
+
+  !> Remove the folders lock_case made, deepest first, while they are empty.
+  subroutine remove_created(lock)
+    type(case_lock_t), intent(inout) :: lock
+    integer :: k
+    if (.not. allocated(lock%created)) return
+    do k = 1, size(lock%created)
+      if (remove_directory(lock%created(k)%path) /= 0) exit
+    end do
+    deallocate(lock%created)
+    allocate(lock%created(0))
+  end subroutine remove_created
+
   !> Remove what runs that no longer exist left in an output root: their
-  !> temporary folders `.<case>.partial.<pid>` (a run stopped while writing)
-  !> and `.<case>.old.<pid>` (a previous case folder being replaced; it is
-  !> put back as <case> when no <case> folder exists, else removed). Folders of
-  !> a process that is alive (this one included) are left alone. A note on stderr per folder.
+  !> temporary folders `.<case>.partial.<host>.<pid>` (a run stopped while
+  !> writing), `.<case>.old.<host>.<pid>` (a previous case folder being
+  !> replaced; it is put back as <case> when no <case> folder exists, else
+  !> removed) and lock files `.<case>.lock` that nobody holds. A folder is
+  !> left alone while the lock of its case is held (its run is alive, on any
+  !> host and in any PID namespace), and a folder or lock file of another host
+  !> is never removed (this host cannot see whether its process runs; a note
+  !> says so); of this host, a folder of a live process is kept. Names
+  !> without a host (`.<case>.partial.<pid>`, older versions) count as this
+  !> host's. A note on stderr per folder removed or left.
   subroutine remove_stale_folders(out_root)
     character(*), intent(in) :: out_root
     type(path_t), allocatable :: paths(:)
-    character(:), allocatable :: name, case_name
-    integer :: k, pid, mark
+    character(:), allocatable :: case_name, owner
+    integer :: k
+    logical :: stale
     paths = matching_paths(out_root, '.*.old.*')
     do k = 1, size(paths)
-      call stale_pid(paths(k)%path, '.old.', pid, mark)
-      if (pid <= 0) cycle
-      name = paths(k)%path(index(paths(k)%path, '/', back=.true.) + 1:)
-      case_name = name(2:mark - 1)
-      if (len(case_name) == 0) cycle
+      call stale_owner(out_root, paths(k)%path, '.old.', case_name, owner, stale)
+      if (.not. stale) cycle
       if (.not. directory_exists(out_root//'/'//case_name)) then
         if (rename_path(paths(k)%path, out_root//'/'//case_name) == 0) then
           write(0, '(a)') 'visco2d: note: put back '//out_root//'/'//case_name//' from '//paths(k)%path// &
-            ' (left by process '//itoa(pid)//', which no longer runs)'
+            ' (left by '//owner//', which no longer runs)'
           cycle
         end if
       end if
       call remove_tree(paths(k)%path)
-      write(0, '(a)') 'visco2d: note: removed '//paths(k)%path//' (left by process '//itoa(pid)// &
-        ', which no longer runs)'
+      write(0, '(a)') 'visco2d: note: removed '//paths(k)%path//' (left by '//owner//', which no longer runs)'
     end do
     paths = matching_paths(out_root, '.*.partial.*')
     do k = 1, size(paths)
-      call stale_pid(paths(k)%path, '.partial.', pid, mark)
-      if (pid <= 0) cycle
+      call stale_owner(out_root, paths(k)%path, '.partial.', case_name, owner, stale)
+      if (.not. stale) cycle
       call remove_tree(paths(k)%path)
-      write(0, '(a)') 'visco2d: note: removed the unfinished '//paths(k)%path//' (left by process '// &
-        itoa(pid)//', which no longer runs)'
+      write(0, '(a)') 'visco2d: note: removed the unfinished '//paths(k)%path//' (left by '//owner// &
+        ', which no longer runs)'
+    end do
+    paths = matching_paths(out_root, '.?*.lock')
+    do k = 1, size(paths)
+      if (directory_exists(paths(k)%path)) cycle
+      if (lock_free(paths(k)%path)) continue               ! a lock file nobody holds, of this host: removed
     end do
   end subroutine remove_stale_folders
 
-  !> The pid of a stale `<...><tag><pid>` folder (0 if the name does not end
-  !> so, if it is not a folder, or if the process is alive) and where the tag starts in the name.
-  subroutine stale_pid(path, tag, pid, mark)
-    character(*), intent(in) :: path, tag
-    integer, intent(out) :: pid, mark
-    integer :: slash, status
-    character(:), allocatable :: name, digits
-    pid = 0
+  !> True if nobody holds the lock file `path` (a missing one included). A
+  !> free lock file of this host (or naming none) is removed; one that names
+  !> another host stays, as that host's run left it.
+  logical function lock_free(path) result(free)
+    character(*), intent(in) :: path
+    character(:), allocatable :: holder
+    integer :: fd, status, mark
+    call lock_take(path, '', fd, status, holder, patient=.false.)
+    free = status == 0
+    if (.not. free) return
+    mark = index(holder, ' on host ')
+    if (mark > 0) then
+      if (holder(mark + len(' on host '):) /= host_name()) then
+        call lock_close(fd)
+        return
+      end if
+    end if
+    call lock_release(fd, path)
+  end function lock_free
+
+  !> Who left a `.<case><tag><host>.<pid>` (or `.<case><tag><pid>`) folder,
+  !> "process <pid> on host <host>", and whether it is stale: a folder, the
+  !> name well formed, the case's lock not held, of this host, and its
+  !> process not alive (nor this one). A folder of another host whose case
+  !> lock is free is left with a note.
+  subroutine stale_owner(out_root, path, tag, case_name, owner, stale)
+    character(*), intent(in) :: out_root, path, tag
+    character(:), allocatable, intent(out) :: case_name, owner
+    logical, intent(out) :: stale
+    integer :: slash, status, mark, dot, pid
+    character(:), allocatable :: name, digits, host, tail
+    stale = .false.
+    case_name = ''
+    owner = ''
     slash = index(path, '/', back=.true.)
     name = path(slash + 1:)
     mark = index(name, tag, back=.true.)
-    if (mark < 2) return
-    digits = name(mark + len(tag):)
-    if (len(digits) < 1 .or. len(digits) > 9 .or. verify(digits, '0123456789') /= 0) return
+    if (mark < 3) return
+    case_name = name(2:mark - 1)
+    tail = name(mark + len(tag):)
+    dot = index(tail, '.', back=.true.)
+    if (dot == 0) then
+      host = host_name()
+      digits = tail
+    else
+      host = tail(:dot - 1)
+      digits = tail(dot + 1:)
+    end if
+    if (len(host) == 0 .or. len(digits) < 1 .or. len(digits) > 9 .or. verify(digits, '0123456789') /= 0) return
     read(digits, *, iostat=status) pid
-    if (status /= 0) pid = 0
-    if (pid <= 0) return
-    if (pid == process_id() .or. process_alive(pid) .or. .not. directory_exists(path)) pid = 0
-  end subroutine stale_pid
+    if (status /= 0 .or. pid <= 0) return
+    if (.not. directory_exists(path)) return
+    owner = 'process '//itoa(pid)//' on host '//host
+    if (.not. lock_free(out_root//'/.'//case_name//'.lock')) return   ! held (or cannot be told): alive
+    if (host /= host_name()) then
+      write(0, '(a)') 'visco2d: note: left '//path//' alone: written by '//owner//', another host, whose '// &
+        'run this host cannot see; remove it by hand once that run has ended'
+      return
+    end if
+    if (pid == process_id() .or. process_alive(pid)) return
+    stale = .true.
+  end subroutine stale_owner
 
 end module visco2d_case_folder

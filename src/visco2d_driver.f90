@@ -23,7 +23,7 @@ module visco2d_driver
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_estimate, only: run_size_t, estimate_run, check_run_size, check_run_time, print_estimate, size_before_work
   use visco2d_expect, only: expect_tally_t, check_expect_cards, check_expectations, summary_value
-  use visco2d_case_folder, only: write_case_folder
+  use visco2d_case_folder, only: write_case_folder, lock_case, unlock_case, case_lock_t
   implicit none
   private
 
@@ -102,7 +102,9 @@ contains
     call print_estimate(estimate)
   end subroutine check_deck
 
-  !> Run one deck into out_root/<case>/. `record` is returned for the caller's report.
+  !> Run one deck into out_root/<case>/, holding the case's lock (lock_case:
+  !> a second run of the same case into the same root, from this host or
+  !> another, fails). `record` is returned for the caller's report.
   !> Every error names the deck file (the file alone where no line is known).
   subroutine run_deck(path, out_root, record, error, tally)
     character(*), intent(in) :: path, out_root
@@ -110,7 +112,12 @@ contains
     type(error_t), allocatable, intent(out) :: error
     type(expect_tally_t), intent(out), optional :: tally    !< the EXPECT checks (for run_line)
     type(expect_tally_t) :: checks
-    call run_deck_steps(path, out_root, record, checks, error)
+    type(case_lock_t) :: lock
+    call lock_case(out_root, case_name_of(path), lock, error)   ! held while the case runs: no other run of it
+    if (.not. allocated(error)) then
+      call run_deck_steps(path, out_root, record, checks, error)
+      call unlock_case(lock)
+    end if
     if (allocated(error)) call name_the_deck(error, path)
     if (present(tally)) tally = checks
   end subroutine run_deck

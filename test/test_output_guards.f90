@@ -9,9 +9,10 @@
 !>   leaving a short file behind;
 !> - the output root is checked before any run (empty, through a file, not
 !>   creatable) and is not created by the check;
-!> - stale `.partial.<pid>` / `.old.<pid>` folders of dead runs are removed
-!>   (an old folder is put back when its case folder is missing), those of live
-!>   processes kept;
+!> - stale `.partial.<host>.<pid>` / `.old.<host>.<pid>` folders of dead runs of
+!>   this host are removed (an old folder is put back when its case folder is
+!>   missing), those of live processes, of another host, or of a case whose lock
+!>   is held kept; a case lock held refuses a second lock of that case;
 !> - run-time warnings (record_warn) are located like the deck's and listed.
 program test_output_guards
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_negative_inf, &
@@ -27,8 +28,9 @@ program test_output_guards
   use visco2d_output_check, only: check_finite_outputs, finite_text
   use visco2d_driver, only: run_deck, run_warning_count
   use visco2d_expect, only: relative_error, expect_tally_t, run_line, summary_value
-  use visco2d_case_folder, only: prepare_output_root, remove_stale_folders
-  use visco2d_system, only: make_directory, directory_exists, path_exists, process_id, process_alive, remove_tree
+  use visco2d_case_folder, only: prepare_output_root, remove_stale_folders, lock_case, unlock_case, case_lock_t
+  use visco2d_system, only: make_directory, directory_exists, path_exists, process_id, process_alive, remove_tree, &
+                            host_name
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck, message_of, read_lines
   implicit none
 
@@ -309,6 +311,8 @@ contains
   subroutine test_stale_folders()
     character(:), allocatable :: root, dead_text
     integer :: dead, unit, status
+    type(case_lock_t) :: lock, second
+    type(error_t), allocatable :: error
     root = folder//'/stale'
     if (make_directory(root) /= 0) return
     ! A process that has ended: a shell that prints its pid and exits.
@@ -355,6 +359,26 @@ contains
                directory_exists(root//'/e'))
     call check('stale_not_a_pid_kept', directory_exists(root//'/.f.partial.abc'))
     call check('stale_file_kept', path_exists(root//'/.g.partial.'//dead_text))
+    ! Names with a host: this host's dead run goes, another host's stays; a folder
+    ! whose case lock is held stays whatever its pid; a held lock refuses a second one.
+    call make_one(root, '.i.partial.'//host_name()//'.'//dead_text)
+    call make_one(root, '.j.partial.node17.cluster.'//dead_text)
+    call make_one(root, '.k.partial.'//dead_text)
+    call lock_case(root, 'k', lock, error)
+    call check('lock_taken', .not. allocated(error) .and. path_exists(root//'/.k.lock'), message_of(error))
+    call lock_case(root, 'k', second, error)
+    call check('lock_second_refused', allocated(error), 'a second lock of case k was granted')
+    if (allocated(error)) call check_text_contains('lock_second_names_holder', message_of(error), &
+      'by another run (process '//itoa(process_id())//' on host '//host_name()//', which holds '//root//'/.k.lock)')
+    if (allocated(error)) deallocate(error)
+    call remove_stale_folders(root)
+    call check('stale_own_host_dead_removed', .not. path_exists(root//'/.i.partial.'//host_name()//'.'//dead_text))
+    call check('stale_other_host_kept', directory_exists(root//'/.j.partial.node17.cluster.'//dead_text))
+    call check('stale_locked_case_kept', directory_exists(root//'/.k.partial.'//dead_text))
+    call unlock_case(lock)
+    call check('lock_released_file_removed', .not. path_exists(root//'/.k.lock'))
+    call remove_stale_folders(root)
+    call check('stale_unlocked_case_removed', .not. path_exists(root//'/.k.partial.'//dead_text))
     ! The root written with a trailing slash names the same folders.
     call make_one(root, '.z.old.'//dead_text)
     call remove_stale_folders(root//'/')

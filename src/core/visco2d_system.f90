@@ -2,7 +2,8 @@
 !> create, rename and remove folders and files, list hidden entries of a
 !> folder by pattern, process id and liveness, terminal test, signals (a
 !> file size limit reported as a failed write; an interrupt that undoes a
-!> case folder being written).
+!> case folder being written), host name and the flock(2) case locks
+!> (visco2d_lock_glue.c).
 module visco2d_system
   use, intrinsic :: iso_fortran_env, only: int8
   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_null_char, c_size_t, c_ptr, c_funptr, c_null_ptr, &
@@ -15,6 +16,7 @@ module visco2d_system
   public :: path_t, get_argument
   public :: install_interrupt_cleanup, interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
   public :: file_open_write, file_write, file_close
+  public :: host_name, lock_take, lock_release, lock_close, interrupt_lock_arm, interrupt_lock_disarm
 
   !> One path of a list (`matching_paths`).
   type :: path_t
@@ -45,6 +47,9 @@ module visco2d_system
   character(kind=c_char, len=cleanup_length), save :: cleanup_path(cleanup_files) = c_null_char
   character(kind=c_char, len=cleanup_length), save :: cleanup_old = c_null_char, cleanup_final = c_null_char
   logical, volatile, save :: cleanup_armed = .false., cleanup_restore_old = .false.
+  !> The lock file of the case being run (removed by an interrupt: the lock itself ends with the process).
+  character(kind=c_char, len=cleanup_length), save :: cleanup_lock = c_null_char
+  logical, volatile, save :: cleanup_lock_armed = .false.
 
   interface
     integer(c_int) function c_mkdir(path, mode) bind(c, name='mkdir')
@@ -113,6 +118,26 @@ module visco2d_system
       import :: c_int, c_ptr
       type(c_ptr), value :: stream
     end function c_fclose
+    integer(c_int) function c_lock_take(path, text, holder, size, patient) bind(c, name='visco2d_lock_take')
+      import :: c_int, c_char
+      character(kind=c_char), intent(in) :: path(*), text(*)
+      character(kind=c_char), intent(out) :: holder(*)
+      integer(c_int), value :: size, patient
+    end function c_lock_take
+    subroutine c_lock_release(fd, path) bind(c, name='visco2d_lock_release')
+      import :: c_int, c_char
+      integer(c_int), value :: fd
+      character(kind=c_char), intent(in) :: path(*)
+    end subroutine c_lock_release
+    subroutine c_lock_close(fd) bind(c, name='visco2d_lock_close')
+      import :: c_int
+      integer(c_int), value :: fd
+    end subroutine c_lock_close
+    subroutine c_host_name(name, size) bind(c, name='visco2d_host_name')
+      import :: c_int, c_char
+      character(kind=c_char), intent(out) :: name(*)
+      integer(c_int), value :: size
+    end subroutine c_host_name
   end interface
 
   !> Write a file through C stdio, which reports every failed write and a
@@ -202,6 +227,72 @@ contains
       alive = .true.                  ! no /proc: cannot tell "no such process" from "not ours"; keep
     end if
   end function process_alive
+
+  !> This host's name (gethostname), with any character other than letters,
+  !> digits, '-' and '.' replaced by '_' (it is part of folder names); 'unknown' if there is none.
+  function host_name() result(name)
+    character(:), allocatable :: name
+    character(kind=c_char, len=256) :: buffer
+    integer :: i, length
+    call c_host_name(buffer, int(len(buffer), c_int))
+    length = index(buffer, c_null_char) - 1
+    if (length < 0) length = len(buffer)
+    name = buffer(1:length)
+    do i = 1, len(name)
+      if (verify(name(i:i), 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-.') /= 0) name(i:i) = '_'
+    end do
+    if (len(name) == 0) name = 'unknown'
+  end function host_name
+
+  !> Take the flock(2) lock of the file `path` (created if missing) without
+  !> waiting. status 0: this process holds it until lock_release(fd, path) or
+  !> its end, and the file now holds `text` (unless text is ''); `holder` is
+  !> what the file held before. status 1: another process holds it, `holder`
+  !> is what the file says of it (its host and pid). status 2: the file cannot
+  !> be created or locked, `holder` is the system's reason. `patient`: a lock
+  !> held for less than 0.2 s (another run's check of it) is waited for.
+  subroutine lock_take(path, text, fd, status, holder, patient)
+    character(*), intent(in) :: path, text
+    integer, intent(out) :: fd, status
+    character(:), allocatable, intent(out) :: holder
+    logical, intent(in) :: patient
+    character(kind=c_char, len=512) :: buffer
+    integer :: length
+    fd = int(c_lock_take(path//c_null_char, text//c_null_char, buffer, int(len(buffer), c_int), &
+                        merge(1_c_int, 0_c_int, patient)))
+    length = index(buffer, c_null_char) - 1
+    if (length < 0) length = len(buffer)
+    holder = buffer(1:length)
+    status = 0
+    if (fd == -1) status = 1
+    if (fd < -1) status = 2
+  end subroutine lock_take
+
+  !> Release a lock of lock_take: its file is removed, then closed.
+  subroutine lock_release(fd, path)
+    integer, intent(in) :: fd
+    character(*), intent(in) :: path
+    call c_lock_release(int(fd, c_int), path//c_null_char)
+  end subroutine lock_release
+
+  !> Release a lock of lock_take and leave its file in place.
+  subroutine lock_close(fd)
+    integer, intent(in) :: fd
+    call c_lock_close(int(fd, c_int))
+  end subroutine lock_close
+
+  !> From now on an interrupt also removes this lock file (the case's lock).
+  subroutine interrupt_lock_arm(path)
+    character(*), intent(in) :: path
+    cleanup_lock_armed = .false.
+    cleanup_lock = c_text(path)
+    cleanup_lock_armed = len(path) < cleanup_length
+  end subroutine interrupt_lock_arm
+
+  !> No lock file to remove on an interrupt.
+  subroutine interrupt_lock_disarm()
+    cleanup_lock_armed = .false.
+  end subroutine interrupt_lock_disarm
 
   !> The paths matching a shell pattern (glob(3), sorted); none if nothing
   !> matches. `folder` is taken literally (its *, ? and [ are escaped) and
@@ -318,6 +409,7 @@ contains
       end do
       if (cleanup_restore_old) status = c_rename(cleanup_old, cleanup_final)
     end if
+    if (cleanup_lock_armed) status = c_unlink(cleanup_lock)
     previous = c_signal(signal, c_null_funptr)          ! SIG_DFL = (handler) 0
     status = c_raise(signal)
   end subroutine on_interrupt
