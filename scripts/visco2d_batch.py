@@ -516,10 +516,14 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
 
 
 class interrupts_raised:
-    """Within: SIGTERM (a scheduler ending the job) is raised as KeyboardInterrupt, as SIGINT is."""
+    """Within: SIGINT (Ctrl-C) and SIGTERM (a scheduler ending the job) are raised as
+    KeyboardInterrupt. SIGINT gets the handler explicitly: a process started with SIGINT
+    ignored (from a shell that runs it in the background, as `make test &` does) would
+    otherwise keep ignoring it, and a Ctrl-C sent to it would run the whole queue."""
 
     def __enter__(self):
         self.previous = signal.signal(signal.SIGTERM, self.handler)
+        self.previous_interrupt = signal.signal(signal.SIGINT, self.handler)
         return self
 
     @staticmethod
@@ -528,6 +532,7 @@ class interrupts_raised:
 
     def __exit__(self, *details):
         signal.signal(signal.SIGTERM, self.previous)
+        signal.signal(signal.SIGINT, self.previous_interrupt)
         return False
 
 
