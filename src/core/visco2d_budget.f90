@@ -89,6 +89,10 @@ module visco2d_budget
   !> results.h5's mesh arrays: per node coordinates and ids, per element two
   !> connectivities, ids and materials.
   real(dp), parameter :: h5_node_bytes = 20.0_dp, h5_element_bytes = 40.0_dp
+  !> results.h5's /xdmf/<snapshot>/ copies per node of each snapshot, what
+  !> results.xmf shows (visco2d_xdmf): u, v, a with 3 components and the
+  !> 9-component stress tensor, 18 doubles.
+  real(dp), parameter :: h5_xdmf_node_bytes = 144.0_dp
   !> The core driver's buffer (1.125 times the expected file, at least 1 MiB)
   !> and the copy of the image written to disk (h5_open_file, write_image).
   real(dp), parameter :: h5_buffer_factor = 1.125_dp, h5_minimum_buffer = 1048576.0_dp
@@ -272,7 +276,7 @@ contains
     snapshot_each = real(nodes, dp)*snapshot_node_bytes + elements_real*snapshot_element_bytes
     size%snapshot_bytes = size%written_snapshots*snapshot_each
     h5_bytes = h5_fixed_bytes + real(nodes, dp)*h5_node_bytes + elements_real*h5_element_bytes + size%history_bytes &
-               + size%snapshot_bytes
+               + size%snapshot_bytes + size%written_snapshots*real(nodes, dp)*h5_xdmf_node_bytes
     size%image_bytes = max(h5_minimum_buffer, h5_buffer_factor*h5_bytes) + h5_bytes
     size%write_bytes = base_bytes + real(nodes, dp)*mesh_node_bytes + elements_real*mesh_element_bytes &
                        + size%history_bytes + size%snapshot_bytes + size%image_bytes
