@@ -221,16 +221,12 @@ contains
     integer :: i, node
     changed = .false.
     fraction = 1.0_dp
-    force_scale = 0.0_dp
-    do i = 1, size(contact%candidates)
-      node = contact%candidates(i)
-      if (contact%active(node)) force_scale = max(force_scale, abs(reaction(node_dof(deck%mesh, node, 2))))
-    end do
+    force_scale = largest_reaction(deck, contact, reaction)
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
       if (contact%active(node)) then
         if (.not. contact%release .or. contact%touched(node) .or. contact%pad) cycle
-        if (reaction(node_dof(deck%mesh, node, 2)) < -1.0e-9_dp*force_scale) then
+        if (is_tensile(reaction(node_dof(deck%mesh, node, 2)), force_scale)) then
           contact%active(node) = .false.
           contact%let_go(node) = .true.
           changed = .true.
@@ -268,20 +264,35 @@ contains
     integer :: i, node
     changed = .false.
     if (.not. (contact%pad .and. contact%release)) return
-    force_scale = 0.0_dp
-    do i = 1, size(contact%candidates)
-      node = contact%candidates(i)
-      if (contact%active(node)) force_scale = max(force_scale, abs(reaction(node_dof(deck%mesh, node, 2))))
-    end do
+    force_scale = largest_reaction(deck, contact, reaction)
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
       if (.not. contact%active(node)) cycle
-      if (reaction(node_dof(deck%mesh, node, 2)) < -1.0e-9_dp*force_scale) then
+      if (is_tensile(reaction(node_dof(deck%mesh, node, 2)), force_scale)) then
         contact%active(node) = .false.
         changed = .true.
       end if
     end do
   end subroutine contact_release_tensile
+
+  !> The largest |z reaction| of a contact node (per radian): the scale of the release test.
+  pure real(dp) function largest_reaction(deck, contact, reaction) result(scale)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    real(dp), intent(in) :: reaction(:)
+    integer :: i, node
+    scale = 0.0_dp
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      if (contact%active(node)) scale = max(scale, abs(reaction(node_dof(deck%mesh, node, 2))))
+    end do
+  end function largest_reaction
+
+  !> The release test: a z reaction pulls, beyond round-off of the largest (1e-9 of it).
+  pure logical function is_tensile(reaction, scale)
+    real(dp), intent(in) :: reaction, scale
+    is_tensile = reaction < -1.0e-9_dp*scale
+  end function is_tensile
 
   !> Number of contact nodes.
   pure integer function contact_count(contact) result(number)

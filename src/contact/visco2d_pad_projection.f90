@@ -28,9 +28,23 @@ module visco2d_pad_projection
   implicit none
   private
 
-  public :: project_on_surface
+  public :: project_on_surface, pair_compliance
 
 contains
+
+  !> (C M^-1 C^T)_cc = 1/m_c + sum_k w_k^2/m_p(k): the compliance of the pair
+  !> of equation c (the body node and the surface nodes under it), 1/mu with
+  !> mu the pair's reduced mass; 1/m_c on the rigid plate (no partners).
+  pure real(dp) function pair_compliance(partner, weight, mass, c) result(compliance)
+    integer, intent(in) :: partner(:, :)
+    real(dp), intent(in) :: weight(:, :), mass(:)
+    integer, intent(in) :: c
+    integer :: k
+    compliance = 1.0_dp/mass(c)
+    do k = 1, 2
+      if (partner(k, c) > 0) compliance = compliance + weight(k, c)**2/mass(partner(k, c))
+    end do
+  end function pair_compliance
 
   !> Put the vectors x(:, j) (band order) back on the constraints of the held
   !> equations `rows` (none of them a support) with the values
@@ -58,10 +72,7 @@ contains
     matrix = 0.0_dp
     do i = 1, m
       c = rows(i)
-      matrix(i, i) = 1.0_dp/mass(c)
-      do k = 1, 2
-        if (partner(k, c) > 0) matrix(i, i) = matrix(i, i) + weight(k, c)**2/mass(partner(k, c))
-      end do
+      matrix(i, i) = pair_compliance(partner, weight, mass, c)
       do j = 1, i - 1
         d = rows(j)
         do k = 1, 2

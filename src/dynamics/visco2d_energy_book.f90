@@ -10,6 +10,7 @@ module visco2d_energy_book
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof
   use visco2d_contact, only: contact_t, contact_partner_sum
+  use visco2d_pad_projection, only: pair_compliance
   implicit none
   private
 
@@ -111,24 +112,13 @@ contains
       node = contact%candidates(i)
       if (.not. contact%touched(node)) cycle
       associate (r => node_dof(deck%mesh, node, 1), z => node_dof(deck%mesh, node, 2))
-      book%contact_loss = book%contact_loss + &
-        0.5_dp*reduced_mass(z)*(v(z) - contact_partner_sum(deck, contact, v, node, 2))**2
+      book%contact_loss = book%contact_loss + 0.5_dp/pair_compliance(contact%partner, contact%weight, mass, z)* &
+                          (v(z) - contact_partner_sum(deck, contact, v, node, 2))**2
       if (contact%stick) book%contact_loss = book%contact_loss + &
-        0.5_dp*reduced_mass(r)*(v(r) - contact_partner_sum(deck, contact, v, node, 1))**2
+        0.5_dp/pair_compliance(contact%partner, contact%weight, mass, r)* &
+        (v(r) - contact_partner_sum(deck, contact, v, node, 1))**2
       end associate
     end do
-  contains
-    !> mu of equation c and the surface equations under it.
-    pure real(dp) function reduced_mass(c)
-      integer, intent(in) :: c
-      real(dp) :: compliance
-      integer :: k
-      compliance = 1.0_dp/mass(c)
-      do k = 1, 2
-        if (contact%partner(k, c) > 0) compliance = compliance + contact%weight(k, c)**2/mass(contact%partner(k, c))
-      end do
-      reduced_mass = 1.0_dp/compliance
-    end function reduced_mass
   end subroutine book_contact_loss
 
   !> The instability test after a step (kinetic + internal energy `energy`):

@@ -95,7 +95,8 @@ contains
     call h5_close_group(writer, view)
   end subroutine write_xdmf_view
 
-  !> About the bytes write_xdmf_view adds to results.h5 (its arrays).
+  !> About the bytes write_xdmf_view adds to results.h5 (its arrays; the memory
+  !> estimate counts the same 18 doubles per node, h5_xdmf_node_bytes of visco2d_budget).
   pure function xdmf_view_bytes(record) result(bytes)
     type(record_t), intent(in) :: record
     integer(int64) :: bytes
