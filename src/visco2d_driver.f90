@@ -5,7 +5,7 @@
 module visco2d_driver
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
-  use visco2d_error, only: error_t, set_error
+  use visco2d_error, only: error_t, set_error, locate_error
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
@@ -164,7 +164,10 @@ contains
 
     call solve(error)
     call print_run_warnings(record)
-    if (allocated(error)) return
+    if (allocated(error)) then
+      call locate_error(error, deck%cards%file)     ! a failed solve found where the deck is not known
+      return
+    end if
     ! The results must be finite before anything is derived from them (EXPECT).
     call check_finite_outputs(deck, record, error)
     if (allocated(error)) return
