@@ -21,7 +21,7 @@
 !>     body's equation and -w lambda on each partner, to 1e-10 of |f|.
 !>  2. Dynamics: the Table 1 impact (level 2) with STICK to maximum
 !>     deformation and with SLIP + RELEASE=YES to separation, run both ways
-!>     (solve_dynamic's refactor_contact). The contact decisions are the same
+!>     (solve_dynamic's hold: visco2d_refactoring). The contact decisions are the same
 !>     (iterations, steps, node counts), the histories of alpha, force and q
 !>     agree to 1e-9 of their largest value (round-off grows over ~300
 !>     steps, far below any physical change), and the capacitance run
@@ -37,6 +37,7 @@ program test_capacitance
   use visco2d_lapack, only: dgels
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
+  use visco2d_refactoring, only: refactoring_hold_t
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_column
@@ -287,7 +288,7 @@ contains
     call solve_dynamic(deck, fast, error)
     call check(name//': capacitance run', .not. allocated(error))
     if (allocated(error)) return
-    call solve_dynamic(deck, slow, error, refactor_contact=.true.)
+    call solve_dynamic(deck, slow, error, hold=refactoring_hold_t())
     call check(name//': refactoring run', .not. allocated(error))
     if (allocated(error)) return
     call check(name//': same steps', summary_value(fast, 'steps') == summary_value(slow, 'steps'), &

@@ -339,7 +339,7 @@ contains
       print '(a)', error_text(error)
       return
     end if
-    call stepper_create(deck, .false., stepper)
+    call stepper_create(deck, stepper)
     allocate(rows(2*deck%mesh%nnode))
     call effective_stiffness(stepper, deck, 1, 1.0e-5_dp, rows)
     call compare_solvers('assembled S~ (level 2, supports)', stepper%points(1)%effective, stepper%supports)

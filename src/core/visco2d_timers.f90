@@ -30,6 +30,7 @@ module visco2d_timers
 
   logical, save :: enabled = .false.
   integer(int64), save :: started(phase_count) = 0
+  integer, save :: depth(phase_count) = 0       !< open timer_start calls of a phase (stages nest)
   integer(int64), save :: ticks(phase_count) = 0
   integer, save :: calls(phase_count) = 0
   real(dp), save :: floor_seconds = 0.0_dp
@@ -51,22 +52,31 @@ contains
   !> Clear every phase (at the start of a run).
   subroutine timers_reset()
     started = 0
+    depth = 0
     ticks = 0
     calls = 0
     floor_seconds = 0.0_dp
     step_total = 0
   end subroutine timers_reset
 
+  !> Start a phase's timer (each stage of the step times itself; a start
+  !> inside an open one of the same phase is part of the outer one).
   subroutine timer_start(phase)
     integer, intent(in) :: phase
     if (.not. enabled) return
-    call system_clock(started(phase))
+    depth(phase) = depth(phase) + 1
+    if (depth(phase) == 1) call system_clock(started(phase))
   end subroutine timer_start
 
+  !> Stop a phase's timer: a stage timed inside a stage of the same phase
+  !> (trial_stresses in solve_point_state) is counted once, by the outer one.
   subroutine timer_stop(phase)
     integer, intent(in) :: phase
     integer(int64) :: now
     if (.not. enabled) return
+    depth(phase) = depth(phase) - 1
+    if (depth(phase) > 0) return
+    depth(phase) = 0
     call system_clock(now)
     ticks(phase) = ticks(phase) + (now - started(phase))
     calls(phase) = calls(phase) + 1

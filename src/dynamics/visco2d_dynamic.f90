@@ -57,7 +57,7 @@ module visco2d_dynamic
   use visco2d_field_summary, only: put_field_summary, put_probe_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer
   use visco2d_timers, only: timer_start, timer_stop, timers_enabled, timers_set_floor, timers_set_steps, &
-                            phase_assembly, phase_factorization, phase_constitutive, phase_solve, phase_contact, &
+                            phase_assembly, phase_factorization, phase_constitutive, phase_contact, &
                             phase_output, phase_step_loop
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_advice, only: deformation_warnings, largest_strain
@@ -66,8 +66,8 @@ module visco2d_dynamic
   use visco2d_integrators, only: mass_coefficient, energy_overshoot, stability_advice
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_pad_mesh, only: body_nodes, body_elements
-  use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
-                               solve_supports, contact_repeat, commit_substep, solve_point_state
+  use visco2d_time_step, only: stepper_t, contact_hold_t, stepper_create, effective_stiffness, factor_effective, &
+                               effective_load, solve_supports, contact_repeat, commit_substep, solve_point_state
   use visco2d_energy_book, only: energy_book_t, energy_growth_limit, book_start, book_substep, book_contact_loss, &
                                  book_growth
   use visco2d_dynamic_record, only: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, &
@@ -94,24 +94,21 @@ contains
   !> the summary, one history row every OUTPUT EVERY= steps (step 0 and the
   !> last step always) and snapshots at t = 0, at the FIELDS= times and at the
   !> end (with a plate also at maximum deformation and at maximum pressure).
-  !> `refactor_contact` (tests only): impose contact by refactoring S~ with
-  !> the held equations eliminated, instead of the capacitance system.
-  subroutine solve_dynamic(deck, record, error, refactor_contact)
+  !> `hold` (tests only): another way to impose the plate's held equations
+  !> than the capacitance system (an extension of contact_hold_t).
+  subroutine solve_dynamic(deck, record, error, hold)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(error_t), allocatable, intent(out) :: error
-    logical, intent(in), optional :: refactor_contact
+    class(contact_hold_t), intent(in), optional :: hold
     type(stepper_t) :: stepper
     type(dynamic_state_t) :: state, start
     type(measures_t) :: measures
     integer :: stage, step, step_count
     real(dp) :: t_next, dt, stage_start, touch_fraction
-    logical :: by_refactoring
     character(:), allocatable :: unstable
 
-    by_refactoring = .false.
-    if (present(refactor_contact)) by_refactoring = refactor_contact
-    call stepper_create(deck, by_refactoring, stepper)
+    call stepper_create(deck, stepper, hold)
     call initial_state(deck, stepper, state)
     associate (body_mass => merge(0.0_dp, stepper%mass, stepper%pad))    ! the body's, not a PAD's
     if (stepper%contact_on) call impact_start(deck, body_mass, state%a, measures%impact)
@@ -296,8 +293,8 @@ contains
     real(dp), intent(out) :: touch_fraction
     character(:), allocatable, intent(out) :: what   !< why the integration is unstable
     type(error_t), allocatable, intent(inout) :: error
-    real(dp) :: t_end, offset, energy, t_solve
-    logical :: finite, at_solve_point
+    real(dp) :: t_end, offset, energy
+    logical :: finite
     integer :: r
     start%t = state%t
     start%u = state%u
@@ -308,12 +305,8 @@ contains
       associate (point => stepper%points(r))
       t_end = t_next
       if (r < size(stepper%points)) t_end = state%t + point%length
-      call timer_start(phase_constitutive)
       call effective_load(stepper, deck, r, state, start, t_end)                ! eq. [36]
-      call timer_stop(phase_constitutive)
-      call timer_start(phase_solve)
       call solve_supports(stepper, r, state, error)                             ! eq. [34], supports only
-      call timer_stop(phase_solve)
       if (allocated(error)) return
       call contact_repeat(stepper, deck, r, state, start, finite, error)        ! the plate, eqs. [37]-[39], [13]-[23]
       if (allocated(error)) return
@@ -336,25 +329,40 @@ contains
       end if
       call book_growth(measures%book, energy, what)
       if (allocated(what)) return
-      call timer_start(phase_constitutive)
-      ! The envelopes take the state where the integrator holds equilibrium,
-      ! as the plate reactions: t + theta dt for Wilson-theta (visco2d_time_step,
-      ! solve_point_state), the sub-step's end otherwise.
-      at_solve_point = point%h /= point%length .and. envelopes_wanted(deck)
-      t_solve = state%t + point%h
-      if (at_solve_point) call solve_point_state(stepper, deck, r, state)
-      call commit_substep(stepper, deck, r, state, t_end)                       ! eqs. [24], [40]-[42]
-      if (at_solve_point) then
-        call bruise_update(measures%bruise, deck, t_solve, stepper%stress_solve, stepper%strain_solve, &
-                           stepper%history_solve)
-      else
-        call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain, state%history)
-      end if
-      call timer_stop(phase_constitutive)
+      call end_substep(stepper, deck, r, state, t_end, measures)                ! eqs. [24], [40]-[42]
       offset = offset + point%row%fraction
       end associate
     end do
   end subroutine time_step
+
+  !> The sub-step of row r committed (visco2d_time_step's commit_substep,
+  !> eqs. [24], [40]-[42]) and the bruise envelopes updated. The envelopes
+  !> take the state where the integrator holds equilibrium, as the plate
+  !> reactions: t + theta dt for Wilson-theta (visco2d_time_step,
+  !> solve_point_state), the sub-step's end otherwise. Timed as the
+  !> constitutive update.
+  subroutine end_substep(stepper, deck, r, state, t_end, measures)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(inout) :: state
+    real(dp), intent(in) :: t_end
+    type(measures_t), intent(inout) :: measures
+    real(dp) :: t_solve
+    logical :: at_solve_point
+    call timer_start(phase_constitutive)
+    at_solve_point = stepper%points(r)%h /= stepper%points(r)%length .and. envelopes_wanted(deck)
+    t_solve = state%t + stepper%points(r)%h
+    if (at_solve_point) call solve_point_state(stepper, deck, r, state)
+    call commit_substep(stepper, deck, r, state, t_end)                         ! eqs. [24], [40]-[42]
+    if (at_solve_point) then
+      call bruise_update(measures%bruise, deck, t_solve, stepper%stress_solve, stepper%strain_solve, &
+                         stepper%history_solve)
+    else
+      call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain, state%history)
+    end if
+    call timer_stop(phase_constitutive)
+  end subroutine end_substep
 
   !> The measures after a step: the impact (plate reactions at the solve
   !> point, see visco2d_time_step) and the states at its maxima, the
@@ -457,7 +465,7 @@ contains
       call record_put(record, 'integrator', stepper%integrator%label)
     end if
     call record_put_integer(record, 'factorizations', stepper%factorizations)
-    if (stepper%contact_on .and. .not. stepper%by_refactoring) then
+    if (stepper%contact_on) then
       call record_put_integer(record, 'capacitance_columns', sum(stepper%points%capacitance%solves))
       call record_put_integer(record, 'capacitance_factorizations', sum(stepper%points%capacitance%factorizations))
     end if

@@ -22,9 +22,11 @@
 !> stage (and row). The equations the plate holds are imposed through a
 !> capacitance (Schur-complement) system on that factor (module
 !> visco2d_capacitance): a change of the contact set costs one
-!> back-substitution per new held equation, not a refactorization. Tests
-!> may instead choose, once, the refactoring strategy (S~ refactored with the
-!> held equations eliminated) to check the capacitance system against it.
+!> back-substitution per new held equation, not a refactorization
+!> (contact_hold_t, the stepper's hold). A test extends that type to refactor
+!> S~ with the held equations eliminated instead, to check the capacitance
+!> system against it (test/visco2d_refactoring.f90); no branch here knows of it.
+!> The stages time themselves for `--timing` (visco2d_timers).
 module visco2d_time_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
@@ -54,8 +56,8 @@ module visco2d_time_step
   implicit none
   private
 
-  public :: stepper_t, point_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
-            solve_supports, contact_repeat, commit_substep, hold_contact, solve_point_state
+  public :: stepper_t, point_t, contact_hold_t, stepper_create, effective_stiffness, factor_effective, &
+            effective_load, solve_supports, contact_repeat, commit_substep, hold_contact, solve_point_state
 
   !> The solve point of one row: its intervals, S~ and its factor, the
   !> capacitance system of the held equations on that factor, and the step
@@ -73,6 +75,19 @@ module visco2d_time_step
     real(dp), allocatable :: shear_h(:), bulk_h(:)  !< per element, over h
   end type point_t
 
+  !> How the plate's held equations enter eq. [34]: the program's way, this
+  !> type, factors S~ once with the supports and imposes the held equations
+  !> by the capacitance system on that factor (visco2d_capacitance; a PAD's
+  !> multi-point constraints need it). Its three bindings are all the step
+  !> knows of it; a test extends it to check the capacitance system against
+  !> refactoring S~ with the held equations eliminated (test/visco2d_refactoring.f90).
+  type :: contact_hold_t
+  contains
+    procedure, nopass :: factor => capacitance_factor   !< S~ of row r factored, the held set put in
+    procedure, nopass :: hold => capacitance_hold       !< the contact set has changed
+    procedure, nopass :: solve => capacitance_solve     !< dU of row r with the held equations
+  end type contact_hold_t
+
   !> What the step needs besides the state: the integrator and its solve
   !> points, the operators, mass and gravity, supports and the plate's held
   !> equations, and the step's work arrays (the values at the sub-step's end:
@@ -86,7 +101,7 @@ module visco2d_time_step
     integer, allocatable :: held_rows(:)          !< the equations held by the plate
     logical, allocatable :: pad(:)                !< the pad's equations (PAD), else none
     logical :: memory = .false., contact_on = .false.
-    logical :: by_refactoring = .false.            !< tests only: contact by refactoring S~
+    class(contact_hold_t), allocatable :: hold     !< how the held equations are imposed (contact_hold_t)
     integer :: solver = solver_default             !< the factor's storage (SOLVER card, visco2d_factor)
     type(contact_t) :: contact
     integer :: factorizations = 0
@@ -103,17 +118,22 @@ module visco2d_time_step
 contains
 
   !> The stepper of a deck: integrator rows, mass (eq. [32]), gravity, supports,
-  !> operators, the contact state, work arrays.
-  subroutine stepper_create(deck, by_refactoring, stepper)
+  !> operators, the contact state, work arrays; `hold` (tests only) another
+  !> way to impose the held equations than the capacitance system.
+  subroutine stepper_create(deck, stepper, hold)
     type(deck_t), intent(in) :: deck
-    logical, intent(in) :: by_refactoring
     type(stepper_t), intent(out) :: stepper
+    class(contact_hold_t), intent(in), optional :: hold
     integer :: k, n, nmat
     associate (mesh => deck%mesh, materials => deck%materials)
     n = 2*mesh%nnode
     nmat = size(materials)
     stepper%integrator = integrator_create(deck%dynamics)
-    stepper%by_refactoring = by_refactoring
+    if (present(hold)) then
+      allocate(stepper%hold, source=hold)
+    else
+      allocate(contact_hold_t :: stepper%hold)
+    end if
     stepper%solver = solver_of_card(deck%solver)
     do k = 1, nmat
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
@@ -149,14 +169,15 @@ contains
   !> the constraint of each body equation that may touch it: the pad surface
   !> equations under the node, in the same direction, with their weights
   !> (supported ones left out: they do not move), into every row's
-  !> capacitance system. The refactoring strategy has no multi-point
-  !> constraints: with a pad the capacitance system is used.
+  !> capacitance system. Only it imposes multi-point constraints: with a pad
+  !> the hold is the program's (contact_hold_t), whatever was asked.
   subroutine pad_constraints(stepper, deck)
     type(stepper_t), intent(inout) :: stepper
     type(deck_t), intent(in) :: deck
     integer :: node, r
     associate (mesh => deck%mesh)
-    stepper%by_refactoring = .false.
+    deallocate(stepper%hold)
+    allocate(contact_hold_t :: stepper%hold)
     do node = 1, mesh%nnode
       if (is_pad_node(deck, node)) stepper%pad(node_dof(mesh, node, 1):node_dof(mesh, node, 2)) = .true.
     end do
@@ -212,54 +233,72 @@ contains
     end associate
   end subroutine effective_stiffness
 
-  !> S~ of row r with the supports imposed (with the refactoring strategy:
-  !> also the held equations), factored (visco2d_factor); info > 0: not positive
-  !> definite at that equation. With the capacitance strategy the held
-  !> equations are then put in the capacitance system (hold_contact); `error`
-  !> if a solve with the factor failed.
+  !> S~ of row r factored (visco2d_factor) and the held equations put in, as
+  !> the stepper's hold does it (contact_hold_t: the supports imposed, the held
+  !> equations in the capacitance system); info > 0: not positive definite at
+  !> that equation, < 0: the capacitance matrix; `error` if a solve failed.
   subroutine factor_effective(stepper, r, info, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(in) :: r
     integer, intent(out) :: info
     type(error_t), allocatable, intent(inout) :: error
-    associate (point => stepper%points(r))
-    if (stepper%by_refactoring) then
-      call factor_compute(point%factor, point%effective, stepper%fixed, info, stepper%solver)
-    else
-      call factor_compute(point%factor, point%effective, stepper%supports, info, stepper%solver)
-    end if
-    stepper%factorizations = stepper%factorizations + 1
-    if (info > 0) return
-    if (.not. stepper%by_refactoring) then
-      call capacitance_reset(point%capacitance, point%factor%n)
-      if (stepper%contact_on) call capacitance_set(point%capacitance, point%factor, &
-                                                   stepper%held .and. .not. stepper%supports, info, error)
-      if (info > 0) info = -info                      ! the capacitance matrix, not S~
-    end if
-    end associate
+    call stepper%hold%factor(stepper, r, info, error)
   end subroutine factor_effective
 
-  !> The contact set has changed: its held equations into every row's
-  !> capacitance system, or (refactoring strategy) every S~ refactored.
-  !> info > 0: S~ not positive definite; < 0: the capacitance matrix; `error`:
-  !> a solve with the factor failed.
+  !> The contact set has changed: the held equations into every row (the
+  !> stepper's hold). info > 0: S~ not positive definite; < 0: the
+  !> capacitance matrix; `error`: a solve with the factor failed.
   subroutine hold_contact(stepper, info, error)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(out) :: info
+    type(error_t), allocatable, intent(inout) :: error
+    call stepper%hold%hold(stepper, info, error)
+  end subroutine hold_contact
+
+  !> contact_hold_t's factor: S~ of row r factored with the supports imposed,
+  !> then the held equations into its capacitance system.
+  subroutine capacitance_factor(stepper, r, info, error)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(in) :: r
+    integer, intent(out) :: info
+    type(error_t), allocatable, intent(inout) :: error
+    associate (point => stepper%points(r))
+    call factor_compute(point%factor, point%effective, stepper%supports, info, stepper%solver)
+    stepper%factorizations = stepper%factorizations + 1
+    if (info > 0) return
+    call capacitance_reset(point%capacitance, point%factor%n)
+    if (stepper%contact_on) call capacitance_set(point%capacitance, point%factor, &
+                                                 stepper%held .and. .not. stepper%supports, info, error)
+    if (info > 0) info = -info                      ! the capacitance matrix, not S~
+    end associate
+  end subroutine capacitance_factor
+
+  !> contact_hold_t's hold: the held equations into every row's capacitance
+  !> system (a column per new equation, no new factor of S~).
+  subroutine capacitance_hold(stepper, info, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(out) :: info
     type(error_t), allocatable, intent(inout) :: error
     integer :: r
     info = 0
     do r = 1, size(stepper%points)
-      if (stepper%by_refactoring) then
-        call factor_effective(stepper, r, info, error)
-      else
-        call capacitance_set(stepper%points(r)%capacitance, stepper%points(r)%factor, &
-                             stepper%held .and. .not. stepper%supports, info, error)
-        info = -info
-      end if
+      call capacitance_set(stepper%points(r)%capacitance, stepper%points(r)%factor, &
+                           stepper%held .and. .not. stepper%supports, info, error)
+      info = -info
       if (info /= 0 .or. allocated(error)) return
     end do
-  end subroutine hold_contact
+  end subroutine capacitance_hold
+
+  !> contact_hold_t's solve: dU of eq. [34] with the held equations, the
+  !> capacitance correction of `free` (solve_supports).
+  subroutine capacitance_solve(stepper, r, error)
+    type(stepper_t), intent(inout) :: stepper
+    integer, intent(in) :: r
+    type(error_t), allocatable, intent(inout) :: error
+    stepper%solution = stepper%free
+    if (stepper%contact_on) call capacitance_apply(stepper%points(r)%capacitance, stepper%prescribed, &
+                                                   stepper%solution)
+  end subroutine capacitance_solve
 
   !> Eq. [36] for row r from `state` (at the sub-step's start; `start` is the
   !> state at the step's start) to t_next, into stepper%base:
@@ -267,19 +306,34 @@ contains
   !> with b the integrator's mass part (6/tau U'_t + 2 U''_t for Wilson-theta)
   !> and s0_h the history stress of eq. [23] over h as a pseudo-load; the
   !> history stress over the sub-step (for the trial stresses) is kept.
+  !> Timed as the constitutive update (`--timing`).
   subroutine effective_load(stepper, deck, r, state, start, t_next)
     type(stepper_t), intent(inout) :: stepper
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: r
     type(dynamic_state_t), intent(in) :: state, start
     real(dp), intent(in) :: t_next
-    integer :: e
+    call timer_start(phase_constitutive)
     associate (point => stepper%points(r), row => stepper%points(r)%row)
     stepper%load_next = external_load(deck, t_next)
     stepper%target_next = prescribed_displacement(deck, t_next)
     stepper%base = state%load + row%theta*(1.0_dp - row%alpha_f)*(stepper%load_next - state%load) + stepper%gravity &
                    - state%internal + stepper%mass*inertia_load(row, point%h, state%u, state%v, state%a, start%u, start%v)
-    if (.not. stepper%memory) return
+    end associate
+    if (stepper%memory) call add_history_load(stepper, deck, r, state)
+    call timer_stop(phase_constitutive)
+  end subroutine effective_load
+
+  !> The memory part of eq. [36] for row r: the history stress s0_h of eq.
+  !> [23] over h as the pseudo-load -(1 - alpha_f) F(s0_h) on stepper%base,
+  !> and the history stress over the sub-step kept (for the trial stresses).
+  subroutine add_history_load(stepper, deck, r, state)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state
+    integer :: e
+    associate (point => stepper%points(r), row => stepper%points(r)%row)
     call history_stresses(deck%materials, deck%mesh%element_material, state%history, point%over_h, stepper%history_h)
     if (point%h == point%length) then
       stepper%history_length = stepper%history_h
@@ -298,7 +352,7 @@ contains
       end if
     end do
     end associate
-  end subroutine effective_load
+  end subroutine add_history_load
 
   !> Eq. [34] with the supports only, once per sub-step: the prescribed
   !> values at the solve point (fraction theta of their change) and
@@ -310,22 +364,23 @@ contains
     type(dynamic_state_t), intent(in) :: state
     type(error_t), allocatable, intent(inout) :: error
     integer :: status
+    call timer_start(phase_solve)
     associate (point => stepper%points(r))
     stepper%prescribed = state%target + point%row%theta*(stepper%target_next - state%target) - state%u
     if (stepper%contact_on) then
       call contact_begin_increment(stepper%contact)
       stepper%touch_fraction = 1.0_dp
     end if
-    if (stepper%by_refactoring) return
     stepper%free = stepper%base
     call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%free)
     call factor_solve(point%factor, stepper%free, status)                     ! eq. [34] without contact
     if (status /= 0) call set_error(error, solve_failure_text(status))
     end associate
+    call timer_stop(phase_solve)
   end subroutine solve_supports
 
-  !> The contact repeat of row r (the timers of `--timing` are started and
-  !> stopped here, around the stages it calls, not inside them): dU with the plate's conditions (eq. [34]),
+  !> The contact repeat of row r (each stage it calls times itself for
+  !> `--timing`): dU with the plate's conditions (eq. [34]),
   !> the plate reactions at the solve point, the increments to the
   !> sub-step's end (eqs. [37]-[39]) and the trial stresses (eqs. [13], [14],
   !> [23]); with a plate, repeated while the contact search changes the set
@@ -348,9 +403,7 @@ contains
     end if
     do
       if (stepper%contact_on) call adjusted_displacements(stepper, deck, state%u, row%theta)
-      call timer_start(phase_solve)
       call solve_held(stepper, r, error)
-      call timer_stop(phase_solve)
       if (allocated(error)) return
       if (stepper%contact_on) call solve_point_reactions(stepper, r, state, start)
       call update_kinematics(row, point%length, stepper%solution, state%u, state%v, state%a, start%u, start%v, &
@@ -364,15 +417,11 @@ contains
         finite = .false.
         return
       end if
-      call timer_start(phase_constitutive)
       call trial_stresses(stepper, point, state)
-      call timer_stop(phase_constitutive)
       stepper%reaction_next = merge(stepper%mass*(state%a + stepper%da) + stepper%internal_next - stepper%load_next &
                                     - stepper%gravity, 0.0_dp, rigid_reactions(stepper))
       if (.not. stepper%contact_on) exit
-      call timer_start(phase_contact)
-      call contact_search(deck, stepper%contact, state%u, stepper%du, stepper%reaction_solve, changed, fraction)
-      call timer_stop(phase_contact)
+      call search_contact(stepper, deck, state, changed, fraction)
       if (.not. changed) exit
       stepper%touch_fraction = min(stepper%touch_fraction, fraction)
       call new_contact_set(stepper, deck, error)
@@ -463,25 +512,29 @@ contains
     stepper%da = vectors(:, 3) - state%a
   end subroutine follow_surface
 
-  !> dU of eq. [34] with the held equations: the capacitance correction of
-  !> `free`, or (refactoring strategy) a solve with S~ refactored.
+  !> dU of eq. [34] with the held equations, as the stepper's hold imposes
+  !> them (contact_hold_t: the capacitance correction of `free`).
   subroutine solve_held(stepper, r, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(in) :: r
     type(error_t), allocatable, intent(inout) :: error
-    integer :: status
-    associate (point => stepper%points(r))
-    if (stepper%by_refactoring) then
-      stepper%solution = stepper%base
-      call band_constrain_rhs(point%effective, stepper%fixed, stepper%prescribed, stepper%solution)
-      call factor_solve(point%factor, stepper%solution, status)
-      if (status /= 0) call set_error(error, solve_failure_text(status))
-    else
-      stepper%solution = stepper%free
-      if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%prescribed, stepper%solution)
-    end if
-    end associate
+    call timer_start(phase_solve)
+    call stepper%hold%solve(stepper, r, error)
+    call timer_stop(phase_solve)
   end subroutine solve_held
+
+  !> The contact search after a trial increment (visco2d_contact): `changed`
+  !> if the set changes, `fraction` the earliest touch. Timed as contact.
+  subroutine search_contact(stepper, deck, state, changed, fraction)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    type(dynamic_state_t), intent(in) :: state
+    logical, intent(out) :: changed
+    real(dp), intent(out) :: fraction
+    call timer_start(phase_contact)
+    call contact_search(deck, stepper%contact, state%u, stepper%du, stepper%reaction_solve, changed, fraction)
+    call timer_stop(phase_contact)
+  end subroutine search_contact
 
   !> The plate reactions at the solve point (t + theta dt for Wilson-theta,
   !> the sub-step's end otherwise), where the integrator holds equilibrium:
@@ -516,6 +569,7 @@ contains
     type(stepper_t), intent(inout) :: stepper
     type(point_t), intent(in) :: point
     type(dynamic_state_t), intent(in) :: state
+    call timer_start(phase_constitutive)
     if (stepper%memory) then
       call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &
                                   stepper%increments, stepper%trial, stepper%internal_next, stepper%history_length)
@@ -523,6 +577,7 @@ contains
       call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &
                                   stepper%increments, stepper%trial, stepper%internal_next)
     end if
+    call timer_stop(phase_constitutive)
   end subroutine trial_stresses
 
   !> The adjusted displacements of the contact conditions, into
