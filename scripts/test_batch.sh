@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tests of visco2d-batch (scripts/visco2d_batch.py): sweeps, local cores, shards,
+# Tests of visco2d-batch (python/visco2d/batch.py): sweeps, local cores, shards,
 # collect, failed cases, duplicate names, the threshold search, the MPI farm.
 #
 #   bash scripts/test_batch.sh PATH/TO/visco2d
@@ -11,7 +11,6 @@
 # temporary folder, removed at the end.
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-tool="$root/scripts/visco2d_batch.py"
 
 pass() { echo "PASS $1"; }
 fail() { echo "FAIL $1: $2"; }
@@ -40,19 +39,18 @@ if [ $# -ne 1 ] || [ ! -x "$1" ] || [ -d "$1" ]; then
   exit 0
 fi
 exe="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-batch() { python3 "$tool" "$@" --exe "$exe"; }
+batch() { "$tool" "$@" --exe "$exe"; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_batch.XXXXXX") || { fail mktemp "cannot create a temporary folder"; exit 0; }
 trap 'rm -rf "$work"' EXIT
 cd "$work" || { fail cd "cannot enter $work"; exit 0; }
+# visco2d-batch: the launcher `make build` writes beside the executable (python/launchers.py),
+# else one written here for this checkout's python/
+tool="$(dirname "$exe")/visco2d-batch"
+[ -x "$tool" ] || { python3 "$root/python/launchers.py" "$work/bin" > /dev/null; tool="$work/bin/visco2d-batch"; }
 
-installed="$(dirname "$exe")/visco2d-batch"
-if [ -x "$installed" ]; then
-  check installed_copy "$installed differs from scripts/visco2d_batch.py (make build installs it)" \
-    cmp -s "$installed" "$tool"
-else
-  echo "NOTE no $installed (make build installs it); testing scripts/visco2d_batch.py"
-fi
+check launcher_checkout "$tool does not import the package of this checkout ($root/python)" \
+  grep -qF "$root/python" "$tool"
 
 # The template: the peach of inputs/peach_drop.inp on the coarse mesh.
 sed -e 's/^TITLE .*/TITLE Peach, R ${radius} m, dropped ${height} m (level 1)/' \
@@ -123,14 +121,14 @@ done
 check shards_interleaved "shard 0/2 ran '$first_shard', not cases 1, 3, 5 of 6" \
   test "$first_shard" = "${cases[0]} ${cases[2]} ${cases[4]} "
 check shards_identical "two shards: summaries differ from the serial run" same_cases serial sharded "${cases[@]}"
-python3 "$tool" collect sharded > collect.log 2>&1
+"$tool" collect sharded > collect.log 2>&1
 check_ok collect_all_ok $? collect.log
 check collect_same_table "collect sharded: table.csv differs from the serial run's" cmp -s serial/table.csv sharded/table.csv
 rm -rf "sharded/${cases[5]}"
-python3 "$tool" collect sharded > collect.log 2>&1
+"$tool" collect sharded > collect.log 2>&1
 check_rc collect_missing_status 1 $?
 check collect_marks_missing "collect: ${cases[5]} not marked missing" grep -q "^${cases[5]},missing," sharded/table.csv
-check shard_usage "--shard 2/2 accepted" bash -c '! python3 "$0" run peach.inp --param height=0.1 --param radius=0.03 --shard 2/2 -o x 2>/dev/null' "$tool"
+check shard_usage "--shard 2/2 accepted" bash -c '! "$0" run peach.inp --param height=0.1 --param radius=0.03 --shard 2/2 -o x 2>/dev/null' "$tool"
 
 # 5. A failing case is marked with its located error; the others run.
 sed 's/NU=0.35/NU=${nu}/' peach.inp > peach_nu.inp
@@ -218,7 +216,7 @@ if command -v mpirun > /dev/null; then
   check mpi_stand_in_table "stand_in/table.csv differs from failing/table.csv (-j 2)" \
     cmp -s <(sed 's#stand_in/decks#failing/decks#' stand_in/table.csv) failing/table.csv
 fi
-python3 "$tool" run peach.inp --param height=0.1 --param radius=0.03 --mpi 2 --farm "$work/none" \
+"$tool" run peach.inp --param height=0.1 --param radius=0.03 --mpi 2 --farm "$work/none" \
   -o nofarm > nofarm.log 2>&1
 check_rc mpi_no_farm_status 2 $?
 check mpi_no_farm_message "$(head -c 300 nofarm.log)" grep -q 'none: not an executable' nofarm.log

@@ -46,7 +46,7 @@
 !> appears in balance_error_J (section 2).
 !> Every number is printed in markdown tables. Decks are written to
 !> build/test-tmp/test_contact_dynamic/. Release run time ~7 s; the longer
-!> study (level 5, dt to 1.25e-6) is scripts/convergence_table1.py.
+!> study (level 5, dt to 1.25e-6) is python/visco2d/convergence.py.
 program test_contact_dynamic
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use visco2d_kinds, only: dp

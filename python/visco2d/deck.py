@@ -1,8 +1,7 @@
-"""Variants of a deck by text substitution, shared by scripts/study.py,
-scripts/bench.py and scripts/figures.py (a card value such as MESH SPHERE
-... LEVEL= or TIME DT=, or a word of a card such as PLATE ... STICK), and
-the machine's CPU model for their reports, and the summary reader of
-scripts/study.py and scripts/integrators.py."""
+"""Variants of a deck by text substitution: a card value (MESH SPHERE ... LEVEL=, TIME DT=),
+a word of a card (PLATE ... STICK), the integrator card. The studies, the benchmarks and the
+figures make their decks with these; visco2d-batch's placeholders (${name}) are its own
+(visco2d.batch), because they substitute anywhere in the text, not on a named card."""
 import re
 
 
@@ -26,17 +25,8 @@ def set_card_word(text, card, word, replacement):
     return new
 
 
-def cpu_model():
-    """The CPU model from /proc/cpuinfo ('?' when unknown)."""
-    try:
-        with open("/proc/cpuinfo") as handle:
-            return next((line.split(":", 1)[1].strip() for line in handle if line.startswith("model name")), "?")
-    except OSError:
-        return "?"
-
-
-#: The integrators of the INTEGRATOR card as compared by scripts/study.py and
-#: scripts/integrators.py: name -> the card (each method's usual parameters).
+#: The integrators of the INTEGRATOR card as compared by visco2d.study and
+#: visco2d.integrators: name -> the card (each method's usual parameters).
 #: WILSON is the paper's (and every deck's default): its card is the deck's own.
 INTEGRATOR_CARDS = {
     "WILSON": "INTEGRATOR WILSON THETA=1.4",
@@ -58,13 +48,3 @@ def set_integrator(text, card):
             return new
     raise ValueError("expected at most one WILSON or INTEGRATOR card and a TIME card, found %d" % count)
 
-
-def read_summary(path):
-    """The key = value lines of a summary.txt as a dict of strings."""
-    values = {}
-    with open(path, encoding="utf-8", errors="replace") as handle:
-        for line in handle:
-            key, sep, value = line.partition("=")
-            if sep:
-                values[key.strip()] = value.strip()
-    return values

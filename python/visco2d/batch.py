@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """visco2d-batch: parameter sweeps, batches on every core or a cluster, tables, thresholds.
 
   visco2d-batch run [options] DECK...        run decks (templates expanded by a sweep)
@@ -39,6 +38,10 @@ import subprocess
 import sys
 import threading
 import time
+
+from . import runner
+from .case import missed_expectations, read_summary
+from .runner import located_error
 
 PROGRAM = 'visco2d-batch'
 DEFAULT_KEYS = ['alpha_max_mm', 't_alpha_max_ms', 'q_max_MPa', 'force_max_N', 'contact_radius_max_mm',
@@ -341,40 +344,12 @@ def write_decks(cases, out, total):
 
 # ---------------------------------------------------------------- running
 
-def repository_root():
-    here = os.path.dirname(os.path.realpath(__file__))
-    for candidate in (os.path.join(here, '..'), os.path.join(here, '..', '..', '..')):
-        if os.path.exists(os.path.join(candidate, 'fpm.toml')):
-            return os.path.normpath(candidate)
-    return None
-
-
 def find_program(explicit, variable, name, relative):
-    """An executable: the option, the environment variable, beside this tool, in the repository, on PATH."""
-    if explicit:
-        if os.path.isfile(explicit) and os.access(explicit, os.X_OK):
-            return os.path.abspath(explicit)
-        raise UsageError(f'{explicit}: not an executable')
-    candidates = [os.environ.get(variable),
-                  os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), name)]
-    root = repository_root()
-    if root:
-        candidates.append(os.path.join(root, relative))
-    candidates.append(shutil.which(name))
-    for candidate in candidates:
-        if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
-            return os.path.abspath(candidate)
-    return None
-
-
-def located_error(stderr, deck=None):
-    """The located message of a failed run: the `visco2d: error:` line (of that deck), else the last line."""
-    lines = [line.strip() for line in stderr.splitlines() if line.strip()]
-    errors = [line for line in lines if 'error:' in line and (deck is None or deck in line)]
-    if errors:
-        line = errors[-1]
-        return line.split('error:', 1)[1].strip()
-    return lines[-1] if lines else 'failed without a message'
+    """runner.find_program, an explicit path that is not an executable a usage error."""
+    try:
+        return runner.find_program(explicit, variable, name, relative)
+    except FileNotFoundError as error:
+        raise UsageError(str(error)) from None
 
 
 class Progress:
@@ -669,21 +644,6 @@ def verified_result(case, out):
 
 
 # ---------------------------------------------------------------- the table
-
-def missed_expectations(summary):
-    """The keys of a summary whose EXPECT card is outside its RTOL (expect_<key>_within_rtol = no)."""
-    return [key[len('expect_'):-len('_within_rtol')] for key, value in summary.items()
-            if key.startswith('expect_') and key.endswith('_within_rtol') and value.strip() == 'no']
-
-
-def read_summary(path):
-    values = {}
-    with open(path) as handle:
-        for line in handle:
-            if ' = ' in line:
-                key, value = line.rstrip('\n').split(' = ', 1)
-                values[key.strip()] = value.strip()
-    return values
 
 
 def gather(out, names=None, not_run=()):

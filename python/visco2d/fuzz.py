@@ -1,9 +1,8 @@
-#!/usr/bin/env python3
 """Mutation fuzzer of the visco2d card reader and solvers.
 
-    python3 scripts/fuzz.py [-n N] [--seed S] [-j JOBS] [--bound SECONDS] [--exe PATH] [--out DIR]
-    python3 scripts/fuzz.py --decks DECK...        run decks as they are (regression decks)
-    python3 scripts/fuzz.py --shrink DECK          minimize a failing deck (line delta debugging)
+    PYTHONPATH=python python3 -m visco2d.fuzz [-n N] [--seed S] [-j JOBS] [--bound SECONDS] [--exe PATH] [--out DIR]
+    PYTHONPATH=python python3 -m visco2d.fuzz --decks DECK...        run decks as they are (regression decks)
+    PYTHONPATH=python python3 -m visco2d.fuzz --shrink DECK          minimize a failing deck (line delta debugging)
 
 Takes the seed decks (inputs/*.inp and test/fuzz/*.inp; LEVEL=1 meshes and at most 1000
 steps per TIME stage, so that most runs take well under a second), makes N mutated decks
@@ -68,7 +67,8 @@ import tempfile
 import threading
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from . import case as case_folder
+from .runner import ROOT
 
 FAIL_CLASSES = ['CRASH', 'HANG', 'PARTIAL', 'NONFINITE', 'UNREADABLE', 'UNLOCATED',
                 'OUTPUT_ON_ERROR', 'MISSING_OUTPUT', 'SILENT']
@@ -1246,15 +1246,9 @@ def check_hdf5(case, path):
 
 
 def read_summary(case_dir):
+    """The case's summary ({} when it has none)."""
     path = os.path.join(case_dir, 'summary.txt')
-    lines = {}
-    if os.path.isfile(path):
-        with open(path, 'rb') as handle:
-            for line in handle.read().decode('latin-1').split('\n'):
-                if ' = ' in line:
-                    key, value = line.split(' = ', 1)
-                    lines[key] = value
-    return lines
+    return case_folder.read_summary(path) if os.path.isfile(path) else {}
 
 
 def expect_keys(text):
@@ -1564,7 +1558,7 @@ def shrink(path, options):
 # ---------------------------------------------------------------------------- main
 def main():
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)   # quiet when piped into head
-    parser = argparse.ArgumentParser(description=__doc__.split('\n\n')[0], epilog=__doc__.split('\n\n', 2)[2],
+    parser = argparse.ArgumentParser(prog="python3 -m visco2d.fuzz", description=__doc__.split('\n\n')[0], epilog=__doc__.split('\n\n', 2)[2],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument('-n', '--count', type=int, default=1000, help='number of mutated decks (default 1000)')
     parser.add_argument('--seed', type=int, default=1, help='campaign seed: deck i depends only on it (default 1)')

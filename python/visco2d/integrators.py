@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """The integrator family side by side: amplification matrices and the Table 1 impact.
 
-    python3 scripts/integrators.py [--out DIR] [--exe PATH] [--levels 1] [--dts-ms 0.04,0.02,0.01]
+    PYTHONPATH=python python3 -m visco2d.integrators [--out DIR] [--exe PATH] [--levels 1] [--dts-ms 0.04,0.02,0.01]
                                    [--integrators WILSON,NEWMARK,...] [--deck inputs/table1_elastic.inp]
                                    [--reference-mm 1.0388] [--table-only] [--reuse]
 
@@ -30,7 +29,7 @@ acceleration (accel_center_g). A smooth history sampled at DT has a second
 difference of order DT^2 f'' (small, and falling 4x per halving of DT);
 ringing from period to period of the step is of the order of its own
 amplitude. alpha errors are against the converged reference of the Table 1
-impact (scripts/study.py's f*, out of `make study`: 1.0388 mm, levels 3-5 at
+impact (python/visco2d/study.py's f*, out of `make study`: 1.0388 mm, levels 3-5 at
 DT 0.0025 ms), unless --reference-mm says otherwise (for another --deck:
 no alpha error unless --reference-mm is given).
 
@@ -42,13 +41,13 @@ import csv
 import math
 import os
 import re
-import subprocess
 import sys
 import time
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from deck_variants import INTEGRATOR_CARDS, cpu_model, set_card_value, set_integrator, read_summary  # noqa: E402
+from . import runner
+from .case import read_history, read_summary
+from .deck import INTEGRATOR_CARDS, set_card_value, set_integrator
+from .runner import ROOT, cpu_model
 
 #: alpha_m (mm) of the Table 1 impact converged in mesh and DT: the reference f* of `make study`
 #: (Richardson over levels 3-5 at DT 0.0025 ms plus the DT correction; README "What accuracy costs").
@@ -160,11 +159,6 @@ def amplification_table():
 
 # ---------------------------------------------------------------- the Table 1 impact
 
-def read_history(path):
-    with open(path, newline="") as handle:
-        reader = csv.DictReader(handle)
-        return {key: [float(row[key]) for row in rows] for rows in [list(reader)] for key in reader.fieldnames}
-
 
 def noise(values, active):
     """RMS over the active steps of the second difference f_{n+1} - 2 f_n + f_{n-1}, over max |f| there."""
@@ -199,8 +193,7 @@ def run_impact(exe, out, name, level, dt_ms, source_text, reuse, case="table1_el
     if not same:
         with open(deck_path, "w") as handle:
             handle.write(text)
-        env = dict(os.environ, OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
-        result = subprocess.run([exe, "-q", "-o", runs, deck_path], capture_output=True, text=True, env=env)
+        result = runner.run(exe, [deck_path], runs)
         if result.returncode != 0 or not os.path.isfile(summary_path):
             row["detail"] = ((result.stderr or result.stdout).strip().splitlines() or ["no output"])[-1]
             return row
@@ -238,7 +231,7 @@ def impact_table(rows, reference):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python3 -m visco2d.integrators", description=__doc__.split("\n")[0])
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "integrators"))
     parser.add_argument("--exe", default=os.path.join(ROOT, "build/install/bin/visco2d"))
     parser.add_argument("--levels", default="1")

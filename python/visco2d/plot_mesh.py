@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Draw the mesh of a case from its results.h5 (optionally the deformed mesh).
 
 usage: plot_mesh.py out/<case>/results.h5 [more.h5 ...] [mesh.png] [--deformed SCALE] [--pole MM]

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Pictures of the paper's figures from visco2d's results.h5 files (`make figures`).
 
 Reads out/<case>/results.h5 of the paper's impact decks (running the deck into
@@ -24,10 +23,11 @@ import hashlib
 import math
 import os
 import re
-import subprocess
 import sys
 
-from deck_variants import set_card_value, set_card_word
+from . import hertz, runner
+from .case import summary_value, text_of
+from .deck import set_card_value, set_card_word
 
 import h5py
 import numpy as np
@@ -69,7 +69,7 @@ def run_deck(exe, deck, out_root):
         fail(f"deck {deck} not found")
     os.makedirs(out_root, exist_ok=True)
     print(f"figures: running {deck} into {out_root}/")
-    done = subprocess.run([exe, "-q", "-o", out_root, deck], capture_output=True, text=True)
+    done = runner.run(exe, [deck], out_root)
     if done.returncode != 0:
         fail(f"{exe} -q -o {out_root} {deck} exited with status {done.returncode}:\n"
              f"{done.stdout}{done.stderr}")
@@ -150,18 +150,6 @@ def variant_results(args, source_case, case, change, label):
     return path
 
 
-def text_of(value):
-    """An HDF5 string attribute (bytes or str) as str."""
-    if isinstance(value, (bytes, np.bytes_)):
-        return value.decode()
-    return str(value)
-
-
-def summary_value(value):
-    """A /summary dataset's value: a str for text, else the number."""
-    if isinstance(value, (bytes, np.bytes_, str)):
-        return text_of(value)
-    return value.item()
 
 
 def load_run(path):
@@ -240,63 +228,6 @@ def hertz_constants(run):
     """E, nu, R, M, V of the summary's Hertz reference (instantaneous moduli, mesh mass)."""
     return tuple(summary_float(run, key) for key in
                  ("hertz_young_Pa", "hertz_poisson", "hertz_radius_m", "hertz_mass_kg", "hertz_speed_m_s"))
-
-
-def hertz_alpha_max(young, poisson, radius, mass, speed):
-    """Eq. [43]: alpha_m = (15 (1 - nu^2) M V^2 / (16 E sqrt(R)))^0.4 (m)."""
-    return (15.0 * (1.0 - poisson ** 2) * mass * speed ** 2 / (16.0 * young * math.sqrt(radius))) ** 0.4
-
-
-def hertz_pressure(young, poisson, radius, alpha):
-    """Eq. [45] at any approach: q = 2 E / (pi (1 - nu^2)) sqrt(alpha / R) (Pa)."""
-    return 2.0 * young / (math.pi * (1.0 - poisson ** 2)) * np.sqrt(np.maximum(alpha, 0.0) / radius)
-
-
-def hertz_exact(young, poisson, radius, mass, speed, t_end, steps=4000):
-    """Exact Hertz impact: M alpha'' = -k alpha^1.5, k = (4/3) E/(1 - nu^2) sqrt(R), alpha(0) = 0, alpha'(0) = V.
-
-    Integrated numerically (scipy's solve_ivp when present, else classical RK4
-    with `steps` steps to t_end). Returns t (s), alpha (m), q (Pa).
-    """
-    k = 4.0 / 3.0 * young / (1.0 - poisson ** 2) * math.sqrt(radius)
-
-    def rate(_t, y):
-        return np.array([y[1], -k / mass * max(y[0], 0.0) ** 1.5])
-
-    t = np.linspace(0.0, t_end, steps + 1)
-    try:
-        from scipy.integrate import solve_ivp
-        alpha = solve_ivp(rate, (0.0, t_end), [0.0, speed], t_eval=t, rtol=1e-10, atol=1e-14).y[0]
-    except ImportError:
-        y = np.array([0.0, speed])
-        alpha = np.empty_like(t)
-        alpha[0] = 0.0
-        h = t[1] - t[0]
-        for n in range(steps):
-            k1 = rate(t[n], y)
-            k2 = rate(t[n] + h / 2, y + h / 2 * k1)
-            k3 = rate(t[n] + h / 2, y + h / 2 * k2)
-            k4 = rate(t[n] + h, y + h * k3)
-            y = y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-            alpha[n + 1] = y[0]
-    return t, alpha, hertz_pressure(young, poisson, radius, alpha)
-
-
-def goldsmith(young, poisson, radius, mass, speed, t):
-    """Goldsmith's approximation eq. [46]: alpha(t) = alpha_m sin(1.068 V t / alpha_m), alpha_m of eq. [43];
-    q(t) from eq. [45] at alpha(t). Returns alpha (m), q (Pa)."""
-    alpha_m = hertz_alpha_max(young, poisson, radius, mass, speed)
-    alpha = alpha_m * np.sin(np.minimum(1.068 * speed * t / alpha_m, math.pi))
-    return alpha, hertz_pressure(young, poisson, radius, alpha)
-
-
-def hertz_subsurface_shear(poisson, q0, a, depths):
-    """Hertz (sphere on a half-space): tau = (sigma_z - sigma_r)/2 on the axis at the given depths (Pa);
-    sigma_z = -q0/(1 + s^2), sigma_r = -q0 [(1 + nu)(1 - s atan(1/s)) - 1/(2 (1 + s^2))], s = z/a."""
-    s = np.maximum(depths / a, 1e-12)
-    sigma_z = -q0 / (1.0 + s ** 2)
-    sigma_r = -q0 * ((1.0 + poisson) * (1.0 - s * np.arctan(1.0 / s)) - 0.5 / (1.0 + s ** 2))
-    return 0.5 * np.abs(sigma_z - sigma_r)
 
 
 # ----------------------------------------------------------------------------- stresses
@@ -402,14 +333,14 @@ def table1_figure(coarse, fine, slip, quantity, path, written):
     fig, ax = plt.subplots(figsize=(9, 6.8))
     peak = None
     for mass_value, style, which in ((mass, "-", fine), (mass_coarse, ":", coarse)):
-        t, alpha, q = hertz_exact(young, poisson, radius, mass_value, speed, t_end)
+        t, alpha, q = hertz.exact(young, poisson, radius, mass_value, speed, t_end)
         value = (alpha if is_alpha else q) * scale
         ax.plot(t * 1e3, value, style, color="k", lw=1.6 if style == "-" else 1.2,
                 label=f"exact Hertz, M = {mass_value:.4f} kg ({mesh_label(which).split(',')[0]} mesh mass)")
         if peak is None:
             peak = (t[np.argmax(value)] * 1e3, value.max())
     t = np.linspace(0.0, t_end, 600)
-    alpha_g, q_g = goldsmith(young, poisson, radius, mass, speed, t)
+    alpha_g, q_g = hertz.goldsmith(young, poisson, radius, mass, speed, t)
     ax.plot(t * 1e3, (alpha_g if is_alpha else q_g) * scale, "--", color="0.5", lw=1.4,
             label=f"Goldsmith eq. [46], M = {mass:.4f} kg")
     name = "alpha_mm" if is_alpha else "q_MPa"
@@ -458,21 +389,21 @@ def apple_figure(run, figure_name, path, written):
     t, alpha, q = after_contact(run, "alpha_mm", "q_MPa")
     young, poisson, radius, mass, speed = hertz_constants(run)
     t_end = max(t.max(), summary_float(run, "hertz_t_alpha_max_ms")) * 1.05
-    th, alpha_h, q_h = hertz_exact(young, poisson, radius, mass, speed, t_end * 1e-3)
+    th, alpha_h, q_h = hertz.exact(young, poisson, radius, mass, speed, t_end * 1e-3)
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(8.5, 8), sharex=True)
     t_alpha, t_q = summary_float(run, "t_alpha_max_ms"), summary_float(run, "t_q_max_ms")
-    for ax, value, hertz, key, tkey, label, unit, colour in (
+    for ax, value, reference, key, tkey, label, unit, colour in (
             (top, alpha, alpha_h * 1e3, "alpha_max_mm", "t_alpha_max_ms", "deformation α", "mm", "C0"),
             (bottom, q, q_h * 1e-6, "q_max_MPa", "t_q_max_ms", "maximum surface pressure q", "MPa", "C3")):
         ax.plot(t, value, "-", color=colour, lw=2.0, label=f"FE, viscoelastic (Table 3), {mesh_label(run)}")
-        ax.plot(th * 1e3, hertz, "--", color="0.4", lw=1.2,
+        ax.plot(th * 1e3, reference, "--", color="0.4", lw=1.2,
                 label=f"Hertz, elastic with E(0) = {young / 1e6:.3f} MPa, ν(0) = {poisson:.3f}")
         peak, t_peak = summary_float(run, key), summary_float(run, tkey)
         mark_peak(ax, t_peak, peak, f"max {peak:.3g} {unit} at {t_peak:.2f} ms", colour, offset=(-10, -22))
         ax.axvline(t_alpha, color="0.3", lw=0.9, ls=":", label=f"t of max α: {t_alpha:.2f} ms")
         ax.axvline(t_q, color="0.3", lw=0.9, ls="-.", label=f"t of max q: {t_q:.2f} ms")
         ax.set_ylabel(f"{label} ({unit})")
-        ax.set_ylim(0.0, max(value.max(), hertz.max()) * 1.12)
+        ax.set_ylim(0.0, max(value.max(), reference.max()) * 1.12)
         ax.legend(loc="upper left", fontsize=8.5)
     bottom.set_xlim(0.0, t_end)
     bottom.set_xlabel("time since first contact t (ms)")
@@ -529,7 +460,7 @@ def max_shear_numbers(run):
     q0 = summary_float(run, "hertz_q_max_MPa") * 1e6
     a = summary_float(run, "hertz_contact_radius_mm") * 1e-3
     depths = np.linspace(1e-6, 3 * a, 3000)
-    shear = hertz_subsurface_shear(poisson, q0, a, depths)
+    shear = hertz.subsurface_shear(poisson, q0, a, depths)
     numbers.update(hertz_tau_MPa=shear.max() * 1e-6, hertz_depth_mm=depths[np.argmax(shear)] * 1e3,
                    hertz_a_mm=a * 1e3, hertz_q0_MPa=q0 * 1e-6)
     return numbers
@@ -592,7 +523,7 @@ def max_shear_figure(run, plate, path, written, zoom=(12.0, 10.0), vmax=None):
 
 def main():
     """Parse the options, gather the runs, draw every figure and print the files written."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = argparse.ArgumentParser(prog="python3 -m visco2d.figures", description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", default="out", help="output root of `make run` (default: out)")
     parser.add_argument("--exe", default="build/install/bin/visco2d", help="the visco2d executable")
     parser.add_argument("--inputs", default="inputs", help="folder of the paper's decks (default: inputs)")

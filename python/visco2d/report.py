@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """One picture per case (`make report`): the impact and the bruise of a visco2d run.
 
 For every case folder (OUT/<case>/ holding a results.h5; all of OUT's
@@ -31,9 +30,10 @@ import sys
 import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import figures  # noqa: E402  (the project's matplotlib style, the Hertz helpers)
-from figures import plt, mtri, MaxNLocator, text_of, summary_value, hertz_exact  # noqa: E402
+from . import figures  # the project's matplotlib style
+from . import hertz
+from .case import summary_value, text_of
+from .figures import plt, mtri, MaxNLocator
 
 REPORT_NAME = "report.png"
 # the BRUISE criterion -> (the /bruise measure, its label, display unit, factor from the file's unit)
@@ -135,7 +135,7 @@ def hertz_curves(case, t_end_ms):
     if any(value is None for value in values) or min(values[2:]) <= 0.0:
         return None
     young, poisson, radius, mass, speed = values
-    t, alpha, q = hertz_exact(young, poisson, radius, mass, speed, t_end_ms * 1e-3, steps=1500)
+    t, alpha, q = hertz.exact(young, poisson, radius, mass, speed, t_end_ms * 1e-3, steps=1500)
     stiffness = 4.0 / 3.0 * young / (1.0 - poisson ** 2) * math.sqrt(radius)    # F = k alpha^1.5
     return t * 1e3, alpha * 1e3, stiffness * np.maximum(alpha, 0.0) ** 1.5, q * 1e-6
 
@@ -488,7 +488,7 @@ def case_folders(args):
 
 def main():
     """Parse the options, draw every case's report and print the files written."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+    parser = argparse.ArgumentParser(prog="visco2d-report", description=__doc__.split("\n\n")[0],
                                      epilog="writes <case folder>/report.png")
     parser.add_argument("--out", default="out", help="output root of the runs (default: out)")
     parser.add_argument("cases", nargs="*", metavar="CASE",

@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """Print the paper's impact results beside visco2d's, as Markdown tables.
 
-    python3 scripts/paper_table.py [OUT]        (OUT defaults to out/)
+    python3 -m visco2d.paper_table [OUT]        (OUT defaults to out/)
 
 Reads OUT/<case>/summary.txt (`key = value` lines) of the impact decks in
 inputs/ (table1_elastic, table2_viscoelastic, apple_v0.7, apple_v1.2,
@@ -18,12 +17,15 @@ apple_center_accel and their *_separation variants) and prints:
   runs      stop reason, steps, iterations, factorizations, CPU time.
 
 A case folder that is missing (or a key a summary lacks) is reported and
-shown as "n/a"; the script always exits 0. Standard library only.
+shown as "n/a"; the script always exits 0.
 """
 
 import math
 import os
 import sys
+
+from . import hertz
+from .case import number, read_summary
 
 G_EARTH = 9.8
 
@@ -31,46 +33,19 @@ G_EARTH = 9.8
 # t_m = c alpha_m / V with c = int_0^1 dx / sqrt(1 - x^(5/2))
 #   = (2/5) B(2/5, 1/2) = 1.4716... (the paper prints 1.47, eq. [44]);
 # the contact lasts 2 t_m.
-HERTZ_T_CONSTANT = 0.4 * math.gamma(0.4) * math.gamma(0.5) / math.gamma(0.9)
 
 NA = "n/a"
 
 
-def hertz(e_mod, nu, radius, mass, speed):
-    """Eqs. [43]-[45]: alpha_m (m), t_m (s), q_m (Pa), force (N), contact radius (m)."""
-    alpha = (15.0 * (1.0 - nu**2) * mass * speed**2 / (16.0 * e_mod * math.sqrt(radius))) ** 0.4
-    t_m = HERTZ_T_CONSTANT * alpha / speed
-    q_m = 2.0 * e_mod / (math.pi * (1.0 - nu**2)) * math.sqrt(alpha / radius)
-    force = 4.0 / 3.0 * e_mod / (1.0 - nu**2) * math.sqrt(radius) * alpha**1.5
-    return alpha, t_m, q_m, force, math.sqrt(radius * alpha)
-
-
-def read_summary(out, case, missing):
+def read_case_summary(out, case, missing):
     """The summary of one case as a dict of strings, or None (noted in missing)."""
     path = os.path.join(out, case, "summary.txt")
     try:
-        with open(path, encoding="utf-8", errors="replace") as handle:
-            lines = handle.readlines()
+        return read_summary(path)
     except OSError:
         missing.append(f"{case}: no {path} (deck not run, or it failed)")
         return None
-    values = {}
-    for line in lines:
-        key, sep, value = line.partition("=")
-        if sep:
-            values[key.strip()] = value.strip()
-    return values
 
-
-def number(summary, key):
-    """A summary value as a float, or None if absent or not a number."""
-    if not summary or key not in summary:
-        return None
-    try:
-        value = float(summary[key].replace("D", "E").replace("d", "e"))
-    except ValueError:
-        return None
-    return value if math.isfinite(value) else None
 
 
 def fmt(value, digits=3):
@@ -133,14 +108,14 @@ BASE_CASES = list(CASE_DATA)
 
 def section_table1(s, lines):
     e_mod, nu, radius, mass, speed = CASE_DATA["table1_elastic"]
-    alpha, t_m, q_m, _, _ = hertz(e_mod, nu, radius, mass, speed)
+    alpha, t_m, q_m, _, _ = hertz.maxima(e_mod, nu, radius, mass, speed)
     lines.append("## Table 1: elastic sphere on a rigid plate (V = 0.9982 m/s, E = 18.11 MPa, nu = 0.219)")
     lines.append("")
     rows = [
         ["paper: dynamic finite element", "1.096", "1.51", "1.99", ""],
         ["paper: Rumsey and Fridley", "1.107", "1.60", "2.19", ""],
         ["paper: Timoshenko and Goodier (as printed)", "1.097", "1.62", "2.10", ""],
-        [f"Hertz, eqs. [43]-[45], M = {mass} kg, t_m = {HERTZ_T_CONSTANT:.4f} alpha_m/V (this script)",
+        [f"Hertz, eqs. [43]-[45], M = {mass} kg, t_m = {hertz.T_CONSTANT:.4f} alpha_m/V (this script)",
          fmt(alpha * 1e3), fmt(t_m * 1e3), fmt(q_m / 1e6), f"t_m with 1.47: {1.47 * alpha / speed * 1e3:.3f} ms"],
         ["visco2d: built-in Hertz reference (mesh mass)", fmt(number(s, "hertz_alpha_max_mm")),
          fmt(number(s, "hertz_t_alpha_max_ms")), fmt(number(s, "hertz_q_max_MPa")), ""],
@@ -157,7 +132,7 @@ def section_table1(s, lines):
 
 def section_table2(s, lines):
     e_mod, nu, radius, mass, speed = CASE_DATA["table2_viscoelastic"]
-    alpha, t_m, q_m, _, _ = hertz(e_mod, nu, radius, mass, speed)
+    alpha, t_m, q_m, _, _ = hertz.maxima(e_mod, nu, radius, mass, speed)
     lines.append("## Table 2: viscoelastic sphere, phi1 = 3.91 exp(-203 t) MPa, K = 13.5 MPa, 0.05 m drop")
     lines.append("")
     a_v, ta_v = number(s, "alpha_max_mm"), number(s, "t_alpha_max_ms")
@@ -191,7 +166,7 @@ def section_apples(summaries, lines):
     for case, paper_lead in (("apple_v0.7", "~0.2"), ("apple_v1.2", "~0")):
         s = summaries.get(case)
         e_mod, nu, radius, mass, speed = CASE_DATA[case]
-        alpha, t_m, q_m, _, _ = hertz(e_mod, nu, radius, mass, speed)
+        alpha, t_m, q_m, _, _ = hertz.maxima(e_mod, nu, radius, mass, speed)
         ta, tq, tqs = number(s, "t_alpha_max_ms"), number(s, "t_q_max_ms"), number(s, "t_q_surface_max_ms")
         rows.append([f"{speed} m/s, Hertz (E(0) = {e_mod / 1e6:.3f} MPa)", fmt(alpha * 1e3), fmt(t_m * 1e3),
                      at(q_m / 1e6, t_m * 1e3), "", "0.00", "", ""])
@@ -210,7 +185,7 @@ def section_accel(summaries, lines):
     lines.append("## Fig. 2: acceleration at the centre, Golden Delicious apple, 25.4 mm drop (dt = 0.02 ms)")
     lines.append("")
     e_mod, nu, radius, mass, speed = CASE_DATA["apple_center_accel"]
-    _, t_m, _, force, _ = hertz(e_mod, nu, radius, mass, speed)
+    _, t_m, _, force, _ = hertz.maxima(e_mod, nu, radius, mass, speed)
     rows = [[f"Hertz rigid body, F_max/(M g), M = {mass:.4f} kg", fmt(force / (mass * G_EARTH), 1),
              fmt(t_m * 1e3, 2), fmt(force, 1), ""]]
     for case in ("apple_center_accel", "apple_center_accel_separation"):
@@ -235,17 +210,17 @@ def section_separation(summaries, lines):
         alpha, speed = number(s, "alpha_max_mm"), number(s, "impact_velocity_m_s")
         if speed is None:
             speed = CASE_DATA[base][4]
-        estimate = None if alpha is None else 2.0 * HERTZ_T_CONSTANT * alpha / abs(speed)
+        estimate = None if alpha is None else 2.0 * hertz.T_CONSTANT * alpha / abs(speed)
         rows.append([case, fmt(number(s, "alpha_max_mm")), fmt(number(s, "contact_duration_ms")),
                      fmt(estimate), fmt(number(s, "hertz_contact_duration_ms")),
                      fmt(number(s, "impact_velocity_m_s"), 4), fmt(number(s, "rebound_velocity_m_s"), 4),
                      fmt(number(s, "coefficient_of_restitution")), fmt(number(s, "energy_absorbed_J"), 5),
                      text(s, "stop_reason")])
     lines += table(["case", "alpha_m mm", "contact duration ms",
-                    f"{2 * HERTZ_T_CONSTANT:.3f} alpha_m/V ms", "built-in Hertz duration ms",
+                    f"{2 * hertz.T_CONSTANT:.3f} alpha_m/V ms", "built-in Hertz duration ms",
                     "impact V m/s", "rebound V m/s", "restitution", "absorbed J", "stop"], rows)
     lines.append("")
-    lines.append(f"{2 * HERTZ_T_CONSTANT:.3f} alpha_m/V is Hertz's contact duration 2 t_m evaluated with "
+    lines.append(f"{2 * hertz.T_CONSTANT:.3f} alpha_m/V is Hertz's contact duration 2 t_m evaluated with "
                  "visco2d's own alpha_m and impact velocity.")
     lines.append("")
 
@@ -273,7 +248,7 @@ def main(argv):
     out = argv[1] if len(argv) == 2 else "out"
     missing = []
     cases = BASE_CASES + [case + "_separation" for case in BASE_CASES]
-    summaries = {case: read_summary(out, case, missing) for case in cases}
+    summaries = {case: read_case_summary(out, case, missing) for case in cases}
     lines = [f"# visco2d beside the paper (summaries from {out})", ""]
     section_table1(summaries["table1_elastic"], lines)
     section_table2(summaries["table2_viscoelastic"], lines)

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Longer convergence study of the elastic impact of Table 1 (not part of `make test`).
 
 The sphere of Table 1 (R 36.6 mm, E 18.11 MPa, nu 0.219, rho 756.85,
@@ -14,22 +13,22 @@ parabola through the three history samples around its largest sample (the
 O(dt^2) sampling error of a maximum). Peak times and q are printed, not
 extrapolated: they are sampled at dt and q jumps when a node ring joins.
 
-Usage: python3 scripts/convergence_table1.py [--max-level 5] [--dt-level 3]
+Usage: PYTHONPATH=python python3 -m visco2d.convergence [--max-level 5] [--dt-level 3]
        [--exe build/install/bin/visco2d] [--out build/convergence_table1]
        [--integrator WILSON|NEWMARK|HHT|GENERALIZED_ALPHA|BATHE]
-(--integrator: the card of scripts/deck_variants.py INTEGRATOR_CARDS in place
+(--integrator: the card of python/visco2d/deck.py INTEGRATOR_CARDS in place
 of WILSON THETA=1.4; the default is the paper's Wilson-theta.)
 Writes OUT/table.md and prints it. Standard library only.
 """
 import argparse
-import csv
 import math
 import os
-import subprocess
 import sys
 import time
 
-from deck_variants import INTEGRATOR_CARDS
+from . import runner
+from .case import number, read_history, read_summary
+from .deck import INTEGRATOR_CARDS
 
 KEYS = ["alpha_max_mm", "t_alpha_max_ms", "q_max_MPa", "t_q_max_ms", "q_surface_max_MPa", "force_max_N",
         "t_force_max_ms", "contact_nodes_max", "hertz_alpha_max_mm", "balance_error_J", "nodes", "elements"]
@@ -57,22 +56,15 @@ def run(exe, out, name, level, dt, integrator="WILSON"):
     with open(path, "w") as handle:
         handle.write(deck_text(name, level, dt, integrator))
     start = time.time()
-    result = subprocess.run([exe, "-q", "-o", os.path.join(out, "runs"), path], capture_output=True, text=True)
+    result = runner.run(exe, [path], os.path.join(out, "runs"))
     seconds = time.time() - start
     if result.returncode != 0:
         sys.exit("visco2d failed on %s:\n%s" % (path, result.stderr))
     folder = os.path.join(out, "runs", name)
-    summary = {}
-    with open(os.path.join(folder, "summary.txt")) as handle:
-        for line in handle:
-            key, _, value = line.partition("=")
-            summary[key.strip()] = value.strip()
-    with open(os.path.join(folder, "history.csv")) as handle:
-        rows = list(csv.reader(handle))
-    columns = rows[0]
-    t = [float(r[columns.index("t_ms")]) for r in rows[1:]]
-    alpha = [float(r[columns.index("alpha_mm")]) for r in rows[1:]]
-    record = {key: float(summary[key]) for key in KEYS if key in summary}
+    summary = read_summary(folder)
+    history = read_history(folder)
+    t, alpha = history["t_ms"], history["alpha_mm"]
+    record = {key: number(summary, key) for key in KEYS if key in summary}
     record["alpha_parabola_mm"] = parabola_peak(t, alpha)
     record["seconds"] = seconds
     return record
@@ -104,7 +96,7 @@ def orders(values):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(prog="python3 -m visco2d.convergence", description=__doc__.splitlines()[0])
     parser.add_argument("--max-level", type=int, default=5)
     parser.add_argument("--dt-level", type=int, default=3)
     parser.add_argument("--exe", default=os.environ.get("VISCO2D", "build/install/bin/visco2d"))

@@ -1,4 +1,3 @@
-#!/usr/bin/env python3
 """Bless reference outputs: archive a deck's summary.txt and history.csv in reference_outputs/<case>/.
 
 usage: bless.py [--exe EXE] [--inputs DIR] [--references DIR] [--work DIR] [--rtol R] [--force]
@@ -6,7 +5,7 @@ usage: bless.py [--exe EXE] [--inputs DIR] [--references DIR] [--work DIR] [--rt
 
 Runs the decks (EXE -q -o WORK DECK...) and, for each case, rewrites only the
 archived files (summary.txt without cpu_s, history.csv) that differ from the
-reference beyond the tolerance of scripts/compare_outputs.py (its rtol, unit
+reference beyond the tolerance of python/visco2d/diff.py (its rtol, unit
 floors and the case's tolerances.txt): a file within tolerance is left
 byte-identical, so blessing one deck or all of them never churns the other
 references with round-off. A deck without a reference gets one. For every
@@ -24,12 +23,12 @@ import argparse
 import glob
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import compare_outputs  # noqa: E402
+from . import diff as compare_outputs
+from . import runner
+from .case import missed_expectations, read_summary
 
 ARCHIVED = ("summary.txt", "history.csv")
 SHOWN = 5
@@ -76,7 +75,7 @@ def run_decks(exe, decks, work):
     """Run the decks into work/; return the case folders, or None if any deck failed."""
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    result = subprocess.run([exe, "-q", "-o", work] + decks, capture_output=True, text=True)
+    result = runner.run(exe, decks, work)
     sys.stdout.write(result.stdout)
     sys.stderr.write(result.stderr)
     folders = {}
@@ -93,23 +92,12 @@ def run_decks(exe, decks, work):
               " nothing written", file=sys.stderr)
         return None
     missed = [f"{case} ({', '.join(keys)})" for case, folder in folders.items()
-              if (keys := missed_expectations(os.path.join(folder, "summary.txt")))]
+              if (keys := missed_expectations(read_summary(folder)))]
     if missed:
         print(f"bless: refused: an EXPECT card is outside its RTOL in {'; '.join(missed)}:"
               " a reference must meet its deck's own expectations; nothing written", file=sys.stderr)
         return None
     return folders
-
-
-def missed_expectations(summary):
-    """The keys of a summary.txt whose EXPECT card is outside its RTOL (expect_<key>_within_rtol = no)."""
-    missed = []
-    with open(summary) as stream:
-        for line in stream:
-            name, _, value = line.partition(" = ")
-            if name.startswith("expect_") and name.endswith("_within_rtol") and value.strip() == "no":
-                missed.append(name[len("expect_"):-len("_within_rtol")])
-    return missed
 
 
 def plan(folders, references, rtol, force):
@@ -137,7 +125,7 @@ def plan(folders, references, rtol, force):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(prog="python3 -m visco2d.bless", description=__doc__.split("\n")[0])
     parser.add_argument("decks", nargs="*", metavar="DECK")
     parser.add_argument("--all", action="store_true", help="every deck of --inputs")
     parser.add_argument("--exe", default="build/install/bin/visco2d")

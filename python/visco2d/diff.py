@@ -1,7 +1,6 @@
-#!/usr/bin/env python3
 """visco2d-diff: compare visco2d output folders with a reference, worst differences first.
 
-usage: compare_outputs.py REFERENCE RUN [--rtol R] [--all] [--max N] [--quiet]
+usage: visco2d-diff REFERENCE RUN [--rtol R] [--all] [--max N] [--quiet]
 
 REFERENCE and RUN are two case folders (visco2d -o OUT writes OUT/<case>/) or two
 folders of case folders (reference_outputs/ and out/, say); a case folder given
@@ -675,7 +674,7 @@ def non_negative(kind):
 
 def parser():
     result = argparse.ArgumentParser(
-        prog=os.path.basename(sys.argv[0]) or "visco2d-diff",
+        prog="visco2d-diff",
         description=__doc__.split("\n\n", 1)[0] + "\n\n" + __doc__.split("\n\n", 2)[2],
         formatter_class=argparse.RawDescriptionHelpFormatter,
         usage="%(prog)s REFERENCE RUN [--rtol R] [--all] [--max N] [--quiet]")
@@ -690,7 +689,7 @@ def parser():
     return result
 
 
-def main(argv):
+def main(argv=None):
     signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # quiet when piped into head
     args = parser().parse_args(argv)  # a usage error exits 2
     shown = sys.maxsize if args.all else args.max
@@ -698,9 +697,9 @@ def main(argv):
     try:
         return compare(args.reference, args.run, args.rtol, shown, out)
     except Unusable as error:
-        print(f"compare_outputs.py: unusable input: {error}", file=sys.stderr)
+        print(f"visco2d-diff: unusable input: {error}", file=sys.stderr)
         return 2
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    sys.exit(main())
