@@ -26,6 +26,7 @@ import argparse
 import math
 import os
 import sys
+import textwrap
 
 import h5py
 import numpy as np
@@ -34,8 +35,10 @@ from . import figures  # the project's matplotlib style
 from . import hertz
 from .case import summary_value, text_of
 from .figures import plt, mtri, MaxNLocator
+from matplotlib.collections import PolyCollection
 
 REPORT_NAME = "report.png"
+TITLE_WIDTH = 140        # characters per title line (the figure is 17 inches wide at 11.5 pt)
 # the BRUISE criterion -> (the /bruise measure, its label, display unit, factor from the file's unit)
 MEASURES = {
     "MAXSHEAR": ("max_shear", "maximum shear (σ₁ − σ₃)/2", "MPa", 1e-6),
@@ -180,20 +183,33 @@ def time_panels(case, axes):
 def pressure_panel(case, ax):
     """p(r) at the largest plate force and at maximum deformation (/pressure), Hertz's p0 sqrt(1 - r²/a²)."""
     p = case["pressure"]
+    edge_shown = False
     for rkey, pkey, tkey, colour, marker, what in (
             ("r_force_max_mm", "p_force_max_MPa", "t_force_max_ms", "C1", "o", "at maximum force"),
             ("r_alpha_max_mm", "p_alpha_max_MPa", "t_alpha_max_step_ms", "C0", "s", "at maximum deformation")):
         if rkey in p and pkey in p:
             t = number(case, tkey)
-            ax.plot(p[rkey], p[pkey], "-" + marker, color=colour, lw=1.6, ms=5, mfc="none" if marker == "s" else colour,
+            r, pressure = np.asarray(p[rkey]), np.asarray(p[pkey])
+            touching = np.flatnonzero(pressure > 0.0)
+            edge = touching[-1] if touching.size > 1 else None     # the outermost node in contact
+            inner = slice(0, edge) if edge is not None else slice(None)
+            ax.plot(r[inner], pressure[inner], "-" + marker, color=colour, lw=1.6, ms=5,
+                    mfc="none" if marker == "s" else colour,
                     label=f"FE {what}" + (f", t = {t:.2f} ms" if t is not None else ""))
+            if edge is not None:
+                ax.plot([r[edge]], [pressure[edge]], "D", color=colour, mfc="none", ms=7, mew=1.4)
+                edge_shown = True
+    if edge_shown:      # pressure.csv's last node in contact (doc/outputs.md): not drawn as a pressure
+        ax.plot([], [], "D", color="0.3", mfc="none", ms=7, mew=1.4,
+                label="outermost node in contact: its reaction carries the contact\n"
+                      "out to the true edge, its area only the edge inside (reads high)")
     p0, a = number(case, "hertz_q_max_MPa"), number(case, "hertz_contact_radius_mm")
     if p0 is not None and a is not None and a > 0.0:
         r = np.linspace(0.0, a, 200)
         ax.plot(r, p0 * np.sqrt(1.0 - (r / a) ** 2), "--", color="0.45", lw=1.2,
                 label=f"Hertz at its maximum: p₀ = {p0:.3g} MPa, a = {a:.3g} mm")
     ax.set_xlim(left=0.0)
-    ax.set_ylim(0.0, ax.get_ylim()[1] * 1.35)                  # room for the legend above the curves
+    ax.set_ylim(0.0, ax.get_ylim()[1] * (1.75 if edge_shown else 1.35))   # room for the legend above the curves
     ax.set_xlabel("radius r (mm, deformed)")
     ax.set_ylabel("contact pressure p (MPa)")
     ax.set_title("contact pressure p(r)")
@@ -220,7 +236,11 @@ def envelope_data(case):
             "bruised_nodal": gauss_to_nodes(bruise["bruised"].astype(float), case["elements"], nnode)
             if "bruised" in bruise else None,
             "threshold": float(threshold[assessed].max()) * factor if assessed.any() else None,
-            "uniform_threshold": assessed.any() and np.ptp(threshold[assessed]) == 0.0}
+            "uniform_threshold": assessed.any() and np.ptp(threshold[assessed]) == 0.0,
+            # elements no BRUISE card assesses (a PAD's): drawn grey, not in the colour scale
+            "outside": ~assessed.any(axis=1) if assessed.any() else np.zeros(len(envelope), bool),
+            "outside_label": "pad (not flesh: not assessed)" if "pad_compression_max_mm" in case["summary"]
+            else "not assessed (no BRUISE card)"}
     gauss_r = bruise.get("gauss_r")
     gauss_z = bruise.get("gauss_z")
     if gauss_r is not None and gauss_z is not None:
@@ -253,10 +273,14 @@ def envelope_panel(case, data, ax, box=None):
     nodes = case["nodes"] * 1e3
     elements = case["elements"]
     triangles = np.vstack([elements[:, [0, 1, 2]], elements[:, [0, 2, 3]]])
-    grid = mtri.Triangulation(nodes[:, 0], nodes[:, 1], triangles)
-    top = max(float(data["nodal"].max()), data["peak"][2])
+    outside = data["outside"]
+    grid = mtri.Triangulation(nodes[:, 0], nodes[:, 1], triangles, mask=np.concatenate([outside, outside]))
+    flesh = np.unique(elements[~outside])
+    top = max(float(data["nodal"][flesh].max()), data["peak"][2])
     levels = MaxNLocator(20).tick_values(0.0, top if top > 0 else 1.0)
     filled = ax.tricontourf(grid, data["nodal"], levels=levels, cmap="viridis")
+    if outside.any():
+        ax.add_collection(PolyCollection(nodes[elements[outside]], facecolor="0.82", edgecolor="0.6", lw=0.3))
     if box is not None:
         ax.triplot(grid, color="w", lw=0.25, alpha=0.35)
     outline = None
@@ -314,6 +338,8 @@ def envelope_panels(case, data, fig, whole_spec, zoom_spec, bar_spec):
     handles = [plt.Line2D([], [], color="r", lw=2.2, label=outline),
                plt.Line2D([], [], ls="none", marker="*", color="w", mec="k", ms=12,
                           label=f"envelope maximum {data['peak'][2]:.3g} {data['unit']}")]
+    if data["outside"].any():
+        handles.append(plt.Rectangle((0, 0), 1, 1, fc="0.82", ec="0.6", label=data["outside_label"]))
     if len(axes) > 1 and data["bruised_points"] is not None:
         handles.insert(1, plt.Line2D([], [], ls="none", marker=".", color="r", ms=6, label="bruised Gauss points"))
     axes[-1].legend(handles=handles, loc="upper right", fontsize=8.5, framealpha=0.9)
@@ -406,6 +432,24 @@ def numbers_text(case, data):
 
 # ----------------------------------------------------------------------------- one case
 
+def wrapped(text, width):
+    """text in lines of at most `width` characters: at spaces, and a longer word (a case name,
+    a path) at its last _ or / that fits, else at the width."""
+    lines = []
+    for piece in textwrap.wrap(text, width, break_long_words=False, break_on_hyphens=False) or [""]:
+        while len(piece) > width:
+            cut = max(piece.rfind("_", 0, width), piece.rfind("/", 0, width)) + 1 or width
+            lines.append(piece[:cut])
+            piece = piece[cut:]
+        lines.append(piece)
+    return lines
+
+
+def title_lines(name, setting, path, width=TITLE_WIDTH):
+    """The report's title: case and title, the setting, the results file, each wrapped to `width`."""
+    return "\n".join(wrapped(name, width) + wrapped(setting, width) + wrapped(f"({path})", width))
+
+
 def report(case, path):
     """Draw the report of one case into path (written whole: a temporary file, then renamed).
     Returns False (nothing written) when no panel applies."""
@@ -419,13 +463,13 @@ def report(case, path):
         fig = plt.figure(figsize=(17, 10.5 if data is not None else 9.5))
         if data is not None:
             spec = fig.add_gridspec(2, 5, width_ratios=[1, 1, 1, 0.9, 0.04], height_ratios=[1, 1.35],
-                                    left=0.05, right=0.95, bottom=0.06, top=0.9, wspace=0.3, hspace=0.25)
+                                    left=0.05, right=0.95, bottom=0.06, top=0.88, wspace=0.3, hspace=0.25)
             time_axes = [fig.add_subplot(spec[0, k]) for k in range(3)]
             pressure_ax = fig.add_subplot(spec[1, 0]) if pressure else None
             envelope_panels(case, data, fig, spec[1, 3], spec[1, 1:3], spec[1, 4])
             text_ax = fig.add_subplot(spec[0, 3:])
         else:
-            spec = fig.add_gridspec(2, 3, left=0.06, right=0.98, bottom=0.07, top=0.9, wspace=0.28, hspace=0.3)
+            spec = fig.add_gridspec(2, 3, left=0.06, right=0.98, bottom=0.07, top=0.88, wspace=0.28, hspace=0.3)
             time_axes = [fig.add_subplot(spec[0, k]) for k in range(3)]
             pressure_ax = fig.add_subplot(spec[1, 0]) if pressure else None
             text_ax = fig.add_subplot(spec[1, 1])
@@ -451,10 +495,10 @@ def report(case, path):
                  transform=text_ax.transAxes,
                  bbox=dict(boxstyle="round,pad=0.5", fc="0.96", ec="0.7"))
     stop = case["summary"].get("stop_reason")
-    fig.suptitle(f"{case['case']}: {case['title']}\n{case['summary'].get('analysis', '')} "
-                 f"{case['geometry'].lower()}, {figures.mesh_label(case)}"
-                 + (f", plate {case['summary'].get('plate', '')}" if "plate" in case["summary"] else "")
-                 + (f", stopped at {stop}" if stop else "") + f"  ({case['path']})", fontsize=11.5)
+    setting = (f"{case['summary'].get('analysis', '')} {case['geometry'].lower()}, {figures.mesh_label(case)}"
+               + (f", plate {case['summary'].get('plate', '')}" if "plate" in case["summary"] else "")
+               + (f", stopped at {stop}" if stop else ""))
+    fig.suptitle(title_lines(f"{case['case']}: {case['title']}", setting, case["path"]), fontsize=11.5)
     temporary = path + ".part.png"
     try:
         fig.savefig(temporary)
