@@ -73,3 +73,31 @@ def test_every_archived_reference_reads(root):
         history = case.read_history(os.path.dirname(path))
         lengths = {len(column) for column in history.values()}
         assert len(lengths) == 1, path
+
+
+def test_results_of_a_run_and_not_a_case(root, tmp_path):
+    """read_results on a run of the Table 1 deck: the mesh the summary counts, 0-based elements,
+    the history as long as history.csv; and the reasons a folder is not a case."""
+    import pytest
+    from visco2d import runner
+    exe = os.path.join(root, "build", "install", "bin", "visco2d")
+    if not os.access(exe, os.X_OK):
+        pytest.skip("no build/install/bin/visco2d (make build)")
+    done = runner.run(exe, [os.path.join(root, "inputs", "table1_elastic.inp")], str(tmp_path))
+    assert done.returncode == 0, done.stderr
+    results = case.read_results(str(tmp_path / "table1_elastic"))
+    summary = case.read_summary(str(tmp_path / "table1_elastic"))
+    assert results["case"] == "table1_elastic" and results["analysis"] == "DYNAMIC"
+    assert results["nodes"].shape == (int(summary["nodes"]), 2)
+    assert results["elements"].shape == (int(summary["elements"]), 4)
+    assert results["elements"].min() == 0 and results["elements"].max() == int(summary["nodes"]) - 1
+    history = case.read_history(str(tmp_path / "table1_elastic"))
+    assert len(results["history"]["alpha_mm"]) == len(history["alpha_mm"])
+    assert results["summary"]["alpha_max_mm"] == pytest.approx(float(summary["alpha_max_mm"]), rel=1e-9)
+    assert results["fields"] and results["fields"][0]["displacement"].shape[0] == int(summary["nodes"])
+    with pytest.raises(case.NotACase, match="no results.h5"):
+        case.read_results(str(tmp_path))
+    (tmp_path / "broken").mkdir()
+    (tmp_path / "broken" / "results.h5").write_text("not HDF5")
+    with pytest.raises(case.NotACase, match="cannot be read as HDF5"):
+        case.read_results(str(tmp_path / "broken"))

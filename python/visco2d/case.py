@@ -9,6 +9,11 @@ import os
 
 SUMMARY = "summary.txt"
 HISTORY = "history.csv"
+RESULTS = "results.h5"
+
+
+class NotACase(ValueError):
+    """A folder or file that is not a visco2d case (the message says why)."""
 
 
 def read_summary(path):
@@ -91,3 +96,59 @@ def summary_value(value):
     if isinstance(value, (bytes, str)) or type(value).__name__ in ("bytes_", "str_"):
         return text_of(value)
     return value.item() if hasattr(value, "item") else value
+
+
+def read_group(group):
+    """Every dataset of an HDF5 group as {name: numpy array or scalar}."""
+    import h5py
+    return {name: item[...] for name, item in group.items() if isinstance(item, h5py.Dataset)}
+
+
+def read_results(folder):
+    """OUT/<case>/results.h5 as a dict (raises NotACase with the reason when it is not a case).
+
+    Keys: folder, path, case, title, geometry, analysis, nodes (nnode, 2) in m, elements (nelem, 4)
+    0-based, summary {key: number or text}, history, pressure and bruise ({dataset: array}; None when
+    the run has none) and fields (the snapshots in time order: name, label, time, displacement,
+    stress, stress_gauss).
+    """
+    import h5py
+    path = os.path.join(folder, RESULTS)
+    if not os.path.isdir(folder):
+        raise NotACase(f"{folder} is not a folder")
+    if not os.path.isfile(path):
+        raise NotACase(f"{folder} is not a visco2d case folder (no {RESULTS} in it)")
+    try:
+        with h5py.File(path, "r") as f:
+            for group in ("/mesh", "/summary", "/history"):
+                if group not in f:
+                    raise NotACase(f"{path} has no {group} group: not a visco2d results file")
+            fields = []
+            for name in sorted(f["/fields"].keys()) if "/fields" in f else []:
+                group = f["/fields"][name]
+                fields.append({
+                    "name": name,
+                    "label": text_of(group.attrs.get("label", "")),
+                    "time": float(group.attrs["time"]),
+                    "displacement": group["displacement"][...],
+                    "stress": group["stress"][...],
+                    "stress_gauss": group["stress_gauss"][...] if "stress_gauss" in group else None,
+                })
+            return {
+                "folder": folder,
+                "path": path,
+                "case": text_of(f.attrs.get("case", os.path.basename(os.path.normpath(folder)))),
+                "title": text_of(f.attrs.get("title", "")),
+                "geometry": text_of(f.attrs.get("geometry", "AXISYMMETRIC")),
+                "analysis": text_of(f.attrs.get("analysis", "")),
+                "nodes": f["/mesh/nodes"][...],
+                "elements": f["/mesh/elements"][...] - 1,
+                "summary": {key: summary_value(item[()]) for key, item in f["/summary"].items()},
+                "history": read_group(f["/history"]),
+                "pressure": read_group(f["/pressure"]) if "/pressure" in f else None,
+                "bruise": read_group(f["/bruise"]) if "/bruise" in f else None,
+                "fields": fields,
+                "has_fields": "/fields" in f,
+            }
+    except OSError as problem:
+        raise NotACase(f"{path} cannot be read as HDF5 ({problem})") from None

@@ -26,10 +26,9 @@ import re
 import sys
 
 from . import hertz, runner
-from .case import summary_value, text_of
+from .case import NotACase, read_results
 from .deck import set_card_value, set_card_word
 
-import h5py
 import numpy as np
 import matplotlib
 
@@ -153,33 +152,13 @@ def variant_results(args, source_case, case, change, label):
 
 
 def load_run(path):
-    """Read one results.h5 into a dict: case, title, nodes, elements (0-based), summary, history, fields."""
-    if not os.path.isfile(path):
-        fail(f"{path} not found")
-    with h5py.File(path, "r") as f:
-        for group in ("/mesh", "/history", "/summary", "/fields"):
-            if group not in f:
-                fail(f"{path} has no {group} group (not a dynamic visco2d run?)")
-        run = {
-            "path": path,
-            "case": text_of(f.attrs["case"]),
-            "title": text_of(f.attrs["title"]),
-            "nodes": f["/mesh/nodes"][...],
-            "elements": f["/mesh/elements"][...] - 1,
-            "summary": {key: summary_value(item[()]) for key, item in f["/summary"].items()},
-            "history": {key: f["/history"][key][...] for key in f["/history"]},
-            "fields": [],
-        }
-        for name in sorted(f["/fields"].keys()):
-            group = f["/fields"][name]
-            run["fields"].append({
-                "name": name,
-                "label": text_of(group.attrs.get("label", "")),
-                "time": float(group.attrs["time"]),
-                "displacement": group["displacement"][...],
-                "stress": group["stress"][...],
-                "stress_gauss": group["stress_gauss"][...] if "stress_gauss" in group else None,
-            })
+    """Read one results.h5 (visco2d.case.read_results); stops with the reason when it is not a dynamic run."""
+    try:
+        run = read_results(os.path.dirname(path) or ".")
+    except NotACase as problem:
+        fail(str(problem))
+    if not run["has_fields"]:
+        fail(f"{path} has no /fields group (not a dynamic visco2d run?)")
     return run
 
 

@@ -28,12 +28,11 @@ import os
 import sys
 import textwrap
 
-import h5py
 import numpy as np
 
 from . import figures  # the project's matplotlib style
 from . import hertz
-from .case import summary_value, text_of
+from .case import NotACase, read_results
 from .figures import plt, mtri, MaxNLocator
 from matplotlib.collections import PolyCollection
 
@@ -48,9 +47,6 @@ MEASURES = {
 }
 
 
-class NotACase(Exception):
-    """A folder that is not a visco2d case folder (the message says why)."""
-
 
 def fail(message):
     """Print an error message on stderr and stop with status 1."""
@@ -60,39 +56,9 @@ def fail(message):
 
 # ----------------------------------------------------------------------------- reading a case
 
-def read_group(group):
-    """Every dataset of an HDF5 group as {name: numpy array or scalar}."""
-    return {name: item[...] for name, item in group.items() if isinstance(item, h5py.Dataset)}
-
-
 def load_case(folder):
-    """Read OUT/<case>/results.h5 into a dict; raises NotACase with the reason if it is not a case."""
-    path = os.path.join(folder, "results.h5")
-    if not os.path.isdir(folder):
-        raise NotACase(f"{folder} is not a folder")
-    if not os.path.isfile(path):
-        raise NotACase(f"{folder} is not a visco2d case folder (no results.h5 in it)")
-    try:
-        with h5py.File(path, "r") as f:
-            for group in ("/mesh", "/summary", "/history"):
-                if group not in f:
-                    raise NotACase(f"{path} has no {group} group: not a visco2d results file")
-            case = {
-                "folder": folder,
-                "path": path,
-                "case": text_of(f.attrs.get("case", os.path.basename(os.path.normpath(folder)))),
-                "title": text_of(f.attrs.get("title", "")),
-                "geometry": text_of(f.attrs.get("geometry", "AXISYMMETRIC")),
-                "nodes": f["/mesh/nodes"][...],
-                "elements": f["/mesh/elements"][...] - 1,
-                "summary": {key: summary_value(item[()]) for key, item in f["/summary"].items()},
-                "history": read_group(f["/history"]),
-                "pressure": read_group(f["/pressure"]) if "/pressure" in f else None,
-                "bruise": read_group(f["/bruise"]) if "/bruise" in f else None,
-            }
-    except OSError as problem:
-        raise NotACase(f"{path} cannot be read as HDF5 ({problem})")
-    return case
+    """Read OUT/<case>/results.h5 (visco2d.case.read_results); NotACase with the reason if it is not a case."""
+    return read_results(folder)
 
 
 def number(case, key):
