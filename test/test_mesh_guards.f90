@@ -17,7 +17,7 @@ program test_mesh_guards
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
   use visco2d_overlap, only: overlap_t, check_edges, check_overlaps, edge_keys, overlap_none, wedges_overlap
-  use visco2d_renumber, only: sort_integers
+  use visco2d_sorting, only: sorted_order
   use visco2d_budget, only: run_size_t, parse_memory_size, set_memory_limit, memory_limit, bytes_text, count_text, &
                             seconds_text, sphere_mesh_counts, grid_mesh_counts, machine_memory
   use visco2d_estimate, only: estimate_run, check_run_size, long_run_note
@@ -472,7 +472,7 @@ contains
     call system_clock(clock1)
     if (allocated(error)) return
     keys = edge_keys(deck%mesh%connectivity, deck%mesh%nnode)
-    call sort_integers(keys, order)
+    order = sorted_order(keys)
     call check_edges(deck%mesh%connectivity, keys, order, finding)
     call check('level5_edges_clean', finding%kind == overlap_none)
     call check_overlaps(deck%mesh%xy, deck%mesh%connectivity, keys, order, 1.0e-9_dp*deck%mesh%size, finding, pairs)

@@ -18,6 +18,7 @@ module visco2d_impact
                              nearest_free_node, pad_compression
   use visco2d_hertz, only: put_hertz_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column, record_warn
+  use visco2d_sorting, only: sorted_order
   implicit none
   private
 
@@ -355,18 +356,9 @@ contains
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     integer, allocatable :: nodes(:)
-    integer :: i, j, node
+    integer :: i, node
     nodes = pack([(i, i = 1, deck%mesh%nnode)], impact%ever_active)
-    do i = 2, size(nodes)                          ! insertion sort by undeformed r (a few nodes)
-      node = nodes(i)
-      j = i - 1
-      do while (j >= 1)
-        if (deck%mesh%xy(1, nodes(j)) <= deck%mesh%xy(1, node)) exit
-        nodes(j + 1) = nodes(j)
-        j = j - 1
-      end do
-      nodes(j + 1) = node
-    end do
+    nodes = nodes(sorted_order(deck%mesh%xy(1, nodes)))   ! by undeformed r
     record%pressure%columns = [character(len=27) :: 'node', 'r_mm', 'r_force_max_mm', 'p_force_max_MPa', &
                                'r_alpha_max_mm', 'p_alpha_max_MPa', 'reaction_z_force_max_ring_N', &
                                'reaction_z_alpha_max_ring_N']

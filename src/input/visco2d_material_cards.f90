@@ -11,6 +11,7 @@ module visco2d_material_cards
   use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
                               material_kind_uniaxial, elastic_constants_from_e_nu
   use visco2d_relaxation, only: uniaxial_to_shear
+  use visco2d_sorting, only: sorted_order
   implicit none
   private
 
@@ -160,7 +161,6 @@ contains
     real(dp), allocatable :: shear(:), rate(:)
     character(:), allocatable :: message
     integer, allocatable :: order(:)
-    integer :: i, j
     if (material%kind == material_kind_elastic) return
     if (material%kind == material_kind_uniaxial) then
       if (size(material%uniaxial_young) == 0) then
@@ -182,15 +182,7 @@ contains
     material%long_term_shear = sum(shear, mask=rate == 0.0_dp)
     shear = pack(shear, rate > 0.0_dp)
     rate = pack(rate, rate > 0.0_dp)
-    order = [(i, i = 1, size(rate))]
-    do i = 2, size(order)                       ! insertion sort by rate (few terms)
-      j = i
-      do while (j > 1)
-        if (rate(order(j - 1)) <= rate(order(j))) exit
-        order([j - 1, j]) = order([j, j - 1])
-        j = j - 1
-      end do
-    end do
+    order = sorted_order(rate)                  ! by increasing rate
     material%prony_shear = shear(order)
     material%prony_rate = rate(order)
     material%shear = material%long_term_shear + sum(material%prony_shear)

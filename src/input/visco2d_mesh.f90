@@ -6,7 +6,7 @@
 module visco2d_mesh
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp, geometry_tolerance
-  use visco2d_renumber, only: sort_integers
+  use visco2d_sorting, only: sorted_order
   use visco2d_mesh_generator, only: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, &
                                     edge_set_bottom, edge_set_top, edge_set_name
   implicit none
@@ -73,7 +73,7 @@ contains
         keys(count) = int(pairs(1, count), int64)*int(mesh%nnode + 1, int64) + int(pairs(2, count), int64)
       end do
     end do
-    call sort_integers(keys, order)
+    order = sorted_order(keys)
     allocate(edges(2, count))
     nedge = 0
     do i = 1, count

@@ -10,7 +10,8 @@ module visco2d_mesh_build
   use visco2d_quadrilateral, only: element_min_jacobian
   use visco2d_mesh_generator, only: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, &
                                     edge_set_bottom, edge_set_top
-  use visco2d_renumber, only: reverse_cuthill_mckee, half_bandwidth, sort_integers
+  use visco2d_renumber, only: reverse_cuthill_mckee, half_bandwidth
+  use visco2d_sorting, only: sorted_order
   use visco2d_overlap, only: overlap_t, check_edges, check_overlaps, edge_keys, overlap_none, overlap_same_nodes, &
                              overlap_shared_edge, overlap_same_side, overlap_area, overlap_coincident_nodes, &
                              overlap_hanging_node
@@ -37,7 +38,6 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer, allocatable :: order(:), element_order(:), edge_order(:)
     integer(int64), allocatable :: keys(:)
-    integer :: i
 
     if (input%nnode == 0 .or. input%nelem == 0) then
       call set_error(error, 'missing mesh: give NODE and ELEMENT cards or a MESH card', file=deck%file)
@@ -58,7 +58,7 @@ contains
     call check_extent(input, deck, geometry, mesh, order, error); if (allocated(error)) return
     call check_jacobians(deck, mesh, error); if (allocated(error)) return
     keys = edge_keys(mesh%connectivity, mesh%nnode)
-    call sort_integers(keys, edge_order)
+    edge_order = sorted_order(keys)
     call check_covering(input, deck, mesh, order, keys, edge_order, error); if (allocated(error)) return
 
     if (allocated(input%edge_set)) then
@@ -122,7 +122,7 @@ contains
     integer, allocatable, intent(out) :: order(:)
     type(error_t), allocatable, intent(inout) :: error
     integer :: i, line
-    call sort_integers(int(input%node_id(1:input%nnode), int64), order)
+    order = sorted_order(input%node_id(1:input%nnode))
     mesh%nnode = input%nnode
     mesh%node_id = input%node_id(order)
     mesh%xy = input%xy(:, order)
@@ -146,7 +146,7 @@ contains
     integer, allocatable, intent(out) :: element_order(:)
     type(error_t), allocatable, intent(inout) :: error
     integer :: e, j, node, line
-    call sort_integers(int(input%element_id(1:input%nelem), int64), element_order)
+    element_order = sorted_order(input%element_id(1:input%nelem))
     mesh%nelem = input%nelem
     mesh%element_id = input%element_id(element_order)
     mesh%element_line = input%element_line(element_order)

@@ -25,7 +25,7 @@
 module visco2d_overlap
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp, pi
-  use visco2d_renumber, only: sort_integers
+  use visco2d_sorting, only: sorted_order
   use visco2d_overlap_finding, only: overlap_t, overlap_none, overlap_same_nodes, overlap_shared_edge, &
                                      overlap_same_side, overlap_area, overlap_coincident_nodes, overlap_hanging_node
   use visco2d_overlap_boundary, only: check_boundary, check_covering
@@ -208,23 +208,11 @@ contains
     real(dp), intent(in) :: from(:), width(:)
     integer, intent(out) :: a, b
     integer, allocatable :: order(:)
-    integer :: i, j, swap, n
+    integer :: i, j, n
     a = 0
     b = 0
     n = size(from)
-    if (n > 16) then                 ! the bits of non-negative doubles sort like their values
-      call sort_integers(transfer(from, [0_int64], n), order)
-    else                             ! the usual few: insertion sort
-      order = [(i, i = 1, n)]
-      do i = 2, n
-        j = i
-        do while (j > 1)
-          if (from(order(j - 1)) <= from(order(j))) exit
-          swap = order(j); order(j) = order(j - 1); order(j - 1) = swap
-          j = j - 1
-        end do
-      end do
-    end if
+    order = sorted_order(from)
     do i = 1, n
       j = mod(i, n) + 1
       if (from(order(i)) + width(order(i)) > from(order(j)) + merge(2.0_dp*pi, 0.0_dp, j == 1) + angle_tolerance) then

@@ -22,6 +22,7 @@ module visco2d_pad_mesh
   use visco2d_mesh_build, only: bandwidth_numbering
   use visco2d_mesh, only: boundary_sides
   use visco2d_deck_types, only: deck_t, fix_t, line_error, add_warning, analysis_dynamic
+  use visco2d_sorting, only: sorted_order
   implicit none
   private
 
@@ -258,21 +259,10 @@ contains
     end if
   end function boundary_radii
 
-  !> Sort in ascending order (insertion sort: a few dozen values).
+  !> Sort in ascending order.
   pure subroutine sort_reals(x)
     real(dp), intent(inout) :: x(:)
-    real(dp) :: value
-    integer :: i, j
-    do i = 2, size(x)
-      value = x(i)
-      j = i - 1
-      do while (j >= 1)
-        if (x(j) <= value) exit
-        x(j + 1) = x(j)
-        j = j - 1
-      end do
-      x(j + 1) = value
-    end do
+    x = x(sorted_order(x))
   end subroutine sort_reals
 
   !> Depths of the pad's rows from its top: without a cover, steps of

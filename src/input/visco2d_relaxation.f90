@@ -29,6 +29,7 @@
 module visco2d_relaxation
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, short_real
+  use visco2d_sorting, only: sorted_order
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   implicit none
   private
@@ -199,24 +200,13 @@ contains
     merged_rate = sorted_rate(1:count)
   end subroutine merge_equal_rates
 
-  !> Insertion sort of (modulus, rate) pairs by increasing rate (few terms).
+  !> Sort (modulus, rate) pairs by increasing rate.
   pure subroutine sort_by_rate(modulus, rate)
     real(dp), intent(inout) :: modulus(:), rate(:)
-    real(dp) :: key_rate, key_modulus
-    integer :: i, j
-    do i = 2, size(rate)
-      key_rate = rate(i)
-      key_modulus = modulus(i)
-      j = i - 1
-      do while (j >= 1)
-        if (rate(j) <= key_rate) exit
-        rate(j + 1) = rate(j)
-        modulus(j + 1) = modulus(j)
-        j = j - 1
-      end do
-      rate(j + 1) = key_rate
-      modulus(j + 1) = key_modulus
-    end do
+    integer, allocatable :: order(:)
+    order = sorted_order(rate)
+    modulus = modulus(order)
+    rate = rate(order)
   end subroutine sort_by_rate
 
   !> Partial fractions of F(s) = numerator S(s)/(target - s S(s)),

@@ -2,10 +2,11 @@
 !> (reverse Cuthill-McKee from a pseudo-peripheral start node, per component).
 module visco2d_renumber
   use, intrinsic :: iso_fortran_env, only: int64
+  use visco2d_sorting, only: sorted_order
   implicit none
   private
 
-  public :: reverse_cuthill_mckee, half_bandwidth, sort_integers
+  public :: reverse_cuthill_mckee, half_bandwidth
 
 contains
 
@@ -49,7 +50,7 @@ contains
     subroutine breadth_first(first, count)
       integer, intent(in) :: first
       integer, intent(inout) :: count
-      integer :: head, node, k, m, candidates(64), ncand, i, j, swap
+      integer :: head, node, k, m, candidates(64), ncand
       count = count + 1
       order(count) = first
       position(first) = -1
@@ -70,15 +71,8 @@ contains
             order(count) = m
           end if
         end do
-        do i = 2, ncand                        ! insertion sort by degree
-          j = i
-          do while (j > 1)
-            if (degree(candidates(j - 1)) <= degree(candidates(j))) exit
-            swap = candidates(j); candidates(j) = candidates(j - 1); candidates(j - 1) = swap
-            j = j - 1
-          end do
-        end do
-        order(count + 1:count + ncand) = candidates(1:ncand)
+        ! by increasing degree, ties in the order found
+        order(count + 1:count + ncand) = candidates(sorted_order(degree(candidates(1:ncand))))
         count = count + ncand
       end do
     end subroutine breadth_first
@@ -154,7 +148,7 @@ contains
     ! Sort pairs by (first, second) and drop duplicates.
     allocate(keys(count))
     keys = int(pairs(1, 1:count) - 1, int64)*nnode + pairs(2, 1:count) - 1
-    call sort_integers(keys, order)
+    order = sorted_order(keys)
     allocate(start(nnode + 1), neighbours(count))
     start = 0
     k = 0
@@ -177,42 +171,4 @@ contains
     neighbours = neighbours(1:k)
   end subroutine node_graph
 
-  !> Stable merge sort: order is the permutation with keys(order) ascending.
-  subroutine sort_integers(keys, order)
-    integer(int64), intent(in) :: keys(:)
-    integer, allocatable, intent(out) :: order(:)
-    integer, allocatable :: work(:)
-    integer :: n, width, left, middle, right, i, j, k
-    n = size(keys)
-    allocate(order(n), work(n))
-    order = [(i, i = 1, n)]
-    width = 1
-    do while (width < n)
-      left = 1
-      do while (left <= n)
-        middle = min(left + width - 1, n)
-        right = min(left + 2*width - 1, n)
-        i = left
-        j = middle + 1
-        k = left
-        do while (i <= middle .and. j <= right)
-          if (keys(order(i)) <= keys(order(j))) then
-            work(k) = order(i); i = i + 1
-          else
-            work(k) = order(j); j = j + 1
-          end if
-          k = k + 1
-        end do
-        do while (i <= middle)
-          work(k) = order(i); i = i + 1; k = k + 1
-        end do
-        do while (j <= right)
-          work(k) = order(j); j = j + 1; k = k + 1
-        end do
-        left = left + 2*width
-      end do
-      order = work
-      width = 2*width
-    end do
-  end subroutine sort_integers
 end module visco2d_renumber
