@@ -51,7 +51,7 @@ REACH = {
     "visco2d_viscoelastic": (2, 1),
 }
 
-FLOORS = ["core", "input", "base", "io", "bruise", "contact", "dynamics", ""]
+FLOORS = ["core", "input", "base", "plasticity", "io", "bruise", "contact", "dynamics", ""]
 USE = re.compile(r"^\s*use\s+(visco2d_\w+)", re.IGNORECASE | re.MULTILINE)
 MODULE = re.compile(r"^\s*module\s+(visco2d_\w+)\s*$", re.IGNORECASE | re.MULTILINE)
 
