@@ -16,10 +16,20 @@
 !>  5. Unloading is elastic, reloading in reverse yields at the hardened
 !>     stress (isotropic hardening), the stress stays on the yield surface,
 !>     the plastic work is positive and equals sigma_y debar summed.
+!>  6. The slider in series with a Prony material (viscoplastic_update): a
+!>     shear step past the yield (dt = 0, mu = G(0)) returns to tau_y with
+!>     gamma_e = tau_y/G(0); held, the stress relaxes as tau_y G(t)/G(0)
+!>     with gamma_p frozen (the histories see only the elastic strain), to
+!>     round-off over 200 steps of any length; with a yield stress no step
+!>     reaches, the update is the viscoelastic one of eqs. [13]-[24] (the
+!>     Table 3 material, a random strain path, equal to round-off).
 program test_plasticity
   use visco2d_kinds, only: dp
   use visco2d_plasticity, only: hardening_t, bilinear_hardening, yield_stress, return_result_t, radial_return, &
-                                consistent_tangent, deviatoric_norm
+                                consistent_tangent, deviatoric_norm, viscoplastic_update
+  use visco2d_material, only: material_t, material_kind_viscoelastic, shear_relaxation_modulus
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, deviatoric_part, deviatoric_stress, &
+                                  history_stress, update_history
   use visco2d_testing, only: check, check_close, test_summary
   implicit none
   real(dp), parameter :: young = 4.07e6_dp, poisson = 0.32_dp         ! apple flesh (issue data)
@@ -31,6 +41,8 @@ program test_plasticity
   call tangent_by_differences()
   call simple_shear_table()
   call unload_and_reverse()
+  call relaxation_after_yield()
+  call viscoelastic_limit()
   call test_summary('test_plasticity')
 
 contains
@@ -242,4 +254,79 @@ contains
                      yield_stress(hardening, ebar), rtol=1.0e-12_dp)
     call check('reverse_yield_not_initial', sqrt(3.0_dp)*abs(stress(4)) > 1.01_dp*yield)
   end subroutine unload_and_reverse
+
+  !> A viscoelastic material of two Prony terms (beta 50 and 2000 1/s) and G_inf.
+  function prony_material() result(material)
+    type(material_t) :: material
+    material%kind = material_kind_viscoelastic
+    material%long_term_shear = 0.6e6_dp
+    material%prony_shear = [0.5e6_dp, 0.4e6_dp]
+    material%prony_rate = [50.0_dp, 2000.0_dp]
+    material%shear = material%long_term_shear + sum(material%prony_shear)
+    material%bulk = 5.0e6_dp
+  end function prony_material
+
+  subroutine relaxation_after_yield()
+    type(material_t) :: material
+    type(hardening_t) :: hardening
+    type(step_coefficients_t) :: instant, step
+    type(return_result_t) :: state
+    real(dp) :: stress(4), history(4, 2), ebar, gamma_p, tau_y, t, dt, worst
+    integer :: k
+    material = prony_material()
+    hardening%plastic_strain = [0.0_dp]
+    hardening%stress = [yield]
+    hardening%final_slope = 0.0_dp                       ! perfectly plastic
+    tau_y = yield/sqrt(3.0_dp)
+    stress = 0.0_dp; history = 0.0_dp; ebar = 0.0_dp
+    instant = step_coefficients(material, 0.0_dp)
+    call viscoplastic_update(material, instant, hardening, [0.0_dp, 0.0_dp, 0.0_dp, 3.0_dp*tau_y/material%shear], &
+                             stress, history, ebar, state)
+    call check_close('relaxation_step_returns_to_yield', stress(4), tau_y, rtol=1.0e-13_dp)
+    gamma_p = 3.0_dp*tau_y/material%shear - tau_y/material%shear
+    call check_close('relaxation_step_plastic_strain', state%plastic_increment(4), gamma_p, rtol=1.0e-12_dp)
+    t = 0.0_dp
+    worst = 0.0_dp
+    do k = 1, 200
+      dt = 1.0e-5_dp*1.03_dp**k                           ! growing steps: 10 us to about 4 ms
+      step = step_coefficients(material, dt)
+      call viscoplastic_update(material, step, hardening, [0.0_dp, 0.0_dp, 0.0_dp, 0.0_dp], stress, history, ebar, state)
+      t = t + dt
+      worst = max(worst, abs(stress(4) - tau_y*shear_relaxation_modulus(material, t)/material%shear)/tau_y)
+      if (state%yielded) exit
+    end do
+    call check('relaxation_hold_elastic', .not. state%yielded)
+    call check_close('relaxation_hold_closed_form', worst, 0.0_dp, rtol=0.0_dp, atol=1.0e-12_dp)
+    call check_close('relaxation_hold_plastic_frozen', ebar, gamma_p/sqrt(3.0_dp), rtol=1.0e-14_dp)
+  end subroutine relaxation_after_yield
+
+  subroutine viscoelastic_limit()
+    type(material_t) :: material
+    type(hardening_t) :: hardening
+    type(step_coefficients_t) :: step
+    type(return_result_t) :: state
+    real(dp) :: stress(4), reference(4), history(4, 2), reference_history(4, 2), ebar, increment(4), draw(4)
+    real(dp) :: deviatoric(4), volumetric, worst
+    integer :: k
+    material = prony_material()
+    hardening = bilinear_hardening(1.0e12_dp, 0.0_dp, 1.0e13_dp)      ! never reached
+    stress = 0.0_dp; reference = 0.0_dp; history = 0.0_dp; reference_history = 0.0_dp; ebar = 0.0_dp
+    worst = 0.0_dp
+    step = step_coefficients(material, 1.0e-4_dp)
+    do k = 1, 100
+      call random_number(draw)
+      increment = 1.0e-3_dp*(draw - 0.5_dp)
+      call viscoplastic_update(material, step, hardening, increment, stress, history, ebar, state)
+      ! eqs. [13], [14], [23], [24] written out
+      call deviatoric_part(increment, deviatoric, volumetric)
+      reference = reference + deviatoric_stress(step%shear, deviatoric) + history_stress(material, step, reference_history)
+      reference(1:3) = reference(1:3) + step%bulk*volumetric
+      call update_history(step, deviatoric, reference_history)
+      worst = max(worst, maxval(abs(stress - reference))/maxval(abs(reference)))
+    end do
+    call check('viscoelastic_limit_never_yields', ebar == 0.0_dp)
+    call check_close('viscoelastic_limit_same_stress', worst, 0.0_dp, rtol=0.0_dp, atol=1.0e-13_dp)
+    call check_close('viscoelastic_limit_same_history', maxval(abs(history - reference_history)), 0.0_dp, &
+                     rtol=0.0_dp, atol=1.0e-16_dp)
+  end subroutine viscoelastic_limit
 end program test_plasticity

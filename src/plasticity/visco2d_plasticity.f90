@@ -29,11 +29,14 @@
 !> (Computational Inelasticity, 1998, Box 3.2) with mu_n in place of G.
 module visco2d_plasticity
   use visco2d_kinds, only: dp
+  use visco2d_material, only: material_t
+  use visco2d_viscoelastic, only: step_coefficients_t, deviatoric_part, deviatoric_stress, history_stress, &
+                                  update_history
   implicit none
   private
 
   public :: hardening_t, bilinear_hardening, yield_stress, hardening_slope
-  public :: return_result_t, radial_return, consistent_tangent, deviatoric_norm
+  public :: return_result_t, radial_return, consistent_tangent, deviatoric_norm, viscoplastic_update
 
   !> The uniaxial yield stress against the equivalent plastic strain.
   type :: hardening_t
@@ -180,4 +183,33 @@ contains
       tangent(i, :) = tangent(i, :) - 2.0_dp*shear*state%theta_bar*state%normal(i)*n_strain
     end do
   end function consistent_tangent
+
+  !> One Gauss point of the visco-elastoplastic flesh over a step: from the
+  !> total stress `stress` (in: the step's start, out: its end, Pa) and the
+  !> strain increment `increment` (engineering shear), with the step's
+  !> coefficients of the material (mu_n, K, eqs. [21], [22]), its Prony
+  !> histories `history` (4, nterm; updated with the elastic part of the
+  !> deviatoric increment, eq. [24]) and the equivalent plastic strain
+  !> `ebar` (updated). The mean stress takes K d(theta) (eq. [14]); the
+  !> deviatoric stress the return of s + 2 mu_n de + s0 (eqs. [13], [23]).
+  pure subroutine viscoplastic_update(material, coefficients, hardening, increment, stress, history, ebar, state)
+    type(material_t), intent(in) :: material
+    type(step_coefficients_t), intent(in) :: coefficients
+    type(hardening_t), intent(in) :: hardening
+    real(dp), intent(in) :: increment(4)
+    real(dp), intent(inout) :: stress(4), history(:, :), ebar
+    type(return_result_t), intent(out) :: state
+    real(dp) :: deviatoric(4), volumetric, mean, trial(4)
+    call deviatoric_part(increment, deviatoric, volumetric)
+    mean = sum(stress(1:3))/3.0_dp
+    trial = stress
+    trial(1:3) = trial(1:3) - mean
+    trial = trial + deviatoric_stress(coefficients%shear, deviatoric)
+    if (size(history, 2) > 0) trial = trial + history_stress(material, coefficients, history)
+    state = radial_return(hardening, coefficients%shear, trial, ebar)
+    stress = state%stress
+    stress(1:3) = stress(1:3) + mean + coefficients%bulk*volumetric
+    if (size(history, 2) > 0) call update_history(coefficients, deviatoric - state%plastic_increment, history)
+    ebar = state%equivalent_plastic
+  end subroutine viscoplastic_update
 end module visco2d_plasticity
