@@ -72,7 +72,7 @@ contains
       print '(a)', '  initial v       ('//rtoa(velocity(1))//', '//rtoa(velocity(2))//') m/s'
       end associate
     end if
-    if (deck%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%gravity)//' m/s^2 in -z'
+    if (deck%loads%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%loads%gravity)//' m/s^2 in -z'
     if (deck%plate%line > 0) then
       print '(a)', '  plate           z = '//rtoa(deck%plate%z)//' m, '// &
         trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
@@ -90,8 +90,8 @@ contains
       rtoa(deck%stages(1)%dt/scales%pole_transit)//' transits'
     if (scales%body_transit > 0.0_dp) print '(a)', '  body transit    '//rtoa(scales%body_transit)// &
       ' s (wave transit of the body): DT = '//rtoa(deck%stages(1)%dt/scales%body_transit)//' transits'
-    print '(a)', '  formulation     '//formulation_name(deck%formulation)
-    print '(a)', '  geometry        '//geometry_name(deck%geometry)
+    print '(a)', '  formulation     '//formulation_name(deck%settings%formulation)
+    print '(a)', '  geometry        '//geometry_name(deck%settings%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
     print '(a)', '  materials       '//itoa(size(deck%materials))
     print '(a)', '  nodes           '//itoa(deck%mesh%nnode)
@@ -152,9 +152,9 @@ contains
     call record_put(record, 'case', case_name)
     call record_put(record, 'title', deck%title)
     call record_put(record, 'analysis', analysis_name(deck%analysis))
-    call record_put(record, 'geometry', geometry_name(deck%geometry))
-    call record_put(record, 'formulation', formulation_name(deck%formulation))
-    if (deck%solver_line > 0) call record_put(record, 'solver', trim(solver_card_names(deck%solver)))
+    call record_put(record, 'geometry', geometry_name(deck%settings%geometry))
+    call record_put(record, 'formulation', formulation_name(deck%settings%formulation))
+    if (deck%solver_line > 0) call record_put(record, 'solver', trim(solver_card_names(deck%settings%solver)))
     call record_put(record, 'effects', effects_text(effects))
     call record_put_integer(record, 'nodes', deck%mesh%nnode)
     call record_put_integer(record, 'elements', deck%mesh%nelem)

@@ -353,7 +353,7 @@ contains
       mass = ieee_nan()
       return
     end if
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     mass = 2.0_dp*pi*density*sum(weight(2::2))
   end function sphere_mass
 
@@ -623,7 +623,7 @@ contains
     end if
     u = band_vector(mesh, solution%displacement)
     reaction = band_vector(mesh, solution%reaction)
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     call check_close(tag//': rebuilt state has the same alpha', -dot_product(weight(2::2), u(2::2))/sum(weight(2::2)), &
                      alpha, 1.0e-8_dp)
     call contact_pressure(deck, contact, reaction, pressure, q_check)

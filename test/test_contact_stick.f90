@@ -98,7 +98,7 @@ contains
       call check(name//': reads', .false., error_text(error))
       return
     end if
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     mass = 2.0_dp*pi*756.85_dp*sum(weight(2::2))
     call write_deck(file, pressed_sphere(title, level, mode, force/mass))
   end function sphere_deck
@@ -321,7 +321,7 @@ contains
     call contact_create(deck, contact)
     allocate(zero(2*deck%mesh%nnode), held(2*deck%mesh%nnode))
     zero = 0.0_dp
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     do bonded = 1, 2
       held = .false.
       nodes = 0

@@ -107,7 +107,7 @@ contains
     end if
     call record_put_real(record, 'time_end_s', t)
     call record_put_real(record, 'equilibrium_error_max', solution%equilibrium_error)
-    call record_put(record, 'energy_basis', energy_basis(deck%geometry))   ! of the reaction columns
+    call record_put(record, 'energy_basis', energy_basis(deck%settings%geometry))   ! of the reaction columns
     call put_field_summary(nodal_field(deck%mesh, solution%u), solution%stress, record)
     call put_probe_summary(deck, nodal_field(deck%mesh, solution%u), solution%stress, record)
   end subroutine solve_quasistatic
@@ -125,8 +125,8 @@ contains
     end do
     if (solution%memory) call viscoelastic_state_create(materials, mesh%element_material, solution%history)
     allocate(solution%coefficients(size(materials)))
-    solution%fixed = support_mask(deck)
-    solution%gravity = gravity_load(deck)
+    solution%fixed = support_mask(deck%mesh, deck%settings, deck%loads)
+    solution%gravity = gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads)
     allocate(solution%u(2*mesh%nnode), solution%du(2*mesh%nnode), solution%internal(2*mesh%nnode))
     solution%u = 0.0_dp
     solution%internal = 0.0_dp
@@ -149,8 +149,8 @@ contains
     end do
     solution%shear = solution%coefficients(deck%mesh%element_material)%shear
     solution%bulk = solution%coefficients(deck%mesh%element_material)%bulk
-    call assemble_stiffness(deck, solution%shear, solution%bulk, solution%stiffness)
-    call factor_compute(solution%factor, solution%stiffness, solution%fixed, info, solver_of_card(deck%solver))
+    call assemble_stiffness(deck%mesh, deck%settings, solution%shear, solution%bulk, solution%stiffness)
+    call factor_compute(solution%factor, solution%stiffness, solution%fixed, info, solver_of_card(deck%settings%solver))
     solution%factorizations = solution%factorizations + 1
     if (info > 0) call singular_error(deck, info, error)
   end subroutine quasistatic_factor
@@ -173,26 +173,27 @@ contains
       do e = 1, deck%mesh%nelem
         if (element_terms(q%history, e) == 0) cycle
         q%trial(:, :, e) = q%trial(:, :, e) + q%s0(:, :, e)
-        call scatter_add(deck%mesh, e, -element_internal_force(deck%geometry, &
-          deck%mesh%xy(:, deck%mesh%connectivity(:, e)), q%trial(:, :, e) - q%stress(:, :, e), deck%formulation), q%rhs)
+        call scatter_add(deck%mesh, e, -element_internal_force(deck%settings%geometry, &
+          deck%mesh%xy(:, deck%mesh%connectivity(:, e)), q%trial(:, :, e) - q%stress(:, :, e), &
+            deck%settings%formulation), q%rhs)
       end do
     end if
-    q%load = external_load(deck, t) + q%gravity
+    q%load = external_load(deck%mesh, deck%settings, deck%loads, t) + q%gravity
     q%rhs = q%rhs + q%load
-    q%du = prescribed_displacement(deck, t) - q%u      ! increments of the prescribed values
+    q%du = prescribed_displacement(deck%mesh, deck%loads, t) - q%u      ! increments of the prescribed values
     call band_constrain_rhs(q%stiffness, q%fixed, q%du, q%rhs)
     call factor_solve(q%factor, q%rhs)
     q%du = q%rhs
     q%u = q%u + q%du
     do e = 1, deck%mesh%nelem
-      q%increments(:, :, e) = element_strains(deck%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
-                                              gather(deck%mesh, e, q%du), deck%formulation)
+      q%increments(:, :, e) = element_strains(deck%settings%geometry, deck%mesh%xy(:, deck%mesh%connectivity(:, e)), &
+                                              gather(deck%mesh, e, q%du), deck%settings%formulation)
       do g = 1, 4                                      ! eqs. [13], [14]
         q%stress(:, g, e) = q%trial(:, g, e) + stress_from_strain(q%shear(e), q%bulk(e), q%increments(:, g, e))
       end do
     end do
     if (q%memory) call commit_history(deck%mesh%element_material, q%history, q%coefficients, q%increments)   ! eq. [24]
-    q%internal = internal_force(deck, q%stress)
+    q%internal = internal_force(deck%mesh, deck%settings, q%stress)
     if (.not. all(ieee_is_finite(q%u)) .or. .not. all(ieee_is_finite(q%stress))) then
       call not_finite_error(deck, 'the displacement or stress at t = '//rtoa(t)//' s', error)
       return
@@ -229,7 +230,7 @@ contains
     real(dp), allocatable :: row(:)
     integer :: p, node
     row = [real(record%nrow, dp), t, maxval(norm2(reshape(u, [2, deck%mesh%nnode]), dim=1)), &
-           whole_body_factor(deck%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
+           whole_body_factor(deck%settings%geometry)*[sum(residual(1::2), mask=fixed(1::2)), &
                                              sum(residual(2::2), mask=fixed(2::2))]]
     do p = 1, size(deck%probes)
       node = deck%probes(p)%node

@@ -57,10 +57,11 @@ contains
     associate (mesh => deck%mesh)
     shear = deck%materials(mesh%element_material)%shear
     bulk = deck%materials(mesh%element_material)%bulk
-    call assemble_stiffness(deck, shear, bulk, stiffness)
-    load = external_load(deck, 0.0_dp) + gravity_load(deck)
-    fixed = support_mask(deck)
-    zero = prescribed_displacement(deck, 0.0_dp)
+    call assemble_stiffness(deck%mesh, deck%settings, shear, bulk, stiffness)
+    load = external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp) + &
+           gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads)
+    fixed = support_mask(deck%mesh, deck%settings, deck%loads)
+    zero = prescribed_displacement(deck%mesh, deck%loads, 0.0_dp)
     if (present(extra_fixed) .and. present(extra_values)) then
       zero = merge(extra_values, zero, extra_fixed)
       fixed = fixed .or. extra_fixed
@@ -70,7 +71,7 @@ contains
     else
       u = load
       call band_constrain_rhs(stiffness, fixed, zero, u)
-      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
+      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%settings%solver))
       if (info > 0) then
         call singular_error(deck, info, error)
         return
@@ -95,8 +96,8 @@ contains
 
     allocate(solution%strain(4, 4, mesh%nelem), solution%stress(4, 4, mesh%nelem))
     do e = 1, mesh%nelem
-      solution%strain(:, :, e) = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
-                                                 gather(mesh, e, u), deck%formulation)
+      solution%strain(:, :, e) = element_strains(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                                                 gather(mesh, e, u), deck%settings%formulation)
       do info = 1, 4
         solution%stress(:, info, e) = stress_from_strain(shear(e), bulk(e), solution%strain(:, info, e))
       end do
@@ -123,8 +124,8 @@ contains
     call put_field_summary(solution%displacement(:, :body_nodes(deck)), solution%stress(:, :, :body_elements(deck)), &
                            record)
     ! Energies and reactions on the energy_basis (whole body in axisymmetry).
-    associate (factor => whole_body_factor(deck%geometry))
-    call record_put(record, 'energy_basis', energy_basis(deck%geometry))
+    associate (factor => whole_body_factor(deck%settings%geometry))
+    call record_put(record, 'energy_basis', energy_basis(deck%settings%geometry))
     call record_put_real(record, 'strain_energy_J', factor*solution%strain_energy)
     call record_put_real(record, 'external_work_J', factor*solution%external_work)
     call record_put_real(record, 'reaction_r_N', factor*sum(solution%reaction(1, :)))

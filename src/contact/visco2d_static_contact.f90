@@ -128,7 +128,7 @@ contains
     call bruise_static(deck, solution%stress, solution%strain, record)
     allocate(pressure(mesh%nnode))
     call contact_pressure(deck, contact, reaction, pressure, q)
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     call record_put_integer(record, 'factorizations', path%solves + 1)
     call record_put_integer(record, 'contact_iterations', contact%iterations)
     call record_put_integer(record, 'contact_nodes', contact_count(contact))
@@ -419,8 +419,9 @@ contains
       if (contact%active(node)) largest = max(largest, maxval(abs(reaction(node_dof(deck%mesh, node, 1): &
                                                                           node_dof(deck%mesh, node, 2)))))
     end do
-    supported = support_mask(deck)
-    scale = max(largest, maxval(abs(external_load(deck, 0.0_dp) + gravity_load(deck))), &
+    supported = support_mask(deck%mesh, deck%settings, deck%loads)
+    scale = max(largest, maxval(abs(external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp) + &
+                                    gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads))), &
                 maxval(abs(merge(reaction, 0.0_dp, supported))), tiny(1.0_dp))
     residual = 0.0_dp
     worst = 0

@@ -184,14 +184,14 @@ contains
     state%v(2::2) = velocity(2)
     end associate
     state%v = merge(0.0_dp, state%v, stepper%fixed .or. stepper%pad)   ! a PAD starts at rest
-    state%internal = internal_force(deck, state%stress)
-    state%load = external_load(deck, 0.0_dp)
+    state%internal = internal_force(deck%mesh, deck%settings, state%stress)
+    state%load = external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp)
     state%a = (state%load + stepper%gravity - state%internal)/stepper%mass
     do k = 1, 2
       if (deck%dynamics%acceleration_given(k)) state%a(k::2) = deck%dynamics%acceleration(k)
     end do
     state%a = merge(0.0_dp, state%a, stepper%fixed .or. stepper%pad)
-    state%target = prescribed_displacement(deck, 0.0_dp)
+    state%target = prescribed_displacement(deck%mesh, deck%loads, 0.0_dp)
     state%reaction = merge(stepper%mass*state%a + state%internal - state%load - stepper%gravity, 0.0_dp, stepper%fixed)
   end subroutine initial_state
 
