@@ -11,6 +11,7 @@ module visco2d_driver
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
   use visco2d_deck_types, only: solver_card_names
   use visco2d_scene, only: effects_t, scene_effects, effects_text
+  use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_static, only: static_solution_t, solve_static, static_record
   use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
@@ -212,9 +213,10 @@ contains
           call solve_static_contact(deck, record, error)
           if (allocated(error)) return
         else
-          call solve_static(deck, static_solution, error)
+          call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, static_solution, error)
           if (allocated(error)) return
-          call static_record(deck, static_solution, record)
+          call static_record(deck%mesh, deck%settings, deck%probes, static_solution, record, body_nodes(deck), &
+                             body_elements(deck))
           call bruise_static(deck, static_solution%stress, static_solution%strain, record)
           call record_put_integer(record, 'factorizations', 1)
         end if
@@ -224,7 +226,8 @@ contains
         call record_put_real(record, 'dt_s', deck%stages(1)%dt)
         call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
         if (deck%analysis == analysis_quasistatic) then
-          call solve_quasistatic(deck, record, error)
+          call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, deck%stages, &
+            deck%source, record, error)
         else
           call solve_dynamic(deck, record, error)
           if (.not. allocated(error)) call warn_energy_balance()

@@ -208,7 +208,7 @@ contains
     held = contact_held_dofs(deck, contact)
     allocate(values(2*mesh%nnode), u(2*mesh%nnode), reaction(2*mesh%nnode), pressure(mesh%nnode))
     values = 0.0_dp
-    call solve_static(deck, solution, error, held, values)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
     if (allocated(error)) then
       call check(tag//': direct solve', .false., error_text(error))
       return
@@ -616,7 +616,7 @@ contains
       node = contact%candidates(i)
       if (contact%active(node)) values(node_dof(mesh, node, 2)) = -mesh%xy(2, node)
     end do
-    call solve_static(deck, solution, error, held, values)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
     if (allocated(error)) then
       call check(tag//': rebuilt state solves', .false., error_text(error))
       return

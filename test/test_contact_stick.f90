@@ -168,7 +168,7 @@ contains
                itoa(nodes)//' vs '//summary_value(record, 'contact_nodes'))
     call check(tag//': no free node through the plate', deepest >= -contact%tolerance, exact_text(deepest))
     values = merge(u, 0.0_dp, held)
-    call solve_static(deck, solution, error, held, values)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
     if (allocated(error)) then
       call check(tag//': the final set solves again', .false., error_text(error))
       return
@@ -332,7 +332,7 @@ contains
         if (bonded == 1) held(node_dof(deck%mesh, node, 1)) = .true.
         nodes = nodes + 1
       end do
-      call solve_static(deck, solution, error, held, zero)
+      call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, zero)
       if (allocated(error)) then
         call check('patch solves', .false., error_text(error))
         return

@@ -163,7 +163,7 @@ contains
     integer :: e, gp, node
 
     call load_patch(geometry, tag, deck)
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     call check('traction patch '//tag//': solves', .not. allocated(error))
     if (allocated(error)) then
       print '(a)', error_text(error)

@@ -142,7 +142,7 @@ contains
     if (allocated(error)) then
       call check('sdof static deck reads', .false., error_text(error)); return
     end if
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     if (allocated(error)) then
       call check('sdof static run', .false., error_text(error)); return
     end if
@@ -170,7 +170,8 @@ contains
     call write_deck(path, [character(len=200) :: block_lines('STATIC'), &
       'FORCE 3 FZ='//num(force), 'FORCE 4 FZ='//num(-force), 'END'])
     call read_deck(path, deck, error)
-    if (.not. allocated(error)) call solve_static(deck, solution, error)
+    if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+      solution, error)
     if (allocated(error)) then
       call check('sdof static tilt run', .false., error_text(error)); return
     end if

@@ -124,7 +124,8 @@ contains
   !> it at most max_steps; summed in 64 bits all the same).
   pure integer function total_steps(deck)
     type(deck_t), intent(in) :: deck
-    total_steps = stage_total_steps(deck%stages)
+    total_steps = 0
+    if (allocated(deck%stages)) total_steps = stage_total_steps(deck%stages)
   end function total_steps
 
   !> Index of the card on a line (0 if none: a line is always a card's here).

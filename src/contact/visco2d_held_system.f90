@@ -82,8 +82,8 @@ contains
       call factor_compute(system%factor, system%stiffness, system%supports, info, solver_of_card(deck%settings%solver))
     end if
     if (info > 0) then
-      call set_error(error, singular_message(deck, info)//'; with a PAD the body may rest on the pad alone only '// &
-        'if it cannot move otherwise than up and down: fix what else is free', &
+      call set_error(error, singular_message(deck%mesh, info)//'; with a PAD the body may rest on the pad '// &
+        'alone only if it cannot move otherwise than up and down: fix what else is free', &
         file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
     end if
@@ -178,7 +178,7 @@ contains
     fixed = system%supports .or. held
     call factor_compute(factor, system%stiffness, fixed, info, solver_of_card(deck%settings%solver))
     if (info > 0) then
-      call set_error(error, singular_message(deck, info), file=deck%cards%file)
+      call set_error(error, singular_message(deck%mesh, info), file=deck%cards%file)
       return
     end if
     allocate(rhs(size(values), 2))
@@ -258,7 +258,7 @@ contains
     end if
     call anchor_body(deck, system, chosen, info)
     if (info > 0) then
-      call set_error(error, singular_message(deck, info)//' (the body resting on the pad, anchored at another '// &
+      call set_error(error, singular_message(deck%mesh, info)//' (the body resting on the pad, anchored at another '// &
                      'contact node)', file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
     end if

@@ -96,9 +96,11 @@ contains
     ! The final state, solved again from the final set for its stresses.
     held = static_held(deck, contact, path%state)
     if (contact%pad) then                               ! the path's own constrained solution at full load
-      call solve_static(deck, solution, error, given=path%base + path%rate)
+      call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, &
+        given=path%base + path%rate)
     else
-      call solve_static(deck, solution, error, held, path%values)
+      call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, &
+        path%values)
     end if
     if (allocated(error)) return
     u = band_vector(mesh, solution%displacement)
@@ -120,7 +122,7 @@ contains
     end if
     call check_equilibrium(deck, contact, u, reaction, error)
     if (allocated(error)) return
-    call static_record(deck, solution, record)
+    call static_record(deck%mesh, deck%settings, deck%probes, solution, record, body_nodes(deck), body_elements(deck))
     associate (body => body_elements(deck))            ! beyond the small-strain model: warned, as in DYNAMIC
     call deformation_warnings(deck, record, largest_strain(solution%strain(:, :, :body)), &
                               largest_strain(solution%strain(:, :, body + 1:)))

@@ -90,15 +90,13 @@ contains
   !> Total number of time steps of the stages (each at most visco2d_time's
   !> max_steps; summed in 64 bits all the same).
   pure integer function stage_total_steps(stages) result(total)
-    type(time_stage_t), allocatable, intent(in) :: stages(:)
+    type(time_stage_t), intent(in) :: stages(:)
     integer(int64) :: steps
     integer :: k
     steps = 0
-    if (allocated(stages)) then
-      do k = 1, size(stages)
-        steps = steps + int(stages(k)%steps, int64)
-      end do
-    end if
+    do k = 1, size(stages)
+      steps = steps + int(stages(k)%steps, int64)
+    end do
     total = int(min(steps, int(huge(total), int64)))
   end function stage_total_steps
 end module visco2d_model
