@@ -302,8 +302,7 @@ contains
       call add(trim(measure_names(m))//'_time', 's', bruise%time_of_max(m, :, :))
     end do
     call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%settings%geometry == geometry_axisymmetric), &
-      bruise%volume, &
-             .false.)
+             bruise%volume, .false.)
     call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
     call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
     if (size(deck%bruises) == 0) return                 ! OUTPUT ENVELOPES=YES alone: no threshold, no region

@@ -227,9 +227,8 @@ contains
       do k = 1, size(solver_card_names)
         if (word == trim(solver_card_names(k))) deck%settings%solver = k
       end do
-      if (deck%settings%solver == 0) call card_error(error, cards, card, &
-        'solver must be BAND (the legacy band storage '// &
-        'and LAPACK), PROFILE (envelope storage) or CHOLMOD (sparse, the default), got "'//word//'"', &
+      if (deck%settings%solver == 0) call card_error(error, cards, card, 'solver must be BAND (the legacy '// &
+        'band storage and LAPACK), PROFILE (envelope storage) or CHOLMOD (sparse, the default), got "'//word//'"', &
         field_column(card, '1'))
     end select
     end associate
@@ -404,8 +403,8 @@ contains
     call resolve_probes(deck, reading%probes, error); if (allocated(error)) return
     call check_pressures(deck, error); if (allocated(error)) return
     do i = 1, size(deck%loads%pressures)
-      deck%loads%pressures(i)%curve = curve_index(deck, reading%pressure_cards(i), trim(reading%pressure_curves(i)), &
-        error)
+      deck%loads%pressures(i)%curve = curve_index(deck, reading%pressure_cards(i), &
+                                                  trim(reading%pressure_curves(i)), error)
       if (allocated(error)) return
     end do
     call check_load_sizes(deck, error); if (allocated(error)) return

@@ -83,8 +83,8 @@ contains
     do i = 1, size(sides, 2)
       a = sides(1, i)
       b = sides(2, i)
-      if (deck%settings%geometry == geometry_axisymmetric .and. mesh%xy(1, a) == 0.0_dp .and. mesh%xy(1, &
-        b) == 0.0_dp) cycle
+      if (deck%settings%geometry == geometry_axisymmetric .and. mesh%xy(1, a) == 0.0_dp .and. &
+          mesh%xy(1, b) == 0.0_dp) cycle
       nedge = nedge + 1
       contact%edges(:, nedge) = [a, b]
       boundary(a) = .true.

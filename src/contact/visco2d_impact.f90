@@ -324,9 +324,8 @@ contains
       e = pole(2, k)
       corners(2, k) = k
       associate (c => over_tau(mesh%element_material(e)), material => deck%materials(mesh%element_material(e)))
-      increment = element_strains(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), gather(mesh, e, &
-        delta_tau), &
-                                  deck%settings%formulation)
+      increment = element_strains(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                                  gather(mesh, e, delta_tau), deck%settings%formulation)
       nterm = 0
       if (memory) nterm = element_terms(state, e)
       do g = 1, gauss_count

@@ -207,8 +207,7 @@ contains
     if (allocated(deck%loads%curves)) then
       do k = 1, size(deck%loads%curves)
         call check_values([deck%loads%curves(k)%time, deck%loads%curves(k)%value], &
-          'points of curve '//deck%loads%curves(k)%name, &
-                          deck%loads%curves(k)%line, 'CURVE')
+                          'points of curve '//deck%loads%curves(k)%name, deck%loads%curves(k)%line, 'CURVE')
         if (allocated(error)) return
       end do
     end if
