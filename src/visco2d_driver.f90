@@ -11,6 +11,7 @@ module visco2d_driver
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
   use visco2d_deck_types, only: solver_card_names
   use visco2d_scene, only: effects_t, scene_effects, effects_text
+  use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_static, only: static_solution_t, solve_static, static_record
   use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
@@ -72,7 +73,7 @@ contains
       print '(a)', '  initial v       ('//rtoa(velocity(1))//', '//rtoa(velocity(2))//') m/s'
       end associate
     end if
-    if (deck%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%gravity)//' m/s^2 in -z'
+    if (deck%loads%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%loads%gravity)//' m/s^2 in -z'
     if (deck%plate%line > 0) then
       print '(a)', '  plate           z = '//rtoa(deck%plate%z)//' m, '// &
         trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
@@ -90,8 +91,8 @@ contains
       rtoa(deck%stages(1)%dt/scales%pole_transit)//' transits'
     if (scales%body_transit > 0.0_dp) print '(a)', '  body transit    '//rtoa(scales%body_transit)// &
       ' s (wave transit of the body): DT = '//rtoa(deck%stages(1)%dt/scales%body_transit)//' transits'
-    print '(a)', '  formulation     '//formulation_name(deck%formulation)
-    print '(a)', '  geometry        '//geometry_name(deck%geometry)
+    print '(a)', '  formulation     '//formulation_name(deck%settings%formulation)
+    print '(a)', '  geometry        '//geometry_name(deck%settings%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
     print '(a)', '  materials       '//itoa(size(deck%materials))
     print '(a)', '  nodes           '//itoa(deck%mesh%nnode)
@@ -152,9 +153,9 @@ contains
     call record_put(record, 'case', case_name)
     call record_put(record, 'title', deck%title)
     call record_put(record, 'analysis', analysis_name(deck%analysis))
-    call record_put(record, 'geometry', geometry_name(deck%geometry))
-    call record_put(record, 'formulation', formulation_name(deck%formulation))
-    if (deck%solver_line > 0) call record_put(record, 'solver', trim(solver_card_names(deck%solver)))
+    call record_put(record, 'geometry', geometry_name(deck%settings%geometry))
+    call record_put(record, 'formulation', formulation_name(deck%settings%formulation))
+    if (deck%solver_line > 0) call record_put(record, 'solver', trim(solver_card_names(deck%settings%solver)))
     call record_put(record, 'effects', effects_text(effects))
     call record_put_integer(record, 'nodes', deck%mesh%nnode)
     call record_put_integer(record, 'elements', deck%mesh%nelem)
@@ -212,9 +213,10 @@ contains
           call solve_static_contact(deck, record, error)
           if (allocated(error)) return
         else
-          call solve_static(deck, static_solution, error)
+          call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, static_solution, error)
           if (allocated(error)) return
-          call static_record(deck, static_solution, record)
+          call static_record(deck%mesh, deck%settings, deck%probes, static_solution, record, body_nodes(deck), &
+                             body_elements(deck))
           call bruise_static(deck, static_solution%stress, static_solution%strain, record)
           call record_put_integer(record, 'factorizations', 1)
         end if
@@ -224,7 +226,8 @@ contains
         call record_put_real(record, 'dt_s', deck%stages(1)%dt)
         call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
         if (deck%analysis == analysis_quasistatic) then
-          call solve_quasistatic(deck, record, error)
+          call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, deck%stages, &
+            deck%source, record, error)
         else
           call solve_dynamic(deck, record, error)
           if (.not. allocated(error)) call warn_energy_balance()

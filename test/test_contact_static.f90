@@ -208,7 +208,7 @@ contains
     held = contact_held_dofs(deck, contact)
     allocate(values(2*mesh%nnode), u(2*mesh%nnode), reaction(2*mesh%nnode), pressure(mesh%nnode))
     values = 0.0_dp
-    call solve_static(deck, solution, error, held, values)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
     if (allocated(error)) then
       call check(tag//': direct solve', .false., error_text(error))
       return
@@ -353,7 +353,7 @@ contains
       mass = ieee_nan()
       return
     end if
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     mass = 2.0_dp*pi*density*sum(weight(2::2))
   end function sphere_mass
 
@@ -616,14 +616,14 @@ contains
       node = contact%candidates(i)
       if (contact%active(node)) values(node_dof(mesh, node, 2)) = -mesh%xy(2, node)
     end do
-    call solve_static(deck, solution, error, held, values)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
     if (allocated(error)) then
       call check(tag//': rebuilt state solves', .false., error_text(error))
       return
     end if
     u = band_vector(mesh, solution%displacement)
     reaction = band_vector(mesh, solution%reaction)
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     call check_close(tag//': rebuilt state has the same alpha', -dot_product(weight(2::2), u(2::2))/sum(weight(2::2)), &
                      alpha, 1.0e-8_dp)
     call contact_pressure(deck, contact, reaction, pressure, q_check)

@@ -98,7 +98,7 @@ contains
       call check(name//': reads', .false., error_text(error))
       return
     end if
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     mass = 2.0_dp*pi*756.85_dp*sum(weight(2::2))
     call write_deck(file, pressed_sphere(title, level, mode, force/mass))
   end function sphere_deck
@@ -168,7 +168,7 @@ contains
                itoa(nodes)//' vs '//summary_value(record, 'contact_nodes'))
     call check(tag//': no free node through the plate', deepest >= -contact%tolerance, exact_text(deepest))
     values = merge(u, 0.0_dp, held)
-    call solve_static(deck, solution, error, held, values)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
     if (allocated(error)) then
       call check(tag//': the final set solves again', .false., error_text(error))
       return
@@ -321,7 +321,7 @@ contains
     call contact_create(deck, contact)
     allocate(zero(2*deck%mesh%nnode), held(2*deck%mesh%nnode))
     zero = 0.0_dp
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     do bonded = 1, 2
       held = .false.
       nodes = 0
@@ -332,7 +332,7 @@ contains
         if (bonded == 1) held(node_dof(deck%mesh, node, 1)) = .true.
         nodes = nodes + 1
       end do
-      call solve_static(deck, solution, error, held, zero)
+      call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, zero)
       if (allocated(error)) then
         call check('patch solves', .false., error_text(error))
         return

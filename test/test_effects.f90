@@ -69,7 +69,7 @@ program test_effects
   ! ------------------------------------------------------------ the full scene
   call scene('full', full, effects_t(inertia=.true., viscoelastic=.true., contact=.true., gravity=.true.), &
              'inertia viscoelastic contact gravity', r_full)
-  g = deck%gravity
+  g = deck%loads%gravity
   nelem = deck%mesh%nelem
   call contact_present('full', r_full)
   call check('full_gravity_work_positive', real_of(r_full, 'gravity_work_J') > 0.0_dp, &

@@ -71,9 +71,9 @@ contains
     call read_deck(path, deck, error)
     call check('long_line_reads', .not. allocated(error), message_of(error))
     if (.not. allocated(error)) then
-      call check('long_line_two_fixes', size(deck%fixes) == 2)
-      if (size(deck%fixes) == 2) call check('long_line_tail_kept', deck%fixes(2)%value(2) == -1.0e-4_dp, &
-        'the UZ= after column 5000 was lost: u_z = '//rtoa(deck%fixes(2)%value(2)))
+      call check('long_line_two_fixes', size(deck%loads%fixes) == 2)
+      if (size(deck%loads%fixes) == 2) call check('long_line_tail_kept', deck%loads%fixes(2)%value(2) == -1.0e-4_dp, &
+        'the UZ= after column 5000 was lost: u_z = '//rtoa(deck%loads%fixes(2)%value(2)))
     end if
 
     ! A line longer than any deck needs is an error at its line, never a cut.
@@ -103,9 +103,9 @@ contains
       call read_deck(path, deck, error)
       call check('many_fields_reads', .not. allocated(error), message_of(error))
       if (.not. allocated(error)) then
-        call check('many_fields_points', size(deck%curves(1)%time) == 400)
-        call check('many_fields_last_point', deck%curves(1)%time(400) == 0.399_dp .and. &
-                   deck%curves(1)%value(400) == real(mod(399, 7), dp))
+        call check('many_fields_points', size(deck%loads%curves(1)%time) == 400)
+        call check('many_fields_last_point', deck%loads%curves(1)%time(400) == 0.399_dp .and. &
+                   deck%loads%curves(1)%value(400) == real(mod(399, 7), dp))
       end if
     end block
   end subroutine long_lines

@@ -297,15 +297,15 @@ contains
     if (allocated(error)) then
       call check('single dof: deck reads', .false., error_text(error)); return
     end if
-    fixed = support_mask(deck)
+    fixed = support_mask(deck%mesh, deck%settings, deck%loads)
     free = node_dof(deck%mesh, 3, 2)
     call check('single dof: one free equation, u_z of node 3', count(.not. fixed) == 1 .and. .not. fixed(free))
     allocate(shear(deck%mesh%nelem), bulk(deck%mesh%nelem))
     shear = deck%materials(1)%shear
     bulk = deck%materials(1)%bulk
-    call assemble_stiffness(deck, shear, bulk, stiffness)
+    call assemble_stiffness(deck%mesh, deck%settings, shear, bulk, stiffness)
     k_diagonal = stiffness%ab(1, free)
-    mass = lumped_mass(deck)
+    mass = lumped_mass(deck%mesh, deck%settings, deck%materials)
     m_node = mass(free)
     call check_close('single dof: lumped mass = rho side^2/4', m_node, block_density*side**2/4.0_dp, 1.0e-14_dp)
     call run_deck(path, folder//'/out', record, error)

@@ -197,7 +197,8 @@ contains
     file = folder//'/test_lame_'//tag//'_'//itoa(nr)//'.inp'
     call write_deck(file, geometry, nr)
     call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static(deck, solution, error)
+    if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+      solution, error)
     ok = .not. allocated(error)
     call check(tag//' NR='//itoa(nr)//': deck reads and solves', ok)
     if (.not. ok) then

@@ -178,7 +178,7 @@ contains
     call check_text_contains('guard_material_located', message_of(error), &
       folder//'/block.inp:4: MATERIAL: the bulk modulus K of material STEEL is Infinity')
     call read_deck(folder//'/block.inp', deck, error)
-    deck%pressures(1)%value = -infinity
+    deck%loads%pressures(1)%value = -infinity
     call check_finite_outputs(deck, record, error)
     call check_text_contains('guard_pressure_located', message_of(error), &
       folder//'/block.inp:7: PRESSURE: the pressure is -Infinity')

@@ -63,12 +63,12 @@ contains
     call read_deck(folder//'/static.inp', deck, error)
     call check('static block reads', .not. allocated(error))
     if (allocated(error)) return
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     call check('static block solves (moduli as read)', .not. allocated(error))
     if (allocated(error)) deallocate(error)
     deck%materials(1)%shear = 1.0e308_dp
     deck%materials(1)%bulk = 1.0e308_dp
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     call check('static, moduli 1e308: an error, not a NaN result', allocated(error))
     if (.not. allocated(error)) return
     call check_text_contains('static, moduli 1e308: located at the ANALYSIS card', error_text(error), &
@@ -85,14 +85,16 @@ contains
     call read_deck(folder//'/quasistatic.inp', deck, error)
     call check('quasi-static block reads', .not. allocated(error))
     if (allocated(error)) return
-    call solve_quasistatic(deck, record, error)
+    call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, deck%stages, &
+      deck%source, record, error)
     call check('quasi-static block runs (moduli as read)', .not. allocated(error))
     if (.not. allocated(error)) call check('quasi-static block: every history value is finite', &
                                           all(ieee_is_finite(record%history(:, 1:record%nrow))))
     if (allocated(error)) deallocate(error)
     deck%materials(1)%shear = 1.0e308_dp
     deck%materials(1)%bulk = 1.0e308_dp
-    call solve_quasistatic(deck, record, error)
+    call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, deck%stages, &
+      deck%source, record, error)
     call check('quasi-static, moduli 1e308: an error, not a NaN result', allocated(error))
     if (.not. allocated(error)) return
     call check_text_contains('quasi-static, moduli 1e308: located at the ANALYSIS card', error_text(error), &
@@ -112,7 +114,7 @@ contains
     call read_deck(folder//'/free.inp', deck, error)
     call check('unsupported block reads', .not. allocated(error))
     if (allocated(error)) return
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     call check('unsupported block: singular stiffness is an error', allocated(error))
     if (.not. allocated(error)) return
     call check_text_contains('unsupported block: located at the MESH card', error_text(error), 'free.inp:4: MESH: ')

@@ -72,7 +72,8 @@ contains
     close(unit)
 
     call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static(deck, solution, error)
+    if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+      solution, error)
     call check(tag//': deck reads and solves', .not. allocated(error))
     if (allocated(error)) then
       print '(a)', error_text(error)

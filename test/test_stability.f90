@@ -894,7 +894,8 @@ contains
     type(error_t), allocatable :: error
     call write_deck(folder//'/'//name//'.inp', lines)
     call read_deck(folder//'/'//name//'.inp', deck, error)
-    if (.not. allocated(error)) call solve_static(deck, solution, error)
+    if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+      solution, error)
     ok = .not. allocated(error)
     if (ok) then
       call check(name//': reads and solves', ok)

@@ -227,7 +227,7 @@ contains
     call read_deck(folder//'/elastic_static.inp', deck, error)
     call check('elastic_static_reads', .not. allocated(error))
     if (allocated(error)) return
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     call check('elastic_static_solves', .not. allocated(error))
     if (allocated(error)) return
     lines = [character(len=100) :: 'TITLE quasistatic', 'ANALYSIS QUASISTATIC', common, &
@@ -279,7 +279,8 @@ contains
     call read_deck('inputs/viscoelastic_cylinder.inp', deck, error)
     call check('cylinder_deck_reads', .not. allocated(error))
     if (allocated(error)) return
-    call solve_quasistatic(deck, record, error)
+    call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, deck%stages, &
+      deck%source, record, error)
     call check('cylinder_solves', .not. allocated(error))
     if (allocated(error)) return
     t = history_column(record, 't_s')
@@ -423,7 +424,8 @@ contains
     type(error_t), allocatable :: error
     call write_deck(folder//'/'//name//'.inp', lines)
     call read_deck(folder//'/'//name//'.inp', deck, error)
-    if (.not. allocated(error)) call solve_quasistatic(deck, record, error)
+    if (.not. allocated(error)) call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, &
+      deck%probes, deck%stages, deck%source, record, error)
     ok = .not. allocated(error)
     if (ok) then
       call check(name//'_runs', .true.)

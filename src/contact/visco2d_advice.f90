@@ -245,7 +245,7 @@ contains
         moment = moment + (x(k) + x(next))*(x(k)*y(next) - x(next)*y(k))/6.0_dp
       end do
       associate (density => deck%materials(deck%mesh%element_material(e))%density)
-      if (deck%geometry == geometry_axisymmetric) then
+      if (deck%settings%geometry == geometry_axisymmetric) then
         body_mass = body_mass + density*2.0_dp*pi*moment
       else
         body_mass = body_mass + density*area

@@ -63,10 +63,11 @@ contains
     integer :: info
     shear = deck%materials(deck%mesh%element_material)%shear
     bulk = deck%materials(deck%mesh%element_material)%bulk
-    call assemble_stiffness(deck, shear, bulk, system%stiffness)
-    system%load = external_load(deck, 0.0_dp) + gravity_load(deck)
-    system%supports = support_mask(deck)
-    system%prescribed = prescribed_displacement(deck, 0.0_dp)
+    call assemble_stiffness(deck%mesh, deck%settings, shear, bulk, system%stiffness)
+    system%load = external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp) + &
+                  gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads)
+    system%supports = support_mask(deck%mesh, deck%settings, deck%loads)
+    system%prescribed = prescribed_displacement(deck%mesh, deck%loads, 0.0_dp)
     system%pad = contact%pad
     if (.not. system%pad) return
     system%partner = contact%partner
@@ -78,11 +79,11 @@ contains
     if (floats(deck, system%supports)) then
       call anchor_body(deck, system, node_dof(deck%mesh, contact%pole, 2), info)
     else
-      call factor_compute(system%factor, system%stiffness, system%supports, info, solver_of_card(deck%solver))
+      call factor_compute(system%factor, system%stiffness, system%supports, info, solver_of_card(deck%settings%solver))
     end if
     if (info > 0) then
-      call set_error(error, singular_message(deck, info)//'; with a PAD the body may rest on the pad alone only '// &
-        'if it cannot move otherwise than up and down: fix what else is free', &
+      call set_error(error, singular_message(deck%mesh, info)//'; with a PAD the body may rest on the pad '// &
+        'alone only if it cannot move otherwise than up and down: fix what else is free', &
         file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
     end if
@@ -114,7 +115,7 @@ contains
     integer :: node, k
     system%anchor = equation
     call factor_compute(system%factor, system%stiffness, system%supports .or. equation_mask(system%anchor), info, &
-                        solver_of_card(deck%solver))
+                        solver_of_card(deck%settings%solver))
     if (info > 0) return
     if (.not. allocated(system%rigid)) then             ! the body's z translation (no z supports: it floats)
       allocate(system%rigid(size(system%load)))
@@ -175,9 +176,9 @@ contains
     logical, allocatable :: fixed(:)
     integer :: info
     fixed = system%supports .or. held
-    call factor_compute(factor, system%stiffness, fixed, info, solver_of_card(deck%solver))
+    call factor_compute(factor, system%stiffness, fixed, info, solver_of_card(deck%settings%solver))
     if (info > 0) then
-      call set_error(error, singular_message(deck, info), file=deck%cards%file)
+      call set_error(error, singular_message(deck%mesh, info), file=deck%cards%file)
       return
     end if
     allocate(rhs(size(values), 2))
@@ -257,7 +258,7 @@ contains
     end if
     call anchor_body(deck, system, chosen, info)
     if (info > 0) then
-      call set_error(error, singular_message(deck, info)//' (the body resting on the pad, anchored at another '// &
+      call set_error(error, singular_message(deck%mesh, info)//' (the body resting on the pad, anchored at another '// &
                      'contact node)', file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
     end if

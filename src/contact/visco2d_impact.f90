@@ -86,7 +86,7 @@ contains
     centre(2) = dot_product(nodal_mass(2, :), deck%mesh%xy(2, :))/sum(nodal_mass(2, :))
     centre(1) = dot_product(nodal_mass(1, :), deck%mesh%xy(1, :))/max(sum(nodal_mass(1, :)), tiny(1.0_dp))
     end associate
-    if (deck%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
+    if (deck%settings%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
     impact%centre_node = 1
     do node = 2, deck%mesh%nnode
       if (norm2(deck%mesh%xy(:, node) - centre) < norm2(deck%mesh%xy(:, impact%centre_node) - centre)) &
@@ -275,7 +275,7 @@ contains
       do node = 1, deck%mesh%nnode
         if (contact%active(node)) nodal_reaction(node) = reaction(node_dof(deck%mesh, node, 2))
       end do
-      if (deck%geometry == geometry_axisymmetric) nodal_reaction = 2.0_dp*pi*nodal_reaction
+      if (deck%settings%geometry == geometry_axisymmetric) nodal_reaction = 2.0_dp*pi*nodal_reaction
     end subroutine keep_profile
 
     pure subroutine keep_max(value, maximum, at)
@@ -325,8 +325,8 @@ contains
       e = pole(2, k)
       corners(2, k) = k
       associate (c => over_tau(mesh%element_material(e)), material => deck%materials(mesh%element_material(e)))
-      increment = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), gather(mesh, e, delta_tau), &
-                                  deck%formulation)
+      increment = element_strains(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                                  gather(mesh, e, delta_tau), deck%settings%formulation)
       nterm = 0
       if (memory) nterm = element_terms(state, e)
       do g = 1, gauss_count

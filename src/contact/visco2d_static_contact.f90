@@ -96,9 +96,11 @@ contains
     ! The final state, solved again from the final set for its stresses.
     held = static_held(deck, contact, path%state)
     if (contact%pad) then                               ! the path's own constrained solution at full load
-      call solve_static(deck, solution, error, given=path%base + path%rate)
+      call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, &
+        given=path%base + path%rate)
     else
-      call solve_static(deck, solution, error, held, path%values)
+      call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, &
+        path%values)
     end if
     if (allocated(error)) return
     u = band_vector(mesh, solution%displacement)
@@ -120,7 +122,7 @@ contains
     end if
     call check_equilibrium(deck, contact, u, reaction, error)
     if (allocated(error)) return
-    call static_record(deck, solution, record)
+    call static_record(deck%mesh, deck%settings, deck%probes, solution, record, body_nodes(deck), body_elements(deck))
     associate (body => body_elements(deck))            ! beyond the small-strain model: warned, as in DYNAMIC
     call deformation_warnings(deck, record, largest_strain(solution%strain(:, :, :body)), &
                               largest_strain(solution%strain(:, :, body + 1:)))
@@ -128,7 +130,7 @@ contains
     call bruise_static(deck, solution%stress, solution%strain, record)
     allocate(pressure(mesh%nnode))
     call contact_pressure(deck, contact, reaction, pressure, q)
-    weight = lumped_mass(deck, volume=.true.)
+    weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
     call record_put_integer(record, 'factorizations', path%solves + 1)
     call record_put_integer(record, 'contact_iterations', contact%iterations)
     call record_put_integer(record, 'contact_nodes', contact_count(contact))
@@ -419,8 +421,9 @@ contains
       if (contact%active(node)) largest = max(largest, maxval(abs(reaction(node_dof(deck%mesh, node, 1): &
                                                                           node_dof(deck%mesh, node, 2)))))
     end do
-    supported = support_mask(deck)
-    scale = max(largest, maxval(abs(external_load(deck, 0.0_dp) + gravity_load(deck))), &
+    supported = support_mask(deck%mesh, deck%settings, deck%loads)
+    scale = max(largest, maxval(abs(external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp) + &
+                                    gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads))), &
                 maxval(abs(merge(reaction, 0.0_dp, supported))), tiny(1.0_dp))
     residual = 0.0_dp
     worst = 0

@@ -184,14 +184,14 @@ contains
     state%v(2::2) = velocity(2)
     end associate
     state%v = merge(0.0_dp, state%v, stepper%fixed .or. stepper%pad)   ! a PAD starts at rest
-    state%internal = internal_force(deck, state%stress)
-    state%load = external_load(deck, 0.0_dp)
+    state%internal = internal_force(deck%mesh, deck%settings, state%stress)
+    state%load = external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp)
     state%a = (state%load + stepper%gravity - state%internal)/stepper%mass
     do k = 1, 2
       if (deck%dynamics%acceleration_given(k)) state%a(k::2) = deck%dynamics%acceleration(k)
     end do
     state%a = merge(0.0_dp, state%a, stepper%fixed .or. stepper%pad)
-    state%target = prescribed_displacement(deck, 0.0_dp)
+    state%target = prescribed_displacement(deck%mesh, deck%loads, 0.0_dp)
     state%reaction = merge(stepper%mass*state%a + state%internal - state%load - stepper%gravity, 0.0_dp, stepper%fixed)
   end subroutine initial_state
 
@@ -256,12 +256,12 @@ contains
     diagonal = maxval(abs(point%effective%ab(1, :)))
     if (.not. (mass_term > epsilon(1.0_dp)*diagonal)) then
       call set_error(error, 'the effective stiffness '//name//' is not positive definite'// &
-        node_text(deck, equation)//': with DT = '//rtoa(dt)//' s the mass term '//term//' ('// &
+        node_text(deck%mesh, equation)//': with DT = '//rtoa(dt)//' s the mass term '//term//' ('// &
         rtoa(mass_term)//') is lost in round-off against S (diagonal up to '//rtoa(diagonal)// &
         '), so a body free to move has no stiffness against that motion; use a DT of the order of the '// &
         'duration of the event', file=deck%cards%file, line=deck%stages(stage)%line, card='TIME')
     else
-      call singular_error(deck, equation, error)
+      call singular_error(deck%mesh, deck%source, equation, error)
       error%message = 'the effective stiffness '//name//' is not positive definite: '//error%message
     end if
     end associate
@@ -478,7 +478,7 @@ contains
     else
       call put_field_summary(body_displacement(deck, state%u), state%stress(:, :, :body_elements(deck)), record)
     end if
-    call put_probe_summary(deck, nodal_field(mesh, state%u), state%stress, record)
+    call put_probe_summary(deck%mesh, deck%probes, nodal_field(mesh, state%u), state%stress, record)
     do k = 1, size(deck%probes)
       associate (r => node_dof(mesh, deck%probes(k)%node, 1), z => node_dof(mesh, deck%probes(k)%node, 2))
       call record_put_real(record, 'probe_'//deck%probes(k)%name//'_vr_m_s', state%v(r))

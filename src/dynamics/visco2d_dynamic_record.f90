@@ -70,7 +70,7 @@ contains
     log%node_mass = nodal_mass(2, :)
     end associate
     log%body_mass = sum(mass(2::2))
-    log%basis_factor = whole_body_factor(deck%geometry)
+    log%basis_factor = whole_body_factor(deck%settings%geometry)
     log%width = max(6, len(itoa(total_steps(deck))))
     allocate(log%probe_corners(size(deck%probes)))
     do k = 1, size(deck%probes)
@@ -293,7 +293,7 @@ contains
     integer, intent(in) :: history_values
     associate (f => log%basis_factor)
     call record_put_real(record, 'time_end_s', state%t)
-    call record_put(record, 'energy_basis', energy_basis(deck%geometry))
+    call record_put(record, 'energy_basis', energy_basis(deck%settings%geometry))
     call record_put_real(record, 'mass_kg', f*log%body_mass)
     call record_put_real(record, 'body_mass_kg', f*log%body_mass)
     call record_put_integer(record, 'history_values', history_values)

@@ -114,7 +114,7 @@ contains
     nmat = size(materials)
     stepper%integrator = integrator_create(deck%dynamics)
     stepper%by_refactoring = by_refactoring
-    stepper%solver = solver_of_card(deck%solver)
+    stepper%solver = solver_of_card(deck%settings%solver)
     do k = 1, nmat
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
     end do
@@ -124,13 +124,13 @@ contains
       stepper%points(k)%row = stepper%integrator%rows(k)
       allocate(stepper%points(k)%over_h(nmat), stepper%points(k)%over_length(nmat))
     end do
-    stepper%supports = support_mask(deck)
+    stepper%supports = support_mask(deck%mesh, deck%settings, deck%loads)
     stepper%fixed = stepper%supports
     allocate(stepper%held_rows(0), stepper%held(n), stepper%reaction_solve(n))
     stepper%held = .false.
     stepper%reaction_solve = 0.0_dp
-    stepper%mass = lumped_mass(deck)                                   ! eq. [32], row sums
-    stepper%gravity = gravity_load(deck)
+    stepper%mass = lumped_mass(deck%mesh, deck%settings, deck%materials)                ! eq. [32], row sums
+    stepper%gravity = gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads)
     call operators_create(deck, stepper%operators)
     allocate(stepper%base(n), stepper%free(n), stepper%solution(n), stepper%prescribed(n), stepper%du(n), &
              stepper%dv(n), stepper%da(n), stepper%load_next(n), stepper%internal_next(n), stepper%reaction_next(n), &
@@ -197,7 +197,8 @@ contains
     point%bulk = point%over_length(material_of)%bulk
     point%shear_h = point%over_h(material_of)%shear
     point%bulk_h = point%over_h(material_of)%bulk
-    call assemble_stiffness(deck, point%over_h(material_of)%shear, point%over_h(material_of)%bulk, point%effective)
+    call assemble_stiffness(deck%mesh, deck%settings, point%over_h(material_of)%shear, point%over_h(material_of)%bulk, &
+                            point%effective)
     stiffness_rows = 0.0_dp
     associate (effective => point%effective)
     do j = 1, effective%n
@@ -271,8 +272,8 @@ contains
     real(dp), intent(in) :: t_next
     integer :: e
     associate (point => stepper%points(r), row => stepper%points(r)%row)
-    stepper%load_next = external_load(deck, t_next)
-    stepper%target_next = prescribed_displacement(deck, t_next)
+    stepper%load_next = external_load(deck%mesh, deck%settings, deck%loads, t_next)
+    stepper%target_next = prescribed_displacement(deck%mesh, deck%loads, t_next)
     stepper%base = state%load + row%theta*(1.0_dp - row%alpha_f)*(stepper%load_next - state%load) + stepper%gravity &
                    - state%internal + stepper%mass*inertia_load(row, point%h, state%u, state%v, state%a, start%u, start%v)
     if (.not. stepper%memory) return

@@ -62,9 +62,9 @@ contains
     call text_put(out, '')
     call text_put(out, ' CONTROL')
     call text_put(out, '   analysis          '//analysis_name(deck%analysis))
-    call text_put(out, '   geometry          '//geometry_name(deck%geometry))
+    call text_put(out, '   geometry          '//geometry_name(deck%settings%geometry))
     call text_put(out, '   effects           '//effects)
-    call text_put(out, '   formulation       '//formulation_name(deck%formulation))
+    call text_put(out, '   formulation       '//formulation_name(deck%settings%formulation))
     if (deck%analysis == analysis_dynamic) then
       call text_put(out, '   Wilson theta      '//gtoa(deck%dynamics%theta))
       associate (velocity => initial_velocity(deck))
@@ -77,7 +77,8 @@ contains
       call text_put(out, '   output            history every '//itoa(deck%output%every)//' step(s), '// &
         itoa(size(deck%output%field_times))//' requested field time(s)')
     end if
-    if (deck%gravity > 0.0_dp) call text_put(out, '   gravity           '//gtoa(deck%gravity)//' m/s^2 in -z')
+    if (deck%loads%gravity > 0.0_dp) call text_put(out, &
+      '   gravity           '//gtoa(deck%loads%gravity)//' m/s^2 in -z')
     if (deck%plate%line > 0) then
       call text_put(out, '   plate             z = '//gtoa(deck%plate%z)//' m, '// &
         trim(merge('STICK (u_r, u_z held)', 'SLIP (u_z held)      ', deck%plate%stick))//', RELEASE='// &
@@ -167,14 +168,14 @@ contains
         call text_put(out, '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0')
       end if
     end if
-    if (size(deck%curves) > 0) then
+    if (size(deck%loads%curves) > 0) then
       call text_put(out, '')
       call text_put(out, ' CURVES  (name: time (s) -> factor; constant outside the points)')
-      do k = 1, size(deck%curves)
-        call text_put(out, '   '//deck%curves(k)%name//':')
-        do i = 1, size(deck%curves(k)%time)
-          call text_put(out, '       '//real_field(deck%curves(k)%time(i), 16, 8)//' -> '// &
-            real_field(deck%curves(k)%value(i), 16, 8))
+      do k = 1, size(deck%loads%curves)
+        call text_put(out, '   '//deck%loads%curves(k)%name//':')
+        do i = 1, size(deck%loads%curves(k)%time)
+          call text_put(out, '       '//real_field(deck%loads%curves(k)%time(i), 16, 8)//' -> '// &
+            real_field(deck%loads%curves(k)%value(i), 16, 8))
         end do
       end do
     end if
@@ -217,20 +218,22 @@ contains
     associate (mesh => deck%mesh)
     call text_put(out, '')
     call text_put(out, ' SUPPORTS AND LOADS')
-    do k = 1, size(deck%fixes)
-      call text_put(out, '   FIX      line '//itoa(deck%fixes(k)%line)//': '//itoa(size(deck%fixes(k)%nodes))// &
-        ' node(s), '//merge('u_r ', '    ', deck%fixes(k)%fix_r)//merge('u_z', '   ', deck%fixes(k)%fix_z)// &
+    do k = 1, size(deck%loads%fixes)
+      call text_put(out, '   FIX      line '//itoa(deck%loads%fixes(k)%line)//': '// &
+        itoa(size(deck%loads%fixes(k)%nodes))// &
+        ' node(s), '//merge('u_r ', '    ', deck%loads%fixes(k)%fix_r)//merge('u_z', '   ', &
+          deck%loads%fixes(k)%fix_z)// &
         trim(prescribed_text(deck, k)))
     end do
-    do k = 1, size(deck%pressures)
-      call text_put(out, '   PRESSURE line '//itoa(deck%pressures(k)%line)//': '// &
-        edge_set_name(deck%pressures(k)%edge_set)//' p = '//gtoa(deck%pressures(k)%value)//' Pa'// &
-        curve_text(deck, deck%pressures(k)%curve))
+    do k = 1, size(deck%loads%pressures)
+      call text_put(out, '   PRESSURE line '//itoa(deck%loads%pressures(k)%line)//': '// &
+        edge_set_name(deck%loads%pressures(k)%edge_set)//' p = '//gtoa(deck%loads%pressures(k)%value)//' Pa'// &
+        curve_text(deck, deck%loads%pressures(k)%curve))
     end do
-    do k = 1, size(deck%forces)
-      call text_put(out, '   FORCE    line '//itoa(deck%forces(k)%line)//': node '// &
-        itoa(mesh%node_id(deck%forces(k)%node))//' F = ('//gtoa(deck%forces(k)%value(1))//', '// &
-        gtoa(deck%forces(k)%value(2))//') N'//curve_text(deck, deck%forces(k)%curve))
+    do k = 1, size(deck%loads%forces)
+      call text_put(out, '   FORCE    line '//itoa(deck%loads%forces(k)%line)//': node '// &
+        itoa(mesh%node_id(deck%loads%forces(k)%node))//' F = ('//gtoa(deck%loads%forces(k)%value(1))//', '// &
+        gtoa(deck%loads%forces(k)%value(2))//') N'//curve_text(deck, deck%loads%forces(k)%curve))
     end do
     end associate
   end subroutine listing_loads
@@ -328,7 +331,7 @@ contains
     integer, intent(in) :: curve
     character(:), allocatable :: text
     text = ''
-    if (curve > 0) text = ' x curve '//deck%curves(curve)%name
+    if (curve > 0) text = ' x curve '//deck%loads%curves(curve)%name
   end function curve_text
 
   !> ', prescribed u_r = .., u_z = .. m [x curve]' for a FIX card with values.
@@ -337,7 +340,7 @@ contains
     integer, intent(in) :: k
     character(:), allocatable :: text
     text = ''
-    associate (fix => deck%fixes(k))
+    associate (fix => deck%loads%fixes(k))
     if (all(fix%value == 0.0_dp)) return
     text = ', prescribed'
     if (fix%fix_r) text = text//' u_r = '//gtoa(fix%value(1))//' m'

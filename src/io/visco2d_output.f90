@@ -269,7 +269,7 @@ contains
     call h5_open_file(writer, path, h5_bytes(deck, record))
     call h5_attribute(writer, writer%file, 'case', case_name)
     call h5_attribute(writer, writer%file, 'title', deck%title)
-    call h5_attribute(writer, writer%file, 'geometry', geometry_name(deck%geometry))
+    call h5_attribute(writer, writer%file, 'geometry', geometry_name(deck%settings%geometry))
     call h5_attribute(writer, writer%file, 'analysis', analysis_name(deck%analysis))
 
     group = h5_group(writer, writer%file, 'mesh')

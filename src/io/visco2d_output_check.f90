@@ -204,32 +204,32 @@ contains
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%curves)) then
-      do k = 1, size(deck%curves)
-        call check_values([deck%curves(k)%time, deck%curves(k)%value], 'points of curve '//deck%curves(k)%name, &
-                          deck%curves(k)%line, 'CURVE')
+    if (allocated(deck%loads%curves)) then
+      do k = 1, size(deck%loads%curves)
+        call check_values([deck%loads%curves(k)%time, deck%loads%curves(k)%value], &
+                          'points of curve '//deck%loads%curves(k)%name, deck%loads%curves(k)%line, 'CURVE')
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%fixes)) then
-      do k = 1, size(deck%fixes)
-        call check_values(deck%fixes(k)%value, 'prescribed displacement', deck%fixes(k)%line, 'FIX')
+    if (allocated(deck%loads%fixes)) then
+      do k = 1, size(deck%loads%fixes)
+        call check_values(deck%loads%fixes(k)%value, 'prescribed displacement', deck%loads%fixes(k)%line, 'FIX')
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%pressures)) then
-      do k = 1, size(deck%pressures)
-        call check_values([deck%pressures(k)%value], 'pressure', deck%pressures(k)%line, 'PRESSURE')
+    if (allocated(deck%loads%pressures)) then
+      do k = 1, size(deck%loads%pressures)
+        call check_values([deck%loads%pressures(k)%value], 'pressure', deck%loads%pressures(k)%line, 'PRESSURE')
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%forces)) then
-      do k = 1, size(deck%forces)
-        call check_values(deck%forces(k)%value, 'force', deck%forces(k)%line, 'FORCE')
+    if (allocated(deck%loads%forces)) then
+      do k = 1, size(deck%loads%forces)
+        call check_values(deck%loads%forces(k)%value, 'force', deck%loads%forces(k)%line, 'FORCE')
         if (allocated(error)) return
       end do
     end if
-    call check_values([deck%gravity], 'gravity', deck%gravity_line, 'GRAVITY'); if (allocated(error)) return
+    call check_values([deck%loads%gravity], 'gravity', deck%gravity_line, 'GRAVITY'); if (allocated(error)) return
     if (deck%plate%line > 0) call check_values([deck%plate%z], 'plate height', deck%plate%line, 'PLATE')
     if (allocated(error)) return
     if (deck%analysis == analysis_dynamic) then

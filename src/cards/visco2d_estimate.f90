@@ -76,7 +76,8 @@ contains
     estimate = run_size(analysis, int(deck%mesh%nnode, int64), int(deck%mesh%nelem, int64), &
                         int(deck%mesh%half_bandwidth, int64), steps, stages, terms, rows, columns, snapshots, contact, &
                         written_snapshots=written, &
-                        sparse=deck%solver == solver_card_default .or. deck%solver == solver_card_cholmod)
+                        sparse=deck%settings%solver == solver_card_default .or. &
+                               deck%settings%solver == solver_card_cholmod)
     if (analysis == budget_static .and. plate) estimate%seconds = static_contact_iterations*estimate%seconds
   end function estimate_run
 

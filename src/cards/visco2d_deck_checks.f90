@@ -59,7 +59,7 @@ contains
       speed = initial_velocity(deck)
       if (.not. in_range(speed(2), speed_range)) then
         call line_error(error, deck, d%drop_line, 'DROP HEIGHT = '//short_real(d%drop_height)//' m with g = '// &
-          short_real(merge(deck%gravity, standard_gravity, deck%gravity_line > 0))//' m/s^2 gives VZ = '// &
+          short_real(merge(deck%loads%gravity, standard_gravity, deck%gravity_line > 0))//' m/s^2 gives VZ = '// &
           short_real(speed(2))//' m/s; the speed must be '//range_text(speed_range), 'HEIGHT')
         return
       end if
@@ -151,12 +151,12 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: k, i, node
     if (deck%plate%line == 0) return
-    do k = 1, size(deck%fixes)
-      if (.not. deck%fixes(k)%fix_z) cycle
-      do i = 1, size(deck%fixes(k)%nodes)
-        node = deck%fixes(k)%nodes(i)
+    do k = 1, size(deck%loads%fixes)
+      if (.not. deck%loads%fixes(k)%fix_z) cycle
+      do i = 1, size(deck%loads%fixes(k)%nodes)
+        node = deck%loads%fixes(k)%nodes(i)
         if (deck%mesh%xy(2, node) > deck%plate%z + 1.0e-9_dp*deck%mesh%size) cycle
-        call line_error(error, deck, deck%fixes(k)%line, 'node '//itoa(deck%mesh%node_id(node))//' (r = '// &
+        call line_error(error, deck, deck%loads%fixes(k)%line, 'node '//itoa(deck%mesh%node_id(node))//' (r = '// &
           rtoa(deck%mesh%xy(1, node))//', z = '//rtoa(deck%mesh%xy(2, node))//') lies on the plate (PLATE Z = '// &
           rtoa(deck%plate%z)//', line '//itoa(deck%plate%line)//'): a FIX of its u_z would take the contact '// &
           'force there instead of the plate (the pressure q would read 0); the plate already holds the body '// &
@@ -188,7 +188,7 @@ contains
     type(deck_t), intent(inout) :: deck
     integer :: k
     real(dp) :: ratio
-    if (deck%formulation /= formulation_standard) return
+    if (deck%settings%formulation /= formulation_standard) return
     do k = 1, size(deck%materials)
       if (.not. any(deck%mesh%element_material == k)) cycle
       ratio = deck%materials(k)%bulk/max(deck%materials(k)%shear, tiny(1.0_dp))   ! instantaneous G(0)
@@ -220,16 +220,19 @@ contains
     type(deck_t), intent(in) :: deck
     type(error_t), allocatable, intent(inout) :: error
     integer :: k
-    do k = 1, size(deck%pressures)
-      call check_product(deck%pressures(k)%line, [deck%pressures(k)%value], deck%pressures(k)%curve, 'P', pressure_range)
+    do k = 1, size(deck%loads%pressures)
+      call check_product(deck%loads%pressures(k)%line, [deck%loads%pressures(k)%value], &
+        deck%loads%pressures(k)%curve, 'P', pressure_range)
       if (allocated(error)) return
     end do
-    do k = 1, size(deck%forces)
-      call check_product(deck%forces(k)%line, deck%forces(k)%value, deck%forces(k)%curve, 'FR, FZ', force_range)
+    do k = 1, size(deck%loads%forces)
+      call check_product(deck%loads%forces(k)%line, deck%loads%forces(k)%value, deck%loads%forces(k)%curve, &
+        'FR, FZ', force_range)
       if (allocated(error)) return
     end do
-    do k = 1, size(deck%fixes)
-      call check_product(deck%fixes(k)%line, deck%fixes(k)%value, deck%fixes(k)%curve, 'UR, UZ', length_range)
+    do k = 1, size(deck%loads%fixes)
+      call check_product(deck%loads%fixes(k)%line, deck%loads%fixes(k)%value, deck%loads%fixes(k)%curve, 'UR, UZ', &
+        length_range)
       if (allocated(error)) return
     end do
   contains
@@ -241,10 +244,10 @@ contains
       type(range_t), intent(in) :: range
       real(dp) :: largest
       if (curve == 0) return
-      largest = maxval(abs(values))*maxval(abs(deck%curves(curve)%value))
+      largest = maxval(abs(values))*maxval(abs(deck%loads%curves(curve)%value))
       if (largest <= range%upper) return
-      call line_error(error, deck, line, names//' times curve '//deck%curves(curve)%name//' (line '// &
-        itoa(deck%curves(curve)%line)//') reaches '//rtoa(largest)//': it must stay '//range_text(range), 'CURVE')
+      call line_error(error, deck, line, names//' times curve '//deck%loads%curves(curve)%name//' (line '// &
+        itoa(deck%loads%curves(curve)%line)//') reaches '//rtoa(largest)//': it must stay '//range_text(range), 'CURVE')
     end subroutine check_product
   end subroutine check_load_sizes
 
@@ -253,9 +256,10 @@ contains
     type(deck_t), intent(in) :: deck
     type(error_t), allocatable, intent(inout) :: error
     integer :: k
-    do k = 1, size(deck%pressures)
-      if (.not. any(deck%mesh%edge_set == deck%pressures(k)%edge_set)) then
-        call line_error(error, deck, deck%pressures(k)%line, 'edge set '//edge_set_name(deck%pressures(k)%edge_set)// &
+    do k = 1, size(deck%loads%pressures)
+      if (.not. any(deck%mesh%edge_set == deck%loads%pressures(k)%edge_set)) then
+        call line_error(error, deck, deck%loads%pressures(k)%line, &
+          'edge set '//edge_set_name(deck%loads%pressures(k)%edge_set)// &
           ' has no boundary edges in this mesh', '1')
         return
       end if

@@ -52,8 +52,8 @@ contains
   subroutine check_drop_gap(deck)
     type(deck_t), intent(inout) :: deck
     real(dp) :: gap, g
-    g = deck%gravity
-    if (deck%dynamics%drop_line == 0 .or. deck%plate%line == 0 .or. deck%gravity <= 0.0_dp) return
+    g = deck%loads%gravity
+    if (deck%dynamics%drop_line == 0 .or. deck%plate%line == 0 .or. deck%loads%gravity <= 0.0_dp) return
     gap = minval(deck%mesh%xy(2, :body_nodes(deck))) - deck%plate%z
     if (gap <= gap_fraction*deck%dynamics%drop_height .or. gap <= 1.0e-9_dp*deck%mesh%size) return
     call add_warning(deck, deck%dynamics%drop_line, 'DROP', 'the body starts '//rtoa(gap)//' m above the plate '// &
@@ -70,15 +70,15 @@ contains
   subroutine check_axis_motion(deck)
     type(deck_t), intent(inout) :: deck
     integer :: k
-    if (deck%geometry /= geometry_axisymmetric) return
+    if (deck%settings%geometry /= geometry_axisymmetric) return
     if (deck%dynamics%initial_line > 0 .and. deck%dynamics%velocity(1) /= 0.0_dp) &
       call add_warning(deck, deck%dynamics%initial_line, 'INITIAL', 'VR = '//short_real(deck%dynamics%velocity(1))// &
         ' m/s in GEOMETRY AXISYMMETRIC is a radial velocity of every ring (the body swells or shrinks, a '// &
         'breathing motion), not a sideways throw: an oblique impact needs GEOMETRY PLANESTRAIN')
-    do k = 1, size(deck%forces)
-      if (deck%forces(k)%value(1) == 0.0_dp) cycle
-      if (deck%mesh%xy(1, deck%forces(k)%node) /= 0.0_dp) cycle
-      call add_warning(deck, deck%forces(k)%line, 'FORCE', 'FR = '//short_real(deck%forces(k)%value(1))// &
+    do k = 1, size(deck%loads%forces)
+      if (deck%loads%forces(k)%value(1) == 0.0_dp) cycle
+      if (deck%mesh%xy(1, deck%loads%forces(k)%node) /= 0.0_dp) cycle
+      call add_warning(deck, deck%loads%forces(k)%line, 'FORCE', 'FR = '//short_real(deck%loads%forces(k)%value(1))// &
         ' N on a node on the axis (r = 0) does nothing: u_r = 0 there in GEOMETRY AXISYMMETRIC')
     end do
   end subroutine check_axis_motion
@@ -114,9 +114,9 @@ contains
     integer, intent(in) :: analysis_line
     integer :: k
     if (deck%analysis == analysis_dynamic) return
-    if (size(deck%pressures) > 0 .or. size(deck%forces) > 0 .or. deck%gravity > 0.0_dp) return
-    do k = 1, size(deck%fixes)
-      if (any(deck%fixes(k)%value /= 0.0_dp)) return
+    if (size(deck%loads%pressures) > 0 .or. size(deck%loads%forces) > 0 .or. deck%loads%gravity > 0.0_dp) return
+    do k = 1, size(deck%loads%fixes)
+      if (any(deck%loads%fixes(k)%value /= 0.0_dp)) return
     end do
     call add_warning(deck, analysis_line, 'ANALYSIS', analysis_name(deck%analysis)//' deck without any load (no '// &
       'PRESSURE, FORCE, GRAVITY or FIX UR=/UZ=): every displacement and stress is zero')
@@ -126,7 +126,7 @@ contains
   !> cylinder, per metre of its length: not a sphere.
   subroutine check_round_body_in_plane_strain(deck)
     type(deck_t), intent(inout) :: deck
-    if (deck%geometry /= geometry_plane_strain .or. .not. generated_round_body(deck%mesh)) return
+    if (deck%settings%geometry /= geometry_plane_strain .or. .not. generated_round_body(deck%mesh)) return
     call add_warning(deck, deck%mesh%line, 'MESH', 'in GEOMETRY PLANESTRAIN this '//deck%mesh%source//' is the '// &
       'cross-section of a long cylinder (forces, masses and energies per metre of its length), not a '// &
       deck%mesh%source//'; GEOMETRY AXISYMMETRIC makes it a body of revolution')

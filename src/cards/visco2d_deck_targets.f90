@@ -262,10 +262,10 @@ contains
     integer, allocatable :: owner(:, :)
     integer :: k, i, c, code, node, other
     logical :: fixed(2)
-    allocate(deck%fixes(size(pending)), owner(2, deck%mesh%nnode))
+    allocate(deck%loads%fixes(size(pending)), owner(2, deck%mesh%nnode))
     owner = 0
     do k = 1, size(pending)
-      associate (fix => deck%fixes(k), card => deck%cards%cards(pending(k)%card))
+      associate (fix => deck%loads%fixes(k), card => deck%cards%cards(pending(k)%card))
       fix%line = card%line
       fix%fix_r = index(pending(k)%components, 'R') > 0
       fix%fix_z = index(pending(k)%components, 'Z') > 0
@@ -286,7 +286,7 @@ contains
       fixed = [fix%fix_r, fix%fix_z]
       do i = 1, size(fix%nodes)
         node = fix%nodes(i)
-        if (deck%geometry == geometry_axisymmetric .and. deck%mesh%xy(1, node) == 0.0_dp .and. &
+        if (deck%settings%geometry == geometry_axisymmetric .and. deck%mesh%xy(1, node) == 0.0_dp .and. &
             fix%fix_r .and. fix%value(1) /= 0.0_dp) then
           call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))// &
             ' is on the axis, where u_r = 0 always; it cannot have UR='//short_real(fix%value(1)), &
@@ -297,10 +297,10 @@ contains
           if (.not. fixed(c)) cycle
           other = owner(c, node)
           if (other > 0) then
-            if (deck%fixes(other)%value(c) /= fix%value(c) .or. deck%fixes(other)%curve /= fix%curve) then
+            if (deck%loads%fixes(other)%value(c) /= fix%value(c) .or. deck%loads%fixes(other)%curve /= fix%curve) then
               call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))//' gets a '// &
                 'different prescribed '//trim(merge('u_r', 'u_z', c == 1))//' from the FIX card on line '// &
-                itoa(deck%fixes(other)%line)//' (a node may be prescribed twice only alike)', pending(k)%column)
+                itoa(deck%loads%fixes(other)%line)//' (a node may be prescribed twice only alike)', pending(k)%column)
               return
             end if
           end if
@@ -317,13 +317,13 @@ contains
     type(pending_t), intent(in) :: pending(:)
     type(error_t), allocatable, intent(inout) :: error
     integer :: k
-    allocate(deck%forces(size(pending)))
+    allocate(deck%loads%forces(size(pending)))
     do k = 1, size(pending)
-      deck%forces(k)%node = target_node(deck, pending(k), error)
+      deck%loads%forces(k)%node = target_node(deck, pending(k), error)
       if (allocated(error)) return
-      deck%forces(k)%value = pending(k)%values
-      deck%forces(k)%line = deck%cards%cards(pending(k)%card)%line
-      deck%forces(k)%curve = curve_index(deck, pending(k)%card, pending(k)%curve, error)
+      deck%loads%forces(k)%value = pending(k)%values
+      deck%loads%forces(k)%line = deck%cards%cards(pending(k)%card)%line
+      deck%loads%forces(k)%curve = curve_index(deck, pending(k)%card, pending(k)%curve, error)
       if (allocated(error)) return
     end do
   end subroutine resolve_forces
@@ -345,8 +345,8 @@ contains
                       field_column(the_card, 'CURVE'))
       return
     end if
-    do k = 1, size(deck%curves)
-      if (deck%curves(k)%name == name) found = k
+    do k = 1, size(deck%loads%curves)
+      if (deck%loads%curves(k)%name == name) found = k
     end do
     if (found == 0) call card_error(error, deck%cards, the_card, 'curve '//name// &
       ' is not defined by a CURVE card', field_column(the_card, 'CURVE'))

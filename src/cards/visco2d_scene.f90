@@ -31,7 +31,7 @@ contains
     integer :: k
     effects = effects_t()
     effects%inertia = deck%analysis == analysis_dynamic
-    effects%gravity = deck%gravity > 0.0_dp
+    effects%gravity = deck%loads%gravity > 0.0_dp
     effects%contact = deck%plate%line > 0
     effects%pad = deck%pad%line > 0
     do k = 1, size(deck%materials)

@@ -7,8 +7,6 @@ module visco2d_mesh
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp, geometry_tolerance
   use visco2d_sorting, only: sorted_order
-  use visco2d_mesh_generator, only: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, &
-                                    edge_set_bottom, edge_set_top, edge_set_name
   implicit none
   private
 
@@ -17,6 +15,10 @@ module visco2d_mesh
   public :: generated_round_body
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
+
+  !> Boundary edge sets: the generators tag the edges they make, the cards name them (edge_set_name).
+  integer, parameter :: edge_set_none = 0, edge_set_axis = 1, edge_set_inner = 2, &
+                        edge_set_outer = 3, edge_set_bottom = 4, edge_set_top = 5
 
   !> Length of a material name on an element.
   integer, parameter :: name_length = 32
@@ -43,6 +45,20 @@ module visco2d_mesh
   end type mesh_t
 
 contains
+
+  !> Name of an edge-set code, as written on cards.
+  pure function edge_set_name(code) result(name)
+    integer, intent(in) :: code
+    character(:), allocatable :: name
+    select case (code)
+    case (edge_set_axis); name = 'AXIS'
+    case (edge_set_inner); name = 'INNER'
+    case (edge_set_outer); name = 'OUTER'
+    case (edge_set_bottom); name = 'BOTTOM'
+    case (edge_set_top); name = 'TOP'
+    case default; name = 'NONE'
+    end select
+  end function edge_set_name
 
   !> The two nodes (counter-clockwise) of side `side` (1..4) of element e.
   pure subroutine side_nodes(mesh, e, side, a, b)

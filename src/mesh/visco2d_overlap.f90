@@ -59,7 +59,7 @@ contains
 
   !> Sides of more than two elements, and pairs of elements that have the same
   !> nodes or lie on the same side of their common side. keys and order: the
-  !> side keys and their ascending order (sort_integers). Reports the finding
+  !> side keys and their ascending order (sorted_order). Reports the finding
   !> whose later element comes first, same nodes before the others.
   pure subroutine check_edges(connectivity, keys, order, finding)
     integer, intent(in) :: connectivity(:, :)

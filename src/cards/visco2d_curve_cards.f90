@@ -1,56 +1,19 @@
-!> Time histories of loads and prescribed displacements (the CURVE card):
-!> a step (value 1 from t = 0 on) or a piecewise-linear table of (t, value)
-!> points, held constant before the first and after the last point.
-module visco2d_curve
+!> The CURVE card read into a time history (visco2d_curve): a step, or
+!> pairs of time and value with strictly increasing times.
+module visco2d_curve_cards
   use visco2d_kinds, only: dp
   use visco2d_ranges, only: time_range, curve_factor_range
   use visco2d_error, only: error_t
   use visco2d_strings, only: itoa, short_real
   use visco2d_cards, only: card_t, card_deck_t, card_error, positional_word, positional_real, positional_count, &
                            check_fields_used, field_column
+  use visco2d_curve, only: curve_t
   implicit none
   private
 
-  public :: curve_t, curve_value, read_curve
-
-  !> One named time history. A load without a curve is constant in time (a step at t = 0).
-  type :: curve_t
-    character(:), allocatable :: name
-    real(dp), allocatable :: time(:)    !< s, strictly increasing; a step has time = [0]
-    real(dp), allocatable :: value(:)   !< dimensionless factor on the card's value
-    integer :: line = 0                 !< line of the CURVE card
-  end type curve_t
+  public :: read_curve
 
 contains
-
-  !> Factor of a curve at time t (s): linear between points, constant outside.
-  !> The interval is found by bisection (a curve may have many points).
-  pure real(dp) function curve_value(curve, t) result(factor)
-    type(curve_t), intent(in) :: curve
-    real(dp), intent(in) :: t
-    integer :: low, high, middle, n
-    n = size(curve%time)
-    if (t <= curve%time(1)) then
-      factor = curve%value(1)
-      return
-    end if
-    if (t > curve%time(n)) then
-      factor = curve%value(n)
-      return
-    end if
-    low = 1                                   ! time(low) < t <= time(high)
-    high = n
-    do while (high - low > 1)
-      middle = (low + high)/2
-      if (t <= curve%time(middle)) then
-        high = middle
-      else
-        low = middle
-      end if
-    end do
-    factor = curve%value(low) + (curve%value(high) - curve%value(low))* &
-             (t - curve%time(low))/(curve%time(high) - curve%time(low))
-  end function curve_value
 
   !> CURVE name STEP   or   CURVE name t1 v1 t2 v2 ...  (t in s, strictly increasing; v a factor)
   subroutine read_curve(cards, card, curves, error)
@@ -104,4 +67,4 @@ contains
     if (allocated(error)) return
     curves = [curves, curve]
   end subroutine read_curve
-end module visco2d_curve
+end module visco2d_curve_cards

@@ -1,30 +1,29 @@
-!> The model a deck describes (deck_t and the records it holds: supports,
-!> pressures, point loads, probes, expected values, warnings), the analysis
+!> The model a deck describes (deck_t and the records it holds: the model's
+!> settings, supports, loads, probes and time stages of visco2d_model, the
+!> expected values, warnings), the analysis
 !> kinds, the small queries on a deck (names, total steps, initial velocity)
 !> and the located errors and warnings on its cards. visco2d_deck reads a
 !> deck into these types and re-exports them.
 module visco2d_deck_types
-  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_standard, formulation_bbar
+  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_bbar
   use visco2d_error, only: error_t, set_error
-  use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_strings, only: itoa
   use visco2d_cards, only: card_deck_t, card_error, field_column
   use visco2d_material, only: material_t
-  use visco2d_curve, only: curve_t
-  use visco2d_time, only: time_stage_t
+  use visco2d_model, only: settings_t, fix_t, pressure_t, force_t, loads_t, probe_t, time_stage_t, source_t, &
+                           stage_total_steps
   use visco2d_dynamic_cards, only: dynamics_t, output_request_t, standard_gravity
   use visco2d_contact_cards, only: plate_t, pad_t, stop_at_tend
   use visco2d_bruise_cards, only: bruise_card_t
-  use visco2d_mesh, only: mesh_t, edge_set_none
+  use visco2d_mesh, only: mesh_t
   implicit none
   private
 
-  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t
+  public :: deck_t, settings_t, loads_t, source_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
   public :: solver_card_default, solver_card_band, solver_card_profile, solver_card_cholmod, solver_card_names
   public :: card_at_line, line_error, card_keyword_at, add_warning
-
 
   integer, parameter :: analysis_static = 1       !< S U = R once
   integer, parameter :: analysis_quasistatic = 2  !< incremental in time, no inertia (the legacy program)
@@ -43,42 +42,6 @@ module visco2d_deck_types
     character(:), allocatable :: text
   end type warning_t
 
-  !> A support: components prescribed at a set of nodes, u = value * curve(t)
-  !> (value 0, no curve: a fixed support).
-  type :: fix_t
-    integer, allocatable :: nodes(:)
-    logical :: fix_r = .false., fix_z = .false.
-    real(dp) :: value(2) = 0.0_dp  !< prescribed (u_r, u_z), m
-    integer :: curve = 0           !< index into deck%curves; 0 = constant
-    integer :: line = 0
-  end type fix_t
-
-  !> A uniform normal pressure on a boundary edge set (positive = compressive), p * curve(t).
-  type :: pressure_t
-    integer :: edge_set = edge_set_none
-    real(dp) :: value = 0.0_dp     !< Pa
-    integer :: curve = 0           !< index into deck%curves; 0 = constant
-    integer :: line = 0
-  end type pressure_t
-
-  !> A point load at a node (per radian in axisymmetry), N, times curve(t).
-  type :: force_t
-    integer :: node = 0
-    real(dp) :: value(2) = 0.0_dp
-    integer :: curve = 0           !< index into deck%curves; 0 = constant
-    integer :: line = 0
-  end type force_t
-
-  !> A node whose displacement and stress are reported in the summary and history;
-  !> with RADIUS= also a sensor: the mass-weighted mean acceleration of the
-  !> nodes within the radius (the rigid-body acceleration of that region).
-  type :: probe_t
-    character(:), allocatable :: name
-    integer :: node = 0
-    real(dp) :: radius = 0.0_dp           !< m, RADIUS=; 0: no sensor
-    integer, allocatable :: region(:)     !< the sensor's nodes (radius > 0): within radius of the probe point
-  end type probe_t
-
   !> An expected value of a summary key (an analytic answer the deck documents).
   type :: expect_t
     character(:), allocatable :: key   !< summary key, upper case
@@ -91,24 +54,19 @@ module visco2d_deck_types
   !> The model a deck describes.
   type :: deck_t
     type(card_deck_t) :: cards                     !< the cards as read (for the listing echo)
+    type(source_t) :: source                       !< the file and its cards' lines and keywords (located errors)
     character(:), allocatable :: title
     integer :: analysis = 0
-    integer :: geometry = geometry_axisymmetric
+    type(settings_t) :: settings                   !< GEOMETRY, FORMULATION, SOLVER
     type(material_t), allocatable :: materials(:)
     type(mesh_t) :: mesh
-    type(fix_t), allocatable :: fixes(:)
-    type(pressure_t), allocatable :: pressures(:)
-    type(force_t), allocatable :: forces(:)
+    type(loads_t) :: loads                         !< FIX, PRESSURE, FORCE, CURVE, GRAVITY G=
     type(probe_t), allocatable :: probes(:)
     type(expect_t), allocatable :: expects(:)
-    type(curve_t), allocatable :: curves(:)
     type(time_stage_t), allocatable :: stages(:)  !< TIME cards, in order (QUASISTATIC, DYNAMIC)
     type(dynamics_t) :: dynamics                  !< WILSON, INITIAL, DROP (DYNAMIC)
-    real(dp) :: gravity = 0.0_dp                  !< GRAVITY G=, m/s^2 in -z; 0: no gravity
-    integer :: gravity_line = 0
+    integer :: gravity_line = 0                   !< the GRAVITY card (loads%gravity: its G=)
     type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
-    integer :: formulation = formulation_standard !< FORMULATION STANDARD | BBAR
-    integer :: solver = solver_card_default       !< SOLVER BAND | PROFILE | CHOLMOD (0: the default)
     integer :: solver_line = 0
     type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
     type(pad_t) :: pad                            !< PAD on the plate (visco2d_pad_mesh); pad%line = 0: none
@@ -149,7 +107,7 @@ contains
     velocity = deck%dynamics%velocity
     if (deck%dynamics%drop_line > 0) then
       g = standard_gravity
-      if (deck%gravity_line > 0) g = deck%gravity
+      if (deck%gravity_line > 0) g = deck%loads%gravity
       velocity(2) = -sqrt(2.0_dp*g*deck%dynamics%drop_height)
     end if
   end function initial_velocity
@@ -166,15 +124,8 @@ contains
   !> it at most max_steps; summed in 64 bits all the same).
   pure integer function total_steps(deck)
     type(deck_t), intent(in) :: deck
-    integer(int64) :: steps
-    integer :: k
-    steps = 0
-    if (allocated(deck%stages)) then
-      do k = 1, size(deck%stages)
-        steps = steps + int(deck%stages(k)%steps, int64)
-      end do
-    end if
-    total_steps = int(min(steps, int(huge(total_steps), int64)))
+    total_steps = 0
+    if (allocated(deck%stages)) total_steps = stage_total_steps(deck%stages)
   end function total_steps
 
   !> Index of the card on a line (0 if none: a line is always a card's here).

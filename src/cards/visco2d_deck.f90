@@ -13,7 +13,7 @@ module visco2d_deck
   use visco2d_strings, only: itoa, short_real, nearest_word
   use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column
   use visco2d_material_cards, only: read_material, read_prony, finish_material
-  use visco2d_curve, only: read_curve
+  use visco2d_curve_cards, only: read_curve
   use visco2d_time, only: time_stage_t, read_time
   use visco2d_dynamic_cards, only: dynamics_t, output_request_t, read_wilson, read_initial, read_drop, &
                                    read_gravity, read_output, read_formulation, theta_unconditional, &
@@ -24,7 +24,8 @@ module visco2d_deck
   use visco2d_mesh_cards, only: mesh_input_t, read_node_card, read_element_card, read_mesh_card
   use visco2d_mesh_build, only: build_mesh
   use visco2d_pad_mesh, only: append_pad
-  use visco2d_deck_types, only: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, warning_t, &
+  use visco2d_deck_types, only: deck_t, settings_t, loads_t, source_t, fix_t, pressure_t, force_t, probe_t, &
+                                expect_t, warning_t, &
                                 analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
                                 geometry_name, total_steps, formulation_name, initial_velocity, add_warning, &
                                 solver_card_names
@@ -37,7 +38,8 @@ module visco2d_deck
   implicit none
   private
 
-  public :: deck_t, fix_t, pressure_t, force_t, probe_t, expect_t, time_stage_t, warning_t, read_deck
+  public :: deck_t, settings_t, loads_t, source_t, fix_t, pressure_t, force_t, probe_t, expect_t, time_stage_t, &
+            warning_t, read_deck
   public :: dynamics_t, output_request_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
@@ -72,8 +74,9 @@ contains
 
     call read_cards(file, deck%cards, error, card_keywords)
     if (allocated(error)) return
+    deck%source = card_source(deck%cards)
     deck%title = ''
-    allocate(deck%materials(0), deck%pressures(0), deck%expects(0), deck%curves(0), deck%stages(0))
+    allocate(deck%materials(0), deck%loads%pressures(0), deck%expects(0), deck%loads%curves(0), deck%stages(0))
     allocate(deck%warnings(0), deck%output%field_times(0), deck%bruises(0))
     allocate(reading%fixes(0), reading%forces(0), reading%probes(0), reading%pressure_curves(0))
     allocate(reading%pressure_cards(0))
@@ -87,6 +90,20 @@ contains
     end if
     call finish_deck(deck, reading, error)
   end subroutine read_deck
+
+  !> Where a deck was read from (the located errors of a failed solve): its
+  !> file, and the line and keyword of each card.
+  pure function card_source(cards) result(source)
+    type(card_deck_t), intent(in) :: cards
+    type(source_t) :: source
+    integer :: k
+    source%file = cards%file
+    allocate(source%lines(cards%count), source%keywords(cards%count))
+    do k = 1, cards%count
+      source%lines(k) = cards%cards(k)%line
+      source%keywords(k) = cards%cards(k)%keyword
+    end do
+  end function card_source
 
   !> Read card i into the deck (or into `reading` until the mesh exists).
   subroutine read_card(deck, reading, i, error)
@@ -112,7 +129,7 @@ contains
       end if
       call read_prony(cards, card, deck%materials(size(deck%materials)), error)
     case ('CURVE')
-      call read_curve(cards, card, deck%curves, error)
+      call read_curve(cards, card, deck%loads%curves, error)
     case ('TIME')
       call read_time(cards, card, deck%stages, error)
     case ('NODE')
@@ -124,7 +141,7 @@ contains
     case ('FIX')
       call read_fix(cards, card, i, reading%fixes, error)
     case ('PRESSURE')
-      call read_pressure(cards, card, deck%pressures, word, error); if (allocated(error)) return
+      call read_pressure(cards, card, deck%loads%pressures, word, error); if (allocated(error)) return
       reading%pressure_curves = [character(len=32) :: reading%pressure_curves, word]
       reading%pressure_cards = [reading%pressure_cards, i]
       call check_repeated_pressure(deck, reading, i, error)
@@ -189,16 +206,16 @@ contains
       call check_fields_used(cards, card, error, 'GEOMETRY AXISYMMETRIC | PLANESTRAIN'); if (allocated(error)) return
       select case (word)
       case ('AXISYMMETRIC')
-        deck%geometry = geometry_axisymmetric
+        deck%settings%geometry = geometry_axisymmetric
       case ('PLANESTRAIN')
-        deck%geometry = geometry_plane_strain
+        deck%settings%geometry = geometry_plane_strain
       case default
         call card_error(error, cards, card, 'geometry must be AXISYMMETRIC or PLANESTRAIN, got "'//word//'"', &
                         field_column(card, '1'))
       end select
     case ('FORMULATION')
       call once(deck, i, reading%formulation_line, error); if (allocated(error)) return
-      call read_formulation(cards, card, deck%formulation, error); if (allocated(error)) return
+      call read_formulation(cards, card, deck%settings%formulation, error); if (allocated(error)) return
       reading%formulation_line = card%line
     case ('SOLVER')
       call once(deck, i, deck%solver_line, error); if (allocated(error)) return
@@ -206,12 +223,12 @@ contains
       call positional_word(cards, card, 1, 'solver (BAND, PROFILE or CHOLMOD)', word, error)
       if (allocated(error)) return
       call check_fields_used(cards, card, error, 'SOLVER BAND | PROFILE | CHOLMOD'); if (allocated(error)) return
-      deck%solver = 0
+      deck%settings%solver = 0
       do k = 1, size(solver_card_names)
-        if (word == trim(solver_card_names(k))) deck%solver = k
+        if (word == trim(solver_card_names(k))) deck%settings%solver = k
       end do
-      if (deck%solver == 0) call card_error(error, cards, card, 'solver must be BAND (the legacy band storage '// &
-        'and LAPACK), PROFILE (envelope storage) or CHOLMOD (sparse, the default), got "'//word//'"', &
+      if (deck%settings%solver == 0) call card_error(error, cards, card, 'solver must be BAND (the legacy '// &
+        'band storage and LAPACK), PROFILE (envelope storage) or CHOLMOD (sparse, the default), got "'//word//'"', &
         field_column(card, '1'))
     end select
     end associate
@@ -245,7 +262,7 @@ contains
       call read_drop(cards, card, deck%dynamics, error)
     case ('GRAVITY')
       call once(deck, i, deck%gravity_line, error); if (allocated(error)) return
-      call read_gravity(cards, card, deck%gravity, error); if (allocated(error)) return
+      call read_gravity(cards, card, deck%loads%gravity, error); if (allocated(error)) return
       deck%gravity_line = card%line
     case ('OUTPUT')
       call once(deck, i, deck%output%line, error); if (allocated(error)) return
@@ -282,13 +299,13 @@ contains
     integer, intent(in) :: i
     type(error_t), allocatable, intent(inout) :: error
     integer :: k, n
-    n = size(deck%pressures)
+    n = size(deck%loads%pressures)
     do k = 1, n - 1
-      if (deck%pressures(k)%edge_set /= deck%pressures(n)%edge_set) cycle
-      if (deck%pressures(k)%value /= deck%pressures(n)%value .or. &
+      if (deck%loads%pressures(k)%edge_set /= deck%loads%pressures(n)%edge_set) cycle
+      if (deck%loads%pressures(k)%value /= deck%loads%pressures(n)%value .or. &
           reading%pressure_curves(k) /= reading%pressure_curves(n)) cycle
       call card_error(error, deck%cards, deck%cards%cards(i), 'the same pressure as on line '// &
-        itoa(deck%pressures(k)%line)//' (a duplicated line?): give the total on one card', &
+        itoa(deck%loads%pressures(k)%line)//' (a duplicated line?): give the total on one card', &
         field_column(deck%cards%cards(i), 'P'))
       return
     end do
@@ -379,14 +396,15 @@ contains
     call check_bruise_cards(cards, deck%bruises, deck%materials, deck%analysis == analysis_quasistatic, error)
     if (allocated(error)) return
 
-    call build_mesh(reading%mesh_input, cards, deck%geometry, deck%mesh, error); if (allocated(error)) return
+    call build_mesh(reading%mesh_input, cards, deck%settings%geometry, deck%mesh, error); if (allocated(error)) return
     call resolve_materials(deck, error); if (allocated(error)) return
     call resolve_fixes(deck, reading%fixes, error); if (allocated(error)) return
     call resolve_forces(deck, reading%forces, error); if (allocated(error)) return
     call resolve_probes(deck, reading%probes, error); if (allocated(error)) return
     call check_pressures(deck, error); if (allocated(error)) return
-    do i = 1, size(deck%pressures)
-      deck%pressures(i)%curve = curve_index(deck, reading%pressure_cards(i), trim(reading%pressure_curves(i)), error)
+    do i = 1, size(deck%loads%pressures)
+      deck%loads%pressures(i)%curve = curve_index(deck, reading%pressure_cards(i), &
+                                                  trim(reading%pressure_curves(i)), error)
       if (allocated(error)) return
     end do
     call check_load_sizes(deck, error); if (allocated(error)) return

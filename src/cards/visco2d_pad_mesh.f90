@@ -110,7 +110,7 @@ contains
     real(dp) :: reach, spacing, width, top
     integer :: k, nr, nz, i, j, base_node, base_element, node_count, element_count
     associate (pad => deck%pad, mesh => deck%mesh)
-    if (deck%geometry /= geometry_axisymmetric) then
+    if (deck%settings%geometry /= geometry_axisymmetric) then
       call line_error(error, deck, pad%line, 'PAD needs GEOMETRY AXISYMMETRIC (a pad under a plane-strain body '// &
                       'is not built)'); return
     end if
@@ -187,14 +187,14 @@ contains
     type(deck_t), intent(inout) :: deck
     type(fix_t), allocatable :: fixes(:)
     integer :: n
-    n = size(deck%fixes)
+    n = size(deck%loads%fixes)
     allocate(fixes(n + 1))
-    fixes(1:n) = deck%fixes
+    fixes(1:n) = deck%loads%fixes
     fixes(n + 1)%nodes = deck%pad%bottom
     fixes(n + 1)%fix_r = deck%pad%bonded
     fixes(n + 1)%fix_z = .true.
     fixes(n + 1)%line = deck%pad%line
-    call move_alloc(fixes, deck%fixes)
+    call move_alloc(fixes, deck%loads%fixes)
   end subroutine add_bottom_support
 
   !> Grid lines in r: the r of the body's boundary nodes below its centre

@@ -6,6 +6,8 @@
 module visco2d_mesh_generator
   use visco2d_kinds, only: dp, pi
   use visco2d_roots, only: increasing_root
+  use visco2d_mesh, only: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, &
+                          edge_set_top, edge_set_name
   implicit none
   private
 
@@ -16,8 +18,6 @@ module visco2d_mesh_generator
   public :: edge_set_none, edge_set_axis, edge_set_inner, edge_set_outer, edge_set_bottom, edge_set_top
   public :: edge_set_name
 
-  integer, parameter :: edge_set_none = 0, edge_set_axis = 1, edge_set_inner = 2, &
-                        edge_set_outer = 3, edge_set_bottom = 4, edge_set_top = 5
 
   !> The two node placements of `MESH SPHERE` (`GRID=CONTACT`, the default, and `GRID=LEGACY`).
   integer, parameter :: sphere_grid_contact = 1, sphere_grid_legacy = 2
@@ -50,20 +50,6 @@ module visco2d_mesh_generator
   real(dp), parameter :: spheroid_least_ratio = 0.6_dp, spheroid_largest_ratio = 1.6_dp
 
 contains
-
-  !> Name of an edge-set code, as written on cards.
-  pure function edge_set_name(code) result(name)
-    integer, intent(in) :: code
-    character(:), allocatable :: name
-    select case (code)
-    case (edge_set_axis); name = 'AXIS'
-    case (edge_set_inner); name = 'INNER'
-    case (edge_set_outer); name = 'OUTER'
-    case (edge_set_bottom); name = 'BOTTOM'
-    case (edge_set_top); name = 'TOP'
-    case default; name = 'NONE'
-    end select
-  end function edge_set_name
 
   !> Name of a sphere grid code, as written on the card's `GRID=`.
   pure function sphere_grid_name(code) result(name)

@@ -1,5 +1,6 @@
 !> The time axis of a quasi-static or dynamic run: TIME cards, each a
-!> stage of constant steps that starts where the previous one ended.
+!> stage of constant steps that starts where the previous one ended
+!> (time_stage_t, of visco2d_model).
 module visco2d_time
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
@@ -7,6 +8,7 @@ module visco2d_time
   use visco2d_error, only: error_t
   use visco2d_strings, only: itoa, short_real
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, check_fields_used, field_column
+  use visco2d_model, only: time_stage_t
   implicit none
   private
 
@@ -14,14 +16,6 @@ module visco2d_time
 
   !> Most steps a deck may ask for (a guard against a mistyped DT).
   integer, parameter :: max_steps = 10000000
-
-  !> A stage of the time axis: constant steps dt from the previous stage's end to end_time.
-  type :: time_stage_t
-    real(dp) :: dt = 0.0_dp        !< s (as used: (end - start)/steps)
-    real(dp) :: end_time = 0.0_dp  !< s
-    integer :: steps = 0
-    integer :: line = 0
-  end type time_stage_t
 
 contains
 
