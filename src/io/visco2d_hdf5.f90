@@ -268,89 +268,66 @@ contains
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    real(dp), intent(in) :: values(:)
+    real(dp), intent(in), target, contiguous :: values(:)
     character(*), intent(in), optional :: units
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(1)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_DOUBLE, units)
-    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_DOUBLE, c_loc(values), size(values), units)
   end subroutine write_real1
 
   subroutine write_real2(writer, parent, name, values, units)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    real(dp), intent(in) :: values(:, :)
+    real(dp), intent(in), target, contiguous :: values(:, :)
     character(*), intent(in), optional :: units
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(2)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_DOUBLE, units)
-    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_DOUBLE, c_loc(values), size(values), units)
   end subroutine write_real2
 
   subroutine write_real3(writer, parent, name, values, units)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    real(dp), intent(in) :: values(:, :, :)
+    real(dp), intent(in), target, contiguous :: values(:, :, :)
     character(*), intent(in), optional :: units
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(3)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_DOUBLE, units)
-    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_DOUBLE, c_loc(values), size(values), units)
   end subroutine write_real3
 
   subroutine write_integer1(writer, parent, name, values)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    integer, intent(in) :: values(:)
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(1)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_INTEGER)
-    call h5dwrite_f(dataset, H5T_NATIVE_INTEGER, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    integer, intent(in), target, contiguous :: values(:)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_INTEGER, c_loc(values), size(values))
   end subroutine write_integer1
 
   subroutine write_integer2(writer, parent, name, values)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    integer, intent(in) :: values(:, :)
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(2)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_INTEGER)
-    call h5dwrite_f(dataset, H5T_NATIVE_INTEGER, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    integer, intent(in), target, contiguous :: values(:, :)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_INTEGER, c_loc(values), size(values))
   end subroutine write_integer2
+
+  !> One dataset of any rank: its shape `dims`, its HDF5 memory type and the
+  !> address of its `count` contiguous values (the rank-specific h5_write
+  !> procedures above pass them; an empty array makes an empty dataset).
+  subroutine write_block(writer, parent, name, dims, type_id, buffer, count, units)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: parent, type_id
+    character(*), intent(in) :: name
+    integer(hsize_t), intent(in) :: dims(:)
+    type(c_ptr), intent(in) :: buffer
+    integer, intent(in) :: count
+    character(*), intent(in), optional :: units
+    integer(hid_t) :: dataset
+    integer :: status
+    if (writer%status /= 0) return
+    dataset = new_dataset(writer, parent, name, dims, type_id, units)
+    if (writer%status /= 0) return
+    if (count > 0) then
+      call h5dwrite_f(dataset, type_id, buffer, status); call check(writer, status, 'dataset '//name)
+    end if
+    call h5dclose_f(dataset, status); call check(writer, status, 'dataset '//name)
+  end subroutine write_block
 
   !> A fixed-length, null-terminated string attribute (h5py reads it as str/bytes).
   subroutine attribute_text(writer, object, name, text)
