@@ -611,8 +611,9 @@ check contact_separation_energy_definition \
 cd "$work" || exit 0
 
 # ------------------------------------------------------------- results.h5 and results.xmf
-# /summary holds one scalar dataset per summary.txt key: a number (with its
-# units) where the text is a number, the text otherwise; snapshots carry both
+# /summary holds one scalar dataset per summary.txt key, typed: a number (with
+# its units) where the text is a number, a real in full precision that rounds
+# to summary.txt's text at its digits, the text otherwise; snapshots carry both
 # time bases (deck time, time from first contact); results.xmf (XDMF 3) read
 # back with meshio gives the mesh, every snapshot, its time and its fields as
 # results.h5 read with h5py (vectors with a third component 0, the stress as a
@@ -641,6 +642,18 @@ def report(name, ok, detail=""):
     print(f"PASS {name}" if ok else f"FAIL {name}: {detail}")
 
 
+def shown_as(stored, text):
+    # a /summary number is what summary.txt shows, rounded to the text's digits
+    # (a real there has 10 significant digits, the CPU time 4; an integer is exact)
+    value = float(text.replace("d", "e").replace("D", "e"))
+    mantissa, _, exponent = text.upper().replace("D", "E").partition("E")
+    if not exponent:
+        return float(stored) == value
+    digits = len(mantissa.lstrip("+-").replace(".", "")) - 1
+    shown, _, power = f"{float(stored):.{digits}E}".partition("E")
+    return float(shown) == float(mantissa) and int(power) == int(exponent)
+
+
 def summary_text(path):
     items = {}
     with open(path) as f:
@@ -662,8 +675,7 @@ def check_summary(case, folder, f):
         item = group[key]
         stored = item[()]
         if NUMBER.match(value):
-            number = float(value.replace("d", "e").replace("D", "e"))
-            if item.dtype.kind not in "iuf" or float(stored) != number or "units" not in item.attrs:
+            if item.dtype.kind not in "iuf" or not shown_as(stored, value) or "units" not in item.attrs:
                 bad.append(f"{key}: {stored!r} ({item.dtype}) for '{value}'")
         elif item.dtype.kind != "S" or stored.decode() != value:
             bad.append(f"{key}: {stored!r} for '{value}'")
@@ -783,11 +795,16 @@ for case in ("gap", "sphere"):
             got = {key: units(f, key) for key in expected}
             report("h5_summary_units", got == expected, f"{got}")
             report("h5_summary_integer", f["/summary/nodes"].dtype.kind == "i", f"nodes: {f['/summary/nodes'].dtype}")
+            report("h5_summary_real_is_double", f["/summary/alpha_max_mm"].dtype == np.float64,
+                   f"alpha_max_mm: {f['/summary/alpha_max_mm'].dtype}")
             report("h5_summary_text_stays_text", f["/summary/stop_reason"][()] == b"maximum deformation",
                    f"stop_reason: {f['/summary/stop_reason'][()]!r}")
             contact = float(text["time_first_contact_s"])
             report("h5_first_contact_after_start", 4e-4 < contact < 6e-4, f"time_first_contact_s = {contact}")
-            worst = max(abs(g.attrs["time_from_contact"] - (g.attrs["time"] - contact)) for g in groups)
+            exact = float(f["/summary/time_first_contact_s"][()])   # full precision (summary.txt: 10 digits)
+            report("h5_first_contact_is_summary_txt", abs(exact - contact) <= 5e-10 * contact,
+                   f"{exact!r} in /summary, {contact!r} in summary.txt")
+            worst = max(abs(g.attrs["time_from_contact"] - (g.attrs["time"] - exact)) for g in groups)
             report("h5_time_from_contact", worst <= 1e-15, f"largest |difference| {worst} s")
             before = [g.attrs["time_from_contact"] for g in groups if g.attrs["time"] < contact]
             report("h5_time_from_contact_negative_before", len(before) >= 2 and max(before) < 0,

@@ -5,7 +5,7 @@
 module visco2d_driver
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
-  use visco2d_error, only: error_t, set_error
+  use visco2d_error, only: error_t, set_error, locate_error
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
@@ -18,12 +18,12 @@ module visco2d_driver
   use visco2d_progress, only: progress_begin, progress_end
   use visco2d_static_contact, only: solve_static_contact
   use visco2d_bruise, only: bruise_static
-  use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn
+  use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn, record_real
   use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
   use visco2d_output_check, only: check_finite_outputs
   use visco2d_timers, only: timers_enabled, timers_reset, timer_start, timer_stop, timers_report, phase_output
   use visco2d_estimate, only: run_size_t, estimate_run, check_run_size, check_run_time, print_estimate, size_before_work
-  use visco2d_expect, only: expect_tally_t, check_expect_cards, check_expectations, summary_value
+  use visco2d_expect, only: expect_tally_t, check_expect_cards, check_expectations
   use visco2d_case_folder, only: write_case_folder, lock_case, unlock_case, case_lock_t
   implicit none
   private
@@ -165,7 +165,10 @@ contains
 
     call solve(error)
     call print_run_warnings(record)
-    if (allocated(error)) return
+    if (allocated(error)) then
+      call locate_error(error, deck%cards%file)     ! a failed solve found where the deck is not known
+      return
+    end if
     ! The results must be finite before anything is derived from them (EXPECT).
     call check_finite_outputs(deck, record, error)
     if (allocated(error)) return
@@ -174,7 +177,7 @@ contains
     call record_put_integer(record, 'warnings', size(deck%warnings) + run_warning_count(record))
     call put_warning_keys(deck, record)
     call cpu_time(cpu_end)
-    call record_put(record, 'cpu_s', rtoa(real(cpu_end - cpu_start, dp)))
+    call record_put_real(record, 'cpu_s', real(cpu_end - cpu_start, dp), digits=4)
     ! The last line of defence: nothing non-finite reaches listing.txt, summary.txt, history.csv, results.h5.
     call check_finite_outputs(deck, record, error)
     if (allocated(error)) return
@@ -194,11 +197,11 @@ contains
     !> After a dynamic run: the energy-balance warning (visco2d_advice), as a run-time warning.
     subroutine warn_energy_balance()
       real(dp) :: relative
-      integer :: ios, line
-      character(:), allocatable :: text, message
-      text = summary_value(record, 'balance_error_max_rel')
-      read(text, *, iostat=ios) relative
-      if (ios /= 0) return
+      integer :: line
+      logical :: found
+      character(:), allocatable :: message
+      call record_real(record, 'balance_error_max_rel', relative, found)
+      if (.not. found) return
       call energy_balance_warning(deck, relative, message, line)
       if (len(message) > 0) call record_warn(record, message, file=deck%cards%file, line=line, card='TIME')
     end subroutine warn_energy_balance

@@ -1,13 +1,14 @@
 !> The EXPECT cards of a deck checked against the run's summary (their
 !> expect_<key>_value, _rel_error and _within_rtol keys and the tally of a
-!> run), the one-line report of a run, and the summary value of a key.
+!> run), and the one-line report of a run.
 module visco2d_expect
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
   use visco2d_strings, only: itoa, rtoa, to_upper, to_lower, short_real
   use visco2d_deck, only: deck_t, expect_t
-  use visco2d_record, only: record_t, record_put, record_put_real
-  use visco2d_output_check, only: finite_text
+  use visco2d_record, only: record_t, record_put_real, record_put_logical, summary_item_text, record_text, record_real, &
+                            summary_real, summary_integer
   implicit none
   private
 
@@ -77,26 +78,35 @@ contains
 
   !> Compare the EXPECT cards with the summary; record per key the expected
   !> value, the relative error and whether it is within RTOL; count the checks in `tally`.
+  !> The value compared is the number as summary.txt shows it (10 significant
+  !> digits): a value copied from summary.txt into an EXPECT card is met with
+  !> relative error 0, and the relative error can be recomputed from summary.txt.
   subroutine check_expectations(deck, record, tally, error)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(expect_tally_t), intent(out) :: tally
     type(error_t), allocatable, intent(inout) :: error
-    integer :: k, i, ios
+    integer :: k, i
     real(dp) :: computed, relative
     logical :: found
     do k = 1, size(deck%expects)
       found = .false.
       do i = 1, record%nsummary
         if (to_upper(trim(record%summary(i)%key)) /= deck%expects(k)%key) cycle
-        if (.not. finite_text(record%summary(i)%value)) then
-          call set_error(error, 'key "'//to_lower(deck%expects(k)%key)//'" is '//record%summary(i)%value// &
-            ' in this run: it cannot be compared', file=deck%cards%file, line=deck%expects(k)%line, &
-            column=positional_column(deck, deck%expects(k)%line, 1), card='EXPECT')
-          return
-        end if
-        read(record%summary(i)%value, *, iostat=ios) computed
-        if (ios /= 0) exit
+        select case (record%summary(i)%kind)
+        case (summary_real)
+          if (.not. ieee_is_finite(record%summary(i)%real_value)) then
+            call set_error(error, 'key "'//to_lower(deck%expects(k)%key)//'" is '// &
+              summary_item_text(record%summary(i))//' in this run: it cannot be compared', file=deck%cards%file, &
+              line=deck%expects(k)%line, column=positional_column(deck, deck%expects(k)%line, 1), card='EXPECT')
+            return
+          end if
+          call record_real(record, record%summary(i)%key, computed, found, as_shown=.true.)
+        case (summary_integer)
+          computed = real(record%summary(i)%integer_value, dp)
+        case default                                     ! a text or a logical: not a number
+          exit
+        end select
         found = .true.
         relative = relative_error(computed, deck%expects(k)%value)
         tally%count = tally%count + 1
@@ -104,12 +114,13 @@ contains
         if (relative <= deck%expects(k)%tolerance) then
           tally%within = tally%within + 1
         else
-          call add_miss(tally, deck, deck%expects(k), trim(record%summary(i)%key), record%summary(i)%value, relative)
+          call add_miss(tally, deck, deck%expects(k), trim(record%summary(i)%key), &
+                        summary_item_text(record%summary(i)), relative)
         end if
         call record_put_real(record, 'expect_'//trim(record%summary(i)%key)//'_value', deck%expects(k)%value)
         call record_put_real(record, 'expect_'//trim(record%summary(i)%key)//'_rel_error', relative)
-        call record_put(record, 'expect_'//trim(record%summary(i)%key)//'_within_rtol', &
-                        trim(merge('yes', 'no ', relative <= deck%expects(k)%tolerance)))
+        call record_put_logical(record, 'expect_'//trim(record%summary(i)%key)//'_within_rtol', &
+                                relative <= deck%expects(k)%tolerance)
         exit
       end do
       if (.not. found) then
@@ -187,11 +198,11 @@ contains
     line = summary_value(record, 'case')//': '//summary_value(record, 'nodes')//' nodes, '// &
       summary_value(record, 'elements')//' elements, half-bandwidth '//summary_value(record, 'half_bandwidth')
     if (len(summary_value(record, 'alpha_max_mm')) > 0) then          ! an impact: what a batch user looks for
-      line = line//'; alpha_m = '//four_digits(summary_value(record, 'alpha_max_mm'))//' mm at '// &
-        four_digits(summary_value(record, 't_alpha_max_ms'))//' ms, q_m = '// &
-        four_digits(summary_value(record, 'q_max_MPa'))//' MPa'
+      line = line//'; alpha_m = '//four_digits(record, 'alpha_max_mm')//' mm at '// &
+        four_digits(record, 't_alpha_max_ms')//' ms, q_m = '// &
+        four_digits(record, 'q_max_MPa')//' MPa'
       if (len(summary_value(record, 'bruise_volume_cm3')) > 0) &
-        line = line//', bruise '//four_digits(summary_value(record, 'bruise_volume_cm3'))//' cm3'
+        line = line//', bruise '//four_digits(record, 'bruise_volume_cm3')//' cm3'
     else if (len(summary_value(record, 'max_displacement_m')) > 0) then
       line = line//'; max |u| = '//summary_value(record, 'max_displacement_m')//' m'
     end if
@@ -205,16 +216,20 @@ contains
     line = line//'; cpu '//summary_value(record, 'cpu_s')//' s'
   end function run_line
 
-  !> A summary number with four significant digits (the text as it is if it is not a number).
-  function four_digits(text) result(short)
-    character(*), intent(in) :: text
+  !> A summary number with four significant digits (the text as summary.txt
+  !> shows it if it is not a number).
+  function four_digits(record, key) result(short)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
     character(:), allocatable :: short
     real(dp) :: value
-    integer :: ios
+    logical :: found
     character(len=32) :: buffer
-    short = text
-    read(text, *, iostat=ios) value
-    if (ios /= 0) return
+    call record_real(record, key, value, found)
+    if (.not. found) then
+      short = record_text(record, key)
+      return
+    end if
     if (abs(value) >= 1.0e-3_dp .and. abs(value) < 1.0e5_dp .or. value == 0.0_dp) then
       write(buffer, '(g0.4)') value
     else
@@ -223,16 +238,12 @@ contains
     short = trim(adjustl(buffer))
   end function four_digits
 
-  !> The text of a summary key ('' if absent).
+  !> The text of a summary key as summary.txt shows it ('' if absent).
   function summary_value(record, key) result(value)
     type(record_t), intent(in) :: record
     character(*), intent(in) :: key
     character(:), allocatable :: value
-    integer :: i
-    value = ''
-    do i = 1, record%nsummary
-      if (trim(record%summary(i)%key) == key) value = record%summary(i)%value
-    end do
+    value = record_text(record, key)
   end function summary_value
 
 end module visco2d_expect

@@ -109,8 +109,11 @@ contains
     real(dp) :: values(n), f(n), u(n), reference(n), residual(n)
     integer :: i, info, set
     character(:), allocatable :: name
+    type(error_t), allocatable :: solve_error
+    integer :: solve_status, failed_solves
     name = 'algebra ('//solver_name(solver)//')'
     call make_matrix(n, kd, matrix)
+    failed_solves = 0
     do i = 1, n
       f(i) = 2.0_dp*pseudo_random() - 1.0_dp
       values(i) = 0.1_dp*(2.0_dp*pseudo_random() - 1.0_dp)
@@ -131,11 +134,12 @@ contains
       case (3)
         held([41, 43, 44, 90]) = .true.               ! 40 leaves
       end select
-      call capacitance_set(capacitance, factor, held, info)
+      call capacitance_set(capacitance, factor, held, info, solve_error)
       call check(name//' set '//char(48 + set)//': C factors', info == 0)
       u = f
       call band_constrain_rhs(matrix, supports, values, u)
-      call factor_solve(factor, u)
+      call factor_solve(factor, u, solve_status)
+      failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
       call capacitance_apply(capacitance, values, u)
       fixed = supports .or. held
       reference = by_elimination(matrix, fixed, values, f)
@@ -155,8 +159,9 @@ contains
     call check(name//': C factored once per set', capacitance%factorizations == 3)
     held = .false.
     held(40) = .true.                                 ! 40 comes back: its column is kept
-    call capacitance_set(capacitance, factor, held, info)
+    call capacitance_set(capacitance, factor, held, info, solve_error)
     call check(name//': a returning equation reuses its column', capacitance%solves == 5)
+    call check(name//': every solve returns without error', .not. allocated(solve_error) .and. failed_solves == 0)
   end subroutine test_algebra
 
   !> Multi-point constraints on the factor of `solver` against a dense KKT solve.
@@ -172,8 +177,11 @@ contains
     real(dp) :: weight(2, n), values(n), f(n), u(n), residual(n), expected(n)
     real(dp), allocatable :: kkt(:, :), rhs(:), work(:)
     character(:), allocatable :: name
+    type(error_t), allocatable :: solve_error
+    integer :: solve_status, failed_solves
     name = 'partners ('//solver_name(solver)//')'
     call make_matrix(n, kd, matrix)
+    failed_solves = 0
     do i = 1, n
       f(i) = 2.0_dp*pseudo_random() - 1.0_dp
       values(i) = 0.1_dp*(2.0_dp*pseudo_random() - 1.0_dp)
@@ -190,11 +198,13 @@ contains
     call factor_compute(factor, matrix, supports, info, solver)
     call capacitance_reset(capacitance, n)
     call capacitance_partners(capacitance, partner, weight)
-    call capacitance_set(capacitance, factor, held, info)
+    call capacitance_set(capacitance, factor, held, info, solve_error)
     call check(name//': C factors', info == 0)
     u = f
     call band_constrain_rhs(matrix, supports, values, u)
-    call factor_solve(factor, u)
+    call factor_solve(factor, u, solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
+    call check(name//': the solves return without error', .not. allocated(solve_error) .and. failed_solves == 0)
     call capacitance_apply(capacitance, values, u)
     ! The reference: [A  -E; E^T 0] [u; lambda] = [f; values], E's columns the constraints (supports too).
     rows = n + m + size(support_rows)

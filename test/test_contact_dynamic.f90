@@ -55,7 +55,7 @@ program test_contact_dynamic
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_hertz, only: hertz_duration_constant, put_hertz_summary
-  use visco2d_record, only: record_t
+  use visco2d_record, only: record_t, record_real, summary_item_text
   use visco2d_expect, only: summary_value
   use visco2d_strings, only: itoa, to_lower
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
@@ -180,15 +180,18 @@ contains
     type(run_t), intent(in) :: run
     character(*), intent(in) :: key
     character(:), allocatable :: text
-    integer :: status
+    logical :: found
     x = ieee_value(1.0_dp, ieee_quiet_nan)
     text = summary_value(run%record, key)
     if (len(text) == 0) then
       call check(run%name//'_has_'//key, .false., 'no summary key '//key)
       return
     end if
-    read(text, *, iostat=status) x
-    if (status /= 0) call check(run%name//'_reads_'//key, .false., 'not a number: '//text)
+    call record_real(run%record, key, x, found)
+    if (.not. found) then
+      x = ieee_value(1.0_dp, ieee_quiet_nan)
+      call check(run%name//'_reads_'//key, .false., 'not a number: '//text)
+    end if
   end function value_of
 
   ! ---------------------------------------------------------------- analysis helpers
@@ -433,7 +436,7 @@ contains
       finite = .true.
       do i = 1, record%nsummary
         if (index(record%summary(i)%key, 'hertz_reference') == 1) cycle
-        text = to_lower(record%summary(i)%value)
+        text = to_lower(summary_item_text(record%summary(i)))
         if (index(text, 'inf') > 0 .or. index(text, 'nan') > 0) finite = .false.
       end do
       call check('hertz_guard_'//trim(names(k))//'_finite_values', finite)

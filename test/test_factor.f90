@@ -28,14 +28,15 @@ program test_factor
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
   use visco2d_lapack, only: dpotrf, dpotrs, dsyev
-  use visco2d_error, only: error_t, error_text
+  use visco2d_error, only: error_t, error_text, set_error, locate_error
   use visco2d_banded, only: band_matrix_t, band_create, band_multiply, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, &
-                            solver_band, solver_profile, solver_cholmod, solver_name, solver_none
+                            solver_band, solver_profile, solver_cholmod, solver_name, solver_none, &
+                            solve_unfactored, solve_failure_text
   use visco2d_deck_types, only: solver_card_default, solver_card_band, solver_card_profile, solver_card_cholmod
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness
-  use visco2d_testing, only: check, test_summary, write_deck
+  use visco2d_testing, only: check, test_summary, write_deck, check_text_contains
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
@@ -52,6 +53,7 @@ program test_factor
   call test_assembled()
   call test_singular()
   call test_solver_card()
+  call test_solve_errors()
   ! The factor numbers its solvers as the SOLVER card does, without using the cards.
   call check('the factor and the SOLVER card number the solvers alike', solver_none == solver_card_default .and. &
              solver_band == solver_card_band .and. solver_profile == solver_card_profile .and. &
@@ -59,6 +61,40 @@ program test_factor
   call test_summary('test_factor')
 
 contains
+
+  !> A solve that cannot be done returns a status (the caller's error, which
+  !> the time loop or the driver locates at the deck and step), never stops
+  !> the process: no factor computed, and a CHOLMOD factor without CHOLMOD's
+  !> handle (its solve's 'no factor' status, 3).
+  subroutine test_solve_errors()
+    type(factor_t) :: unfactored, no_handle
+    type(error_t), allocatable :: error
+    real(dp) :: x(4), many(4, 2)
+    integer :: status
+    x = 1.0_dp
+    many = 1.0_dp
+    call factor_solve(unfactored, x, status)
+    call check('solve_unfactored_is_a_status', status == solve_unfactored)
+    call check_text_contains('solve_unfactored_says_so', solve_failure_text(status), 'not factored')
+    call factor_solve_many(unfactored, many, status)
+    call check('solve_many_unfactored_is_a_status', status == solve_unfactored)
+    no_handle%storage = solver_cholmod
+    no_handle%factored = .true.
+    no_handle%n = 4
+    call factor_solve(no_handle, x, status)
+    call check('cholmod_solve_failure_is_a_status', status == 3)
+    call check_text_contains('cholmod_solve_failure_says_so', solve_failure_text(status), &
+                             'the sparse Cholesky solve (CHOLMOD) failed (no factor;')
+    call factor_solve_many(no_handle, many, status)
+    call check('cholmod_solve_many_failure_is_a_status', status == 3)
+    call set_error(error, solve_failure_text(3))                       ! as the solvers do
+    call locate_error(error, 'drop.inp', 7, 'TIME', ' at step 12 (t = 1.2000E-04 s)')   ! as the time loop does
+    call check('solve_failure_located_at_deck_and_step', error_text(error) == 'drop.inp:7: TIME: the sparse '// &
+               'Cholesky solve (CHOLMOD) failed (no factor; SOLVER PROFILE solves without CHOLMOD) at step 12 '// &
+               '(t = 1.2000E-04 s)', error_text(error))
+    call locate_error(error, 'other.inp')
+    call check('located_error_kept', error%file == 'drop.inp' .and. error%line == 7, error_text(error))
+  end subroutine test_solve_errors
 
   !> A linear congruential sequence in [0, 1) (the same on every machine).
   real(dp) function pseudo_random()
@@ -156,6 +192,7 @@ contains
     real(dp) :: kappa, backward_bound, forward_bound, scale, l_band, l_profile, factor_difference, sparse_backward
     integer :: info_band, info_profile, info_sparse, info, n, i, j, k, w
     character(len=200) :: detail
+    integer :: solve_status, failed_solves
     n = matrix%n
     call factor_compute(band, matrix, fixed, info_band, solver_band)
     call factor_compute(profile, matrix, fixed, info_profile, solver_profile)
@@ -196,10 +233,13 @@ contains
       b(i) = 2.0_dp*pseudo_random() - 1.0_dp
     end do
     b = merge(0.0_dp, b, fixed)
+    failed_solves = 0
     x_band = b
-    call factor_solve(band, x_band)
+    call factor_solve(band, x_band, solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
     x_profile = b
-    call factor_solve(profile, x_profile)
+    call factor_solve(profile, x_profile, solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
     dense = a
     call dpotrf('L', n, dense, n, info)
     call check(name//': dense dpotrf factors', info == 0)
@@ -220,7 +260,8 @@ contains
     ! CHOLMOD: another order of elimination, so its rows of L hold up to n
     ! entries: the bounds with n in place of w + 1.
     x_sparse = b
-    call factor_solve(sparse, x_sparse)
+    call factor_solve(sparse, x_sparse, solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
     sparse_backward = n*gamma(n + 1)
     call check(name//': CHOLMOD backward error below n gamma_(n+1)', backward_error(a, x_sparse, b) <= sparse_backward, &
                real_text(backward_error(a, x_sparse, b))//' > '//real_text(sparse_backward))
@@ -242,19 +283,23 @@ contains
       many(:, k) = b*k + merge(0.0_dp, 1.0_dp, fixed)*(k - 1)
     end do
     x_dense = many(:, 3)
-    call factor_solve_many(profile, many)
-    call factor_solve(profile, x_dense)
+    call factor_solve_many(profile, many, solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
+    call factor_solve(profile, x_dense, solve_status)
     call check(name//': profile, three right-hand sides at once = one at a time', &
                maxval(abs(many(:, 3) - x_dense)) <= forward_bound*maxval(abs(x_dense)))
     many(:, 1) = b
-    call factor_solve_many(band, many(:, 1:1))
+    call factor_solve_many(band, many(:, 1:1), solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
     call check(name//': band, one column through solve_many = solve', all(many(:, 1) == x_band))
     many(:, 1) = b
     many(:, 2) = 2.0_dp*b
-    call factor_solve_many(sparse, many(:, 1:2))
+    call factor_solve_many(sparse, many(:, 1:2), solve_status)
+    failed_solves = failed_solves + merge(1, 0, solve_status /= 0)
     call check(name//': CHOLMOD, two columns at once = one at a time (to 2 n gamma_(n+1) kappa)', &
                maxval(abs(many(:, 1) - x_sparse)) <= 2.0_dp*sparse_backward*kappa*maxval(abs(x_sparse)) .and. &
                maxval(abs(many(:, 2) - 2.0_dp*x_sparse)) <= 4.0_dp*sparse_backward*kappa*maxval(abs(x_sparse)))
+    call check(name//': every solve returns without error', failed_solves == 0)
   end subroutine compare_solvers
 
   !> Part 1: random envelopes, some equations constrained.

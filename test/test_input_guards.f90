@@ -15,7 +15,7 @@ program test_input_guards
   use visco2d_deck, only: deck_t, read_deck, total_steps
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
-  use visco2d_record, only: record_t
+  use visco2d_record, only: record_t, summary_item_text
   use visco2d_cards, only: parse_real, max_line_length
   use visco2d_curve, only: curve_t, curve_value
   use visco2d_strings, only: itoa, rtoa, gtoa, es_field, short_real, compact_real
@@ -145,7 +145,7 @@ contains
       key = record%summary(i)%key
       if (index(key, 'expect_') == 1 .and. index(key, '_within_rtol') > 0) then
         checks = checks + 1
-        if (record%summary(i)%value == 'yes') within = within + 1
+        if (summary_item_text(record%summary(i)) == 'yes') within = within + 1
       end if
     end do
     call check('long_keys_three_checks', checks == 3, itoa(checks)//' EXPECT checks recorded, 3 given')

@@ -5,7 +5,7 @@ module visco2d_testing
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
-  use visco2d_record, only: record_t, record_column
+  use visco2d_record, only: record_t, record_column, record_real
   use visco2d_expect, only: summary_value
   implicit none
   private
@@ -113,7 +113,7 @@ contains
     character(*), intent(in) :: key
     real(dp), intent(in), optional :: missing
     character(:), allocatable :: text
-    integer :: status
+    logical :: found
     value = ieee_value(1.0_dp, ieee_quiet_nan)
     if (present(missing)) value = missing
     text = summary_value(record, key)
@@ -121,8 +121,12 @@ contains
       call check('summary key '//key, .false., 'absent')
       return
     end if
-    read(text, *, iostat=status) value
-    if (status /= 0) call check('summary key '//key, .false., 'not a number: '//text)
+    call record_real(record, key, value, found)       ! full precision
+    if (.not. found) then
+      value = ieee_value(1.0_dp, ieee_quiet_nan)
+      if (present(missing)) value = missing
+      call check('summary key '//key, .false., 'not a number: '//text)
+    end if
   end function summary_real
 
   !> The text of an error ('' if there is none).

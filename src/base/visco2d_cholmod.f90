@@ -151,21 +151,27 @@ contains
     same_pattern = all(factor%start == start) .and. all(factor%rows == rows)
   end function same_pattern
 
-  !> Solve A x = b in place.
-  subroutine cholmod_solve(factor, b)
+  !> Solve A x = b in place. info: 0 solved; 3 no factor; 6 CHOLMOD's solve
+  !> failed (out of memory for its workspace); b is then not a solution.
+  subroutine cholmod_solve(factor, b, info)
     type(cholmod_factor_t), intent(in) :: factor
     real(dp), intent(inout), contiguous :: b(:)
-    if (visco2d_cholmod_solve(factor%handle, 1_c_int, b) /= 0) &
-      error stop 'visco2d_cholmod: the solve failed (no factor, or out of memory)'
+    integer, intent(out) :: info
+    info = 3
+    if (.not. c_associated(factor%handle)) return
+    info = visco2d_cholmod_solve(factor%handle, 1_c_int, b)
   end subroutine cholmod_solve
 
-  !> Solve A X = B in place (the columns of b).
-  subroutine cholmod_solve_many(factor, b)
+  !> Solve A X = B in place (the columns of b); info as cholmod_solve.
+  subroutine cholmod_solve_many(factor, b, info)
     type(cholmod_factor_t), intent(in) :: factor
     real(dp), intent(inout), contiguous :: b(:, :)
+    integer, intent(out) :: info
+    info = 0
     if (size(b, 2) == 0) return
-    if (visco2d_cholmod_solve(factor%handle, int(size(b, 2), c_int), b) /= 0) &
-      error stop 'visco2d_cholmod: the solve failed (no factor, or out of memory)'
+    info = 3
+    if (.not. c_associated(factor%handle)) return
+    info = visco2d_cholmod_solve(factor%handle, int(size(b, 2), c_int), b)
   end subroutine cholmod_solve_many
 
   !> The number of reals in the factor.

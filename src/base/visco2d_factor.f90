@@ -23,7 +23,7 @@ module visco2d_factor
   implicit none
   private
 
-  public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries
+  public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, solve_failure_text
   public :: solver_none, solver_band, solver_profile, solver_cholmod, solver_default, solver_name, solver_of_card
 
   !> The solvers, numbered as the SOLVER card's choices (BAND 1, PROFILE 2,
@@ -34,6 +34,9 @@ module visco2d_factor
   integer, parameter :: solver_profile = 2       !< envelope storage (visco2d_profile)
   integer, parameter :: solver_cholmod = 3       !< sparse supernodal, fill-reducing order (visco2d_cholmod)
   integer, parameter :: solver_default = solver_cholmod
+
+  !> factor_solve's info for a factor that was not computed (a program error).
+  integer, parameter, public :: solve_unfactored = -1
 
   !> A factored constrained matrix: the band or the profile factor, as `solver` says.
   type :: factor_t
@@ -104,32 +107,65 @@ contains
   end subroutine factor_compute
 
   !> Solve A x = b in place (A the constrained matrix of factor_compute).
-  subroutine factor_solve(factor, b)
+  !> info (as factor_compute's, a status the caller turns into its located
+  !> error with solve_failure_text): 0 solved; solve_unfactored no factor was
+  !> computed; otherwise CHOLMOD's solve failed (visco2d_cholmod_solve's
+  !> status: out of memory). b is then not a solution.
+  subroutine factor_solve(factor, b, info)
     type(factor_t), intent(in) :: factor
     real(dp), intent(inout), contiguous :: b(:)
+    integer, intent(out) :: info
+    info = solve_unfactored
+    if (.not. factor%factored) return
+    info = 0
     select case (factor%storage)
     case (solver_band)
       call band_solve(factor%band, b)
     case (solver_cholmod)
-      call cholmod_solve(factor%sparse, b)
+      call cholmod_solve(factor%sparse, b, info)
     case default
       call profile_solve(factor%profile, b)
     end select
   end subroutine factor_solve
 
-  !> Solve A X = B in place for the columns of B, one pass over the factor.
-  subroutine factor_solve_many(factor, b)
+  !> Solve A X = B in place for the columns of B, one pass over the factor;
+  !> info as factor_solve.
+  subroutine factor_solve_many(factor, b, info)
     type(factor_t), intent(in) :: factor
     real(dp), intent(inout), contiguous :: b(:, :)
+    integer, intent(out) :: info
+    info = solve_unfactored
+    if (.not. factor%factored) return
+    info = 0
     select case (factor%storage)
     case (solver_band)
       call band_solve_many(factor%band, b)
     case (solver_cholmod)
-      call cholmod_solve_many(factor%sparse, b)
+      call cholmod_solve_many(factor%sparse, b, info)
     case default
       call profile_solve_many(factor%profile, b)
     end select
   end subroutine factor_solve_many
+
+  !> What a failed factor_solve's info says (for the caller's error).
+  pure function solve_failure_text(info) result(text)
+    integer, intent(in) :: info
+    character(:), allocatable :: text
+    character(len=16) :: status
+    select case (info)
+    case (solve_unfactored)
+      text = 'internal error: a solve with a stiffness that was not factored'
+      return
+    case (3)
+      text = 'no factor'
+    case (6)
+      text = 'out of memory for its workspace'
+    case default
+      write(status, '(i0)') info
+      text = 'status '//trim(status)
+    end select
+    text = 'the sparse Cholesky solve (CHOLMOD) failed ('//text//'; SOLVER PROFILE solves without CHOLMOD)'
+  end function solve_failure_text
 
   !> The number of reals the factor stores (n (kd + 1) for the band, the
   !> envelope for the profile).

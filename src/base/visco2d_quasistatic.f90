@@ -12,15 +12,15 @@
 module visco2d_quasistatic
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, whole_body_factor, energy_basis
-  use visco2d_error, only: error_t
-  use visco2d_strings, only: rtoa
+  use visco2d_error, only: error_t, set_error, locate_error
+  use visco2d_strings, only: itoa, rtoa
   use visco2d_mesh, only: mesh_t
   use visco2d_model, only: settings_t, loads_t, probe_t, time_stage_t, source_t, stage_total_steps
   use visco2d_progress, only: progress_step
   use visco2d_material, only: material_t, stress_from_strain, has_memory
   use visco2d_element, only: element_strains, element_internal_force
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, gather, &
                               prescribed_displacement, internal_force, scatter_add, gravity_load, &
                               nodal_field
@@ -97,7 +97,11 @@ contains
           if (allocated(error)) return
         end if
         call quasistatic_increment(mesh, materials, settings, loads, source, solution, t, error)
-        if (allocated(error)) return
+        if (allocated(error)) then                     ! a failed solve: at the deck's TIME stage and step
+          call locate_error(error, source%file, stages(max(stage, 1))%line, 'TIME', ' at step '// &
+                            itoa(sum(stages(:stage - 1)%steps) + step)//' (t = '//rtoa(t)//' s)')
+          return
+        end if
         call quasistatic_row(mesh, settings, probes, record, t, solution%u, solution%stress, solution%fixed, &
                              solution%internal - solution%load)
         if (stage > 0) call progress_step(sum(stages(:stage - 1)%steps) + step, t, -1.0_dp)
@@ -181,7 +185,7 @@ contains
     type(quasistatic_t), intent(inout) :: solution
     real(dp), intent(in) :: t
     type(error_t), allocatable, intent(inout) :: error
-    integer :: e, g
+    integer :: e, g, status
     associate (q => solution)
     q%trial = q%stress
     q%rhs = -q%internal                                ! F(sigma_{n-1})
@@ -198,7 +202,11 @@ contains
     q%rhs = q%rhs + q%load
     q%du = prescribed_displacement(mesh, loads, t) - q%u      ! increments of the prescribed values
     call band_constrain_rhs(q%stiffness, q%fixed, q%du, q%rhs)
-    call factor_solve(q%factor, q%rhs)
+    call factor_solve(q%factor, q%rhs, status)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))   ! located by solve_quasistatic
+      return
+    end if
     q%du = q%rhs
     q%u = q%u + q%du
     do e = 1, mesh%nelem

@@ -6,13 +6,13 @@
 module visco2d_static
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, whole_body_factor, energy_basis
-  use visco2d_error, only: error_t
+  use visco2d_error, only: error_t, set_error
   use visco2d_mesh, only: mesh_t
   use visco2d_material, only: material_t, stress_from_strain
   use visco2d_model, only: settings_t, loads_t, probe_t, source_t
   use visco2d_element, only: element_strains
   use visco2d_banded, only: band_matrix_t, band_multiply, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, gather, nodal_average, &
                               prescribed_displacement, gravity_load, nodal_field
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, history_define, &
@@ -80,7 +80,11 @@ contains
         call singular_error(mesh, source, info, error)
         return
       end if
-      call factor_solve(factor, u)
+      call factor_solve(factor, u, info)
+      if (info /= 0) then
+        call set_error(error, solve_failure_text(info))   ! located by the driver
+        return
+      end if
     end if
     if (.not. all(ieee_is_finite(u))) then
       call not_finite_error(source, 'the static displacement', error)

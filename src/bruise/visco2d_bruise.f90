@@ -28,7 +28,7 @@
 module visco2d_bruise
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_deck, only: deck_t, stop_at_separation
-  use visco2d_record, only: record_t, gauss_field_t, record_put, record_put_real, record_put_integer
+  use visco2d_record, only: record_t, gauss_field_t, record_put, record_put_real, record_put_integer, record_real
   use visco2d_element, only: gauss_count, element_b_matrices, element_gauss_points
   use visco2d_material, only: von_mises, max_shear
   use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, stored_energy_density
@@ -271,20 +271,14 @@ contains
     if (code == criterion_energy) text = 'J_m3'
   end function unit_key
 
-  !> A real summary value by key (false if absent or not a number).
+  !> A number of the summary by key as summary.txt shows it (false if absent or
+  !> not a number): the susceptibility has always divided by the energy's 10
+  !> digits (with the full-precision energy peach_drop's moves in its 10th digit).
   logical function summary_value(record, key, value) result(found)
     type(record_t), intent(in) :: record
     character(*), intent(in) :: key
     real(dp), intent(out) :: value
-    integer :: i, status
-    found = .false.
-    value = 0.0_dp
-    do i = 1, record%nsummary
-      if (record%summary(i)%key /= key) cycle
-      read(record%summary(i)%value, *, iostat=status) value
-      found = status == 0
-      return
-    end do
+    call record_real(record, key, value, found, as_shown=.true.)
   end function summary_value
 
   !> The envelopes, their times, the bruised mask, the thresholds and the

@@ -39,7 +39,7 @@ module visco2d_advice
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, warning_t, analysis_dynamic, initial_velocity
-  use visco2d_record, only: record_t, record_warn
+  use visco2d_record, only: record_t, record_warn, record_real
   use visco2d_contact, only: hertz_impact, hertz_t
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_mesh, only: pole_curvature_radius, generated_round_body
@@ -264,7 +264,8 @@ contains
     type(record_t), intent(inout) :: record
     real(dp), intent(in) :: strain, pad_strain
     real(dp) :: alpha, radius
-    integer :: ios, k, line
+    integer :: k, line
+    logical :: found
     if (strain > strain_warning_level) then
       line = 0
       if (allocated(deck%materials)) then
@@ -283,8 +284,8 @@ contains
     if (.not. (radius > 0.0_dp)) return
     do k = 1, record%nsummary
       if (trim(record%summary(k)%key) /= 'alpha_max_mm' .and. trim(record%summary(k)%key) /= 'alpha_largest_mm') cycle
-      read(record%summary(k)%value, *, iostat=ios) alpha
-      if (ios /= 0) return
+      call record_real(record, record%summary(k)%key, alpha, found)
+      if (.not. found) return
       alpha = 1.0e-3_dp*alpha
       if (alpha > approach_warning_level*radius) call record_warn(record, 'the approach alpha_max = '// &
         rtoa(1.0e3_dp*alpha)//' mm is '//rtoa(100.0_dp*alpha/radius)//' % of the radius (above '// &

@@ -24,7 +24,8 @@
 module visco2d_capacitance
   use visco2d_kinds, only: dp
   use visco2d_lapack, only: dpotrf, dpotrs, dgemv
-  use visco2d_factor, only: factor_t, factor_solve_many
+  use visco2d_factor, only: factor_t, factor_solve_many, solve_failure_text
+  use visco2d_error, only: error_t, set_error
   implicit none
   private
 
@@ -117,19 +118,22 @@ contains
   !> Hold the equations with held(c) (none of them a support of `factor`):
   !> compute the missing columns with `factor` and factor C. info > 0 if C
   !> is not positive definite (the held set is dependent: cannot happen for
-  !> distinct unsupported equations of a positive definite S~).
-  subroutine capacitance_set(capacitance, factor, held, info)
+  !> distinct unsupported equations of a positive definite S~); `error` if a
+  !> solve with the factor failed (factor_solve_many).
+  subroutine capacitance_set(capacitance, factor, held, info, error)
     type(capacitance_t), intent(inout) :: capacitance
     type(factor_t), intent(in) :: factor
     logical, intent(in) :: held(:)
     integer, intent(out) :: info
+    type(error_t), allocatable, intent(inout) :: error
     integer :: i, j, c, m
     info = 0
     capacitance%held = pack([(c, c = 1, capacitance%n)], held)
     m = size(capacitance%held)
     if (allocated(capacitance%slot)) deallocate(capacitance%slot)
     allocate(capacitance%slot(m))
-    call add_columns(capacitance, factor, pack(capacitance%held, capacitance%column_of(capacitance%held) == 0))
+    call add_columns(capacitance, factor, pack(capacitance%held, capacitance%column_of(capacitance%held) == 0), error)
+    if (allocated(error)) return
     do i = 1, m
       capacitance%slot(i) = capacitance%column_of(capacitance%held(i))
     end do
@@ -177,12 +181,13 @@ contains
 
   !> z = S~^-1 e_c for each new equation c, as new columns, in one
   !> multi-right-hand-side back-substitution (the store doubles when full).
-  subroutine add_columns(capacitance, factor, new)
+  subroutine add_columns(capacitance, factor, new, error)
     type(capacitance_t), intent(inout) :: capacitance
     type(factor_t), intent(in) :: factor
     integer, intent(in) :: new(:)
+    type(error_t), allocatable, intent(inout) :: error
     real(dp), allocatable :: grown(:, :)
-    integer :: capacity, first, last, k, j
+    integer :: capacity, first, last, k, j, status
     if (size(new) == 0) return
     capacity = 0
     if (allocated(capacitance%columns)) capacity = size(capacitance%columns, 2)
@@ -204,7 +209,11 @@ contains
       end if
       capacitance%column_of(new(k)) = first + k - 1
     end do
-    call factor_solve_many(factor, capacitance%columns(:, first:last))
+    call factor_solve_many(factor, capacitance%columns(:, first:last), status)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))
+      return
+    end if
     capacitance%stored = last
     capacitance%solves = capacitance%solves + size(new)
   end subroutine add_columns

@@ -14,7 +14,8 @@ module visco2d_held_system
   use visco2d_assembly, only: node_dof, assemble_stiffness, external_load, gravity_load, support_mask, &
                               prescribed_displacement
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many, factor_solve, solver_of_card
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve_many, factor_solve, solver_of_card, &
+                            solve_failure_text
   use visco2d_solve_errors, only: singular_message
   use visco2d_capacitance, only: capacitance_t, capacitance_reset, capacitance_partners, capacitance_set, &
                                  capacitance_apply, constraint_sum
@@ -77,7 +78,8 @@ contains
     ! sphere grid, CHOLMOD's last pivot of the free body passed it, and the
     ! solve of the singular system gave a body out of equilibrium).
     if (floats(deck, system%supports)) then
-      call anchor_body(deck, system, node_dof(deck%mesh, contact%pole, 2), info)
+      call anchor_body(deck, system, node_dof(deck%mesh, contact%pole, 2), info, error)
+      if (allocated(error)) return
     else
       call factor_compute(system%factor, system%stiffness, system%supports, info, solver_of_card(deck%settings%solver))
     end if
@@ -106,13 +108,14 @@ contains
   !> The body is free (its supports leave it a rigid z translation): pin the
   !> u_z `equation` of one of its contact nodes (the anchor; first the pole)
   !> and refactor; the translation and the anchor constraint's pad column for
-  !> anchored_solve. info > 0: still singular.
-  subroutine anchor_body(deck, system, equation, info)
+  !> anchored_solve. info > 0: still singular; `error` if the solve failed.
+  subroutine anchor_body(deck, system, equation, info, error)
     type(deck_t), intent(in) :: deck
     type(held_system_t), intent(inout) :: system
     integer, intent(in) :: equation
     integer, intent(out) :: info
-    integer :: node, k
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: node, k, status
     system%anchor = equation
     call factor_compute(system%factor, system%stiffness, system%supports .or. equation_mask(system%anchor), info, &
                         solver_of_card(deck%settings%solver))
@@ -130,7 +133,8 @@ contains
       if (system%partner(k, system%anchor) > 0) &
         system%anchor_column(system%partner(k, system%anchor)) = -system%weight(k, system%anchor)
     end do
-    call factor_solve(system%factor, system%anchor_column)
+    call factor_solve(system%factor, system%anchor_column, status)
+    if (status /= 0) call set_error(error, solve_failure_text(status))
   contains
     !> The mask of one equation.
     function equation_mask(equation) result(mask)
@@ -171,6 +175,7 @@ contains
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:)
     type(error_t), allocatable, intent(out) :: error
+    integer :: status
     type(factor_t) :: factor
     real(dp), allocatable :: rhs(:, :)
     logical, allocatable :: fixed(:)
@@ -186,7 +191,11 @@ contains
     call band_constrain_rhs(system%stiffness, fixed, merge(0.0_dp, system%prescribed, held), rhs(:, 1))
     rhs(:, 2) = 0.0_dp
     call band_constrain_rhs(system%stiffness, fixed, merge(values, 0.0_dp, held), rhs(:, 2))
-    call factor_solve_many(factor, rhs)
+    call factor_solve_many(factor, rhs, status)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))
+      return
+    end if
     rate = rhs(:, 1)
     base = rhs(:, 2)
   end subroutine eliminated_solve
@@ -202,7 +211,7 @@ contains
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:)
     type(error_t), allocatable, intent(out) :: error
-    integer :: info
+    integer :: info, status
     logical, allocatable :: free_held(:)
     free_held = held .and. .not. system%supports
     if (system%anchor > 0) then
@@ -210,7 +219,8 @@ contains
       if (allocated(error)) return
       free_held(system%anchor) = .false.
     end if
-    call capacitance_set(system%capacitance, system%factor, free_held, info)
+    call capacitance_set(system%capacitance, system%factor, free_held, info, error)
+    if (allocated(error)) return
     if (info > 0) then
       call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(info)// &
                      ' of the held set)', file=deck%cards%file, line=deck%pad%line, card='PAD')
@@ -222,7 +232,11 @@ contains
     end if
     rate = system%load
     call band_constrain_rhs(system%stiffness, system%supports, system%prescribed, rate)
-    call factor_solve(system%factor, rate)
+    call factor_solve(system%factor, rate, status)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))
+      return
+    end if
     call capacitance_apply(system%capacitance, spread(0.0_dp, 1, size(values)), rate)
     allocate(base(size(values)))
     base = 0.0_dp
@@ -256,7 +270,8 @@ contains
                      file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
     end if
-    call anchor_body(deck, system, chosen, info)
+    call anchor_body(deck, system, chosen, info, error)
+    if (allocated(error)) return
     if (info > 0) then
       call set_error(error, singular_message(deck%mesh, info)//' (the body resting on the pad, anchored at another '// &
                      'contact node)', file=deck%cards%file, line=deck%pad%line, card='PAD')
@@ -280,6 +295,7 @@ contains
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:)
     type(error_t), allocatable, intent(out) :: error
+    integer :: status
     real(dp), allocatable :: w(:), fixed_values(:)
     logical, allocatable :: fixed(:)
     fixed = system%supports
@@ -287,7 +303,11 @@ contains
     fixed_values = merge(0.0_dp, system%prescribed, fixed .and. .not. system%supports)
     w = system%load                                    ! u_1: the load and the prescribed supports, held values 0
     call band_constrain_rhs(system%stiffness, fixed, fixed_values, w)
-    call factor_solve(system%factor, w)
+    call factor_solve(system%factor, w, status)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))
+      return
+    end if
     rate = bordered_solution(w, system%load, spread(0.0_dp, 1, size(values)))
     if (allocated(error)) return
     w = 0.0_dp                                         ! u_0: the held values alone

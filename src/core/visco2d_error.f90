@@ -4,7 +4,7 @@ module visco2d_error
   implicit none
   private
 
-  public :: error_t, set_error, error_text
+  public :: error_t, set_error, error_text, locate_error
 
   !> A located error. `line`/`column` are 0 when unknown.
   type :: error_t
@@ -33,6 +33,24 @@ contains
     if (present(line)) error%line = line
     if (present(column)) error%column = column
   end subroutine set_error
+
+  !> Locate an error found where the deck is not known (a failed solve of a
+  !> factor): if it names no file, give it `file` (and `line`, `card`) and
+  !> append `where` to its message (' at step 12 (t = ...)'). A located
+  !> error is left as it is.
+  pure subroutine locate_error(error, file, line, card, where)
+    type(error_t), intent(inout) :: error
+    character(*), intent(in) :: file
+    integer, intent(in), optional :: line
+    character(*), intent(in), optional :: card, where
+    if (allocated(error%file)) then
+      if (len(error%file) > 0) return
+    end if
+    error%file = file
+    if (present(line)) error%line = line
+    if (present(card)) error%card = card
+    if (present(where)) error%message = error%message//where
+  end subroutine locate_error
 
   !> One-line text of an error: `file:line:col: CARD: message`.
   pure function error_text(error) result(text)

@@ -1,22 +1,37 @@
 !> What a run produces, independent of how it is written: summary
 !> `key = value` lines, the history table (one row per output step) and
 !> field snapshots. Solvers fill a record; `visco2d_output` writes it.
+!> A summary value is kept as what it is (a real in full double precision,
+!> an integer, a logical or a text) and becomes text only when it is written
+!> (summary_item_text): summary.txt shows a real with 10 significant digits,
+!> results.h5's /summary holds the double itself.
 module visco2d_record
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: gtoa, itoa
+  use visco2d_strings, only: gtoa, itoa, rtoa
   implicit none
   private
 
   public :: record_t, snapshot_t, summary_item_t, table_t
-  public :: record_put, record_put_real, record_put_integer
+  public :: record_put, record_put_real, record_put_integer, record_put_logical
+  public :: record_find, record_real, record_integer, record_text, summary_item_text, unit_of, summary_unit
   public :: history_define, history_append, record_add_snapshot, record_insert_snapshot, record_column
   public :: run_warning_t, record_warn, gauss_field_t
 
-  !> One `key = value` line of summary.txt. The key is kept whole, however
+  !> The kinds of a summary value (summary_item_t%kind).
+  integer, parameter, public :: summary_text = 0, summary_real = 1, summary_integer = 2, summary_logical = 3
+
+  !> One `key = value` line of summary.txt, typed. The key is kept whole, however
   !> long (expect_probe_<name>_..._within_rtol keys are long).
   type :: summary_item_t
     character(:), allocatable :: key
-    character(:), allocatable :: value
+    integer :: kind = summary_text                !< summary_text, _real, _integer or _logical
+    character(:), allocatable :: text             !< the value of a text item
+    real(dp) :: real_value = 0.0_dp               !< the value of a real item, full precision
+    integer :: integer_value = 0                  !< the value of an integer item
+    logical :: logical_value = .false.            !< the value of a logical item (written yes / no)
+    integer :: digits = 10                        !< significant digits summary.txt shows of a real:
+                                                  !< 10 (gtoa) or 4 (rtoa, the CPU time)
+    character(:), allocatable :: unit             !< of a number, from the key's suffix (summary_unit)
   end type summary_item_t
 
   !> Fields at one instant. Nodal arrays are (components, nnode).
@@ -70,43 +85,209 @@ module visco2d_record
 
 contains
 
-  !> Set (or replace) a summary value given as text.
+  !> Unit of a history column or summary key, from its suffix ('t_ms' -> 'ms';
+  !> '1' for none known).
+  pure function unit_of(name) result(unit)
+    character(*), intent(in) :: name
+    character(:), allocatable :: unit
+    integer :: last
+    last = index(trim(name), '_', back=.true.)
+    unit = '1'
+    if (last == 0) return
+    if (len_trim(name) > 5) then
+      if (name(len_trim(name) - 4:len_trim(name)) == '_m_s2') then
+        unit = 'm/s^2'; return
+      end if
+    end if
+    if (len_trim(name) > 4) then
+      if (name(len_trim(name) - 3:len_trim(name)) == '_m_s') then
+        unit = 'm/s'; return
+      end if
+    end if
+    select case (trim(name(last + 1:)))
+    case ('s', 'ms', 'm', 'mm', 'Pa', 'MPa', 'N', 'J', 'g', 'kg')
+      unit = trim(name(last + 1:))
+    case ('m/s')
+      unit = 'm/s'
+    end select
+  end function unit_of
+
+  !> Unit of a summary key: unit_of the key, and for an EXPECT key
+  !> (`expect_<key>_value`) the unit of <key>; a relative error is '1'.
+  pure function summary_unit(key) result(unit)
+    character(*), intent(in) :: key
+    character(:), allocatable :: unit
+    character(len=*), parameter :: prefix = 'expect_', suffix = '_value'
+    integer :: n
+    n = len_trim(key)
+    if (n > len(prefix) + len(suffix)) then
+      if (key(1:len(prefix)) == prefix .and. key(n - len(suffix) + 1:n) == suffix) then
+        unit = unit_of(key(len(prefix) + 1:n - len(suffix)))
+        return
+      end if
+    end if
+    unit = unit_of(key)
+  end function summary_unit
+
+  !> Index of a summary key in the record, 0 if absent.
+  pure integer function record_find(record, key) result(index)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    do index = 1, record%nsummary
+      if (record%summary(index)%key == key) return
+    end do
+    index = 0
+  end function record_find
+
+  !> The item of `key`, emptied of its old value (appended if the key is new).
+  function summary_slot(record, key) result(i)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: key
+    integer :: i
+    type(summary_item_t), allocatable :: bigger(:)
+    if (.not. allocated(record%summary)) allocate(record%summary(32))
+    i = record_find(record, key)
+    if (i == 0) then
+      if (record%nsummary == size(record%summary)) then
+        allocate(bigger(2*size(record%summary)))
+        bigger(1:record%nsummary) = record%summary(1:record%nsummary)
+        call move_alloc(bigger, record%summary)
+      end if
+      record%nsummary = record%nsummary + 1
+      i = record%nsummary
+    end if
+    record%summary(i) = summary_item_t(key=key)
+  end function summary_slot
+
+  !> Set (or replace) a text summary value.
   subroutine record_put(record, key, value)
     type(record_t), intent(inout) :: record
     character(*), intent(in) :: key, value
-    type(summary_item_t), allocatable :: bigger(:)
     integer :: i
-    if (.not. allocated(record%summary)) allocate(record%summary(32))
-    do i = 1, record%nsummary
-      if (record%summary(i)%key == key) then
-        record%summary(i)%value = value
-        return
-      end if
-    end do
-    if (record%nsummary == size(record%summary)) then
-      allocate(bigger(2*size(record%summary)))
-      bigger(1:record%nsummary) = record%summary(1:record%nsummary)
-      call move_alloc(bigger, record%summary)
-    end if
-    record%nsummary = record%nsummary + 1
-    record%summary(record%nsummary)%key = key
-    record%summary(record%nsummary)%value = value
+    i = summary_slot(record, key)
+    record%summary(i)%text = value
   end subroutine record_put
 
-  !> Set a real summary value (10 significant digits).
-  subroutine record_put_real(record, key, value)
+  !> Set a real summary value, kept in full precision; summary.txt shows it
+  !> with 10 significant digits (gtoa), or 4 (rtoa) if digits = 4.
+  subroutine record_put_real(record, key, value, digits)
     type(record_t), intent(inout) :: record
     character(*), intent(in) :: key
     real(dp), intent(in) :: value
-    call record_put(record, key, gtoa(value))
+    integer, intent(in), optional :: digits
+    integer :: i
+    i = summary_slot(record, key)
+    record%summary(i)%kind = summary_real
+    record%summary(i)%real_value = value
+    record%summary(i)%unit = summary_unit(key)
+    if (present(digits)) record%summary(i)%digits = digits
   end subroutine record_put_real
 
+  !> Set an integer summary value.
   subroutine record_put_integer(record, key, value)
     type(record_t), intent(inout) :: record
     character(*), intent(in) :: key
     integer, intent(in) :: value
-    call record_put(record, key, itoa(value))
+    integer :: i
+    i = summary_slot(record, key)
+    record%summary(i)%kind = summary_integer
+    record%summary(i)%integer_value = value
+    record%summary(i)%unit = summary_unit(key)
   end subroutine record_put_integer
+
+  !> Set a logical summary value (written yes / no).
+  subroutine record_put_logical(record, key, value)
+    type(record_t), intent(inout) :: record
+    character(*), intent(in) :: key
+    logical, intent(in) :: value
+    integer :: i
+    i = summary_slot(record, key)
+    record%summary(i)%kind = summary_logical
+    record%summary(i)%logical_value = value
+  end subroutine record_put_logical
+
+  !> A summary value as summary.txt shows it: a real with gtoa (10 significant
+  !> digits; rtoa for digits = 4), an integer with itoa, a logical as yes / no.
+  function summary_item_text(item) result(text)
+    type(summary_item_t), intent(in) :: item
+    character(:), allocatable :: text
+    select case (item%kind)
+    case (summary_real)
+      if (item%digits == 4) then
+        text = rtoa(item%real_value)
+      else
+        text = gtoa(item%real_value)
+      end if
+    case (summary_integer)
+      text = itoa(item%integer_value)
+    case (summary_logical)
+      text = trim(merge('yes', 'no ', item%logical_value))
+    case default
+      text = ''
+      if (allocated(item%text)) text = item%text
+    end select
+  end function summary_item_text
+
+  !> The summary value of `key` as summary.txt shows it ('' if absent).
+  function record_text(record, key) result(text)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    character(:), allocatable :: text
+    integer :: i
+    text = ''
+    i = record_find(record, key)
+    if (i > 0) text = summary_item_text(record%summary(i))
+  end function record_text
+
+  !> The number of a real or integer summary key, in full precision, or with
+  !> `as_shown` the number summary.txt shows (a real rounded to the digits
+  !> summary_item_text writes); `found` is false (and value 0) if the key is
+  !> absent or not a number.
+  subroutine record_real(record, key, value, found, as_shown)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    real(dp), intent(out) :: value
+    logical, intent(out) :: found
+    logical, intent(in), optional :: as_shown
+    character(:), allocatable :: text
+    integer :: i, status
+    value = 0.0_dp
+    found = .false.
+    i = record_find(record, key)
+    if (i == 0) return
+    select case (record%summary(i)%kind)
+    case (summary_real)
+      value = record%summary(i)%real_value
+      found = .true.
+      if (present(as_shown)) then
+        if (as_shown) then
+          text = summary_item_text(record%summary(i))
+          read(text, *, iostat=status) value
+          if (status /= 0) value = record%summary(i)%real_value     ! NaN, Infinity
+        end if
+      end if
+    case (summary_integer)
+      value = real(record%summary(i)%integer_value, dp)
+      found = .true.
+    end select
+  end subroutine record_real
+
+  !> The value of an integer summary key; `found` is false (and value 0)
+  !> if the key is absent or not an integer.
+  subroutine record_integer(record, key, value, found)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: key
+    integer, intent(out) :: value
+    logical, intent(out) :: found
+    integer :: i
+    value = 0
+    found = .false.
+    i = record_find(record, key)
+    if (i == 0) return
+    if (record%summary(i)%kind /= summary_integer) return
+    value = record%summary(i)%integer_value
+    found = .true.
+  end subroutine record_integer
 
   !> Add a run-time warning, located like an error (`file:line: CARD: message`;
   !> the parts not given are left out). The driver prints it on stderr after the

@@ -45,12 +45,12 @@ module visco2d_dynamic
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
-  use visco2d_error, only: error_t, set_error
+  use visco2d_error, only: error_t, set_error, locate_error
   use visco2d_strings, only: itoa, rtoa
   use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
   use visco2d_dynamic_cards, only: integrator_wilson
   use visco2d_element, only: gauss_count
-  use visco2d_factor, only: factor_solve
+  use visco2d_factor, only: factor_solve, solve_failure_text
   use visco2d_assembly, only: external_load, node_dof, prescribed_displacement, internal_force, nodal_field
   use visco2d_viscoelastic, only: viscoelastic_state_create
   use visco2d_solve_errors, only: singular_error, node_text
@@ -134,7 +134,11 @@ contains
         t_next = stage_start + step*dt
         if (step == deck%stages(stage)%steps) t_next = deck%stages(stage)%end_time
         call time_step(stepper, deck, state, start, t_next, measures, touch_fraction, unstable, error)
-        if (allocated(error)) return
+        if (allocated(error)) then                   ! a failed solve: at the TIME stage, with the step
+          call locate_error(error, deck%cards%file, deck%stages(stage)%line, 'TIME', ' at step '// &
+                            itoa(step_count + 1)//' (t = '//rtoa(t_next)//' s)')
+          return
+        end if
         if (allocated(unstable)) then
           call unstable_error(stepper, deck, stage, step_count, start%t, dt, unstable, error)
           return
@@ -147,7 +151,13 @@ contains
     end do stages
     call timer_stop(phase_step_loop)
     call timers_set_steps(step_count)
-    if (timers_enabled()) call measure_floor(stepper)
+    if (timers_enabled()) then
+      call measure_floor(stepper, error)
+      if (allocated(error)) then
+        call locate_error(error, deck%cards%file, card='TIME', where=' (measuring the solve time for --timing)')
+        return
+      end if
+    end if
     call log_snapshot(measures%log, deck, record, 'final', step_count, state)
     call warn_unwritten_fields(measures%log, deck, record, state%t)
     call put_summary(stepper, deck, record, state, step_count, measures)
@@ -217,9 +227,13 @@ contains
         book%growth_limit = energy_growth_limit*energy_overshoot(stepper%integrator, omega_max, dt)
       end if
       call timer_start(phase_factorization)
-      call factor_effective(stepper, r, info)
+      call factor_effective(stepper, r, info, error)
       call timer_stop(phase_factorization)
-      if (info > 0) then
+      if (allocated(error)) then
+        call locate_error(error, deck%cards%file, deck%stages(stage)%line, 'TIME', ' (factoring the effective '// &
+                          'stiffness of TIME stage '//itoa(stage)//')')
+        return
+      else if (info > 0) then
         call effective_singular(stepper, deck, stage, r, dt, info, error)
         return
       else if (info < 0) then
@@ -298,8 +312,9 @@ contains
       call effective_load(stepper, deck, r, state, start, t_end)                ! eq. [36]
       call timer_stop(phase_constitutive)
       call timer_start(phase_solve)
-      call solve_supports(stepper, r, state)                                    ! eq. [34], supports only
+      call solve_supports(stepper, r, state, error)                             ! eq. [34], supports only
       call timer_stop(phase_solve)
+      if (allocated(error)) return
       call contact_repeat(stepper, deck, r, state, start, finite, error)        ! the plate, eqs. [37]-[39], [13]-[23]
       if (allocated(error)) return
       if (.not. finite) then
@@ -384,19 +399,24 @@ contains
 
   !> The floor of the step loop for `--timing`: the seconds of one
   !> back-substitution with the run's factor (the best of a few repeats).
-  subroutine measure_floor(stepper)
+  subroutine measure_floor(stepper, error)
     type(stepper_t), intent(in) :: stepper
+    type(error_t), allocatable, intent(inout) :: error
     real(dp) :: rhs(size(stepper%base))
     integer(int64) :: start, finish, rate
     real(dp) :: best
-    integer :: repeat
+    integer :: repeat, status
     best = huge(1.0_dp)
     call system_clock(count_rate=rate)
     do repeat = 1, 5
       rhs = stepper%base
       call system_clock(start)
-      call factor_solve(stepper%points(1)%factor, rhs)
+      call factor_solve(stepper%points(1)%factor, rhs, status)
       call system_clock(finish)
+      if (status /= 0) then
+        call set_error(error, solve_failure_text(status))
+        return
+      end if
       best = min(best, real(finish - start, dp)/real(rate, dp))
     end do
     call timers_set_floor(best)

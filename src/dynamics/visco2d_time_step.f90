@@ -35,7 +35,7 @@ module visco2d_time_step
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solver_default
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solver_default, solve_failure_text
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, prescribed_displacement, &
                               scatter_add, lumped_mass, gravity_load
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms, viscoelastic_state_t
@@ -216,11 +216,13 @@ contains
   !> S~ of row r with the supports imposed (with the refactoring strategy:
   !> also the held equations), factored (visco2d_factor); info > 0: not positive
   !> definite at that equation. With the capacitance strategy the held
-  !> equations are then put in the capacitance system (hold_contact).
-  subroutine factor_effective(stepper, r, info)
+  !> equations are then put in the capacitance system (hold_contact); `error`
+  !> if a solve with the factor failed.
+  subroutine factor_effective(stepper, r, info, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(in) :: r
     integer, intent(out) :: info
+    type(error_t), allocatable, intent(inout) :: error
     associate (point => stepper%points(r))
     if (stepper%by_refactoring) then
       call factor_compute(point%factor, point%effective, stepper%fixed, info, stepper%solver)
@@ -232,7 +234,7 @@ contains
     if (.not. stepper%by_refactoring) then
       call capacitance_reset(point%capacitance, point%factor%n)
       if (stepper%contact_on) call capacitance_set(point%capacitance, point%factor, &
-                                                   stepper%held .and. .not. stepper%supports, info)
+                                                   stepper%held .and. .not. stepper%supports, info, error)
       if (info > 0) info = -info                      ! the capacitance matrix, not S~
     end if
     end associate
@@ -240,21 +242,23 @@ contains
 
   !> The contact set has changed: its held equations into every row's
   !> capacitance system, or (refactoring strategy) every S~ refactored.
-  !> info > 0: S~ not positive definite; < 0: the capacitance matrix.
-  subroutine hold_contact(stepper, info)
+  !> info > 0: S~ not positive definite; < 0: the capacitance matrix; `error`:
+  !> a solve with the factor failed.
+  subroutine hold_contact(stepper, info, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(out) :: info
+    type(error_t), allocatable, intent(inout) :: error
     integer :: r
     info = 0
     do r = 1, size(stepper%points)
       if (stepper%by_refactoring) then
-        call factor_effective(stepper, r, info)
+        call factor_effective(stepper, r, info, error)
       else
         call capacitance_set(stepper%points(r)%capacitance, stepper%points(r)%factor, &
-                             stepper%held .and. .not. stepper%supports, info)
+                             stepper%held .and. .not. stepper%supports, info, error)
         info = -info
       end if
-      if (info /= 0) return
+      if (info /= 0 .or. allocated(error)) return
     end do
   end subroutine hold_contact
 
@@ -301,10 +305,12 @@ contains
   !> values at the solve point (fraction theta of their change) and
   !> free = S~^-1 R~. A repeat after a contact change only changes the
   !> capacitance correction of `free`.
-  subroutine solve_supports(stepper, r, state)
+  subroutine solve_supports(stepper, r, state, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(in) :: r
     type(dynamic_state_t), intent(in) :: state
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: status
     associate (point => stepper%points(r))
     stepper%prescribed = state%target + point%row%theta*(stepper%target_next - state%target) - state%u
     if (stepper%contact_on) then
@@ -314,7 +320,8 @@ contains
     if (stepper%by_refactoring) return
     stepper%free = stepper%base
     call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%free)
-    call factor_solve(point%factor, stepper%free)                             ! eq. [34] without contact
+    call factor_solve(point%factor, stepper%free, status)                     ! eq. [34] without contact
+    if (status /= 0) call set_error(error, solve_failure_text(status))
     end associate
   end subroutine solve_supports
 
@@ -343,8 +350,9 @@ contains
     do
       if (stepper%contact_on) call adjusted_displacements(stepper, deck, state%u, row%theta)
       call timer_start(phase_solve)
-      call solve_held(stepper, r)
+      call solve_held(stepper, r, error)
       call timer_stop(phase_solve)
+      if (allocated(error)) return
       if (stepper%contact_on) call solve_point_reactions(stepper, r, state, start)
       call update_kinematics(row, point%length, stepper%solution, state%u, state%v, state%a, start%u, start%v, &
                              stepper%du, stepper%dv, stepper%da)                       ! eqs. [37]-[39]
@@ -402,8 +410,9 @@ contains
     stepper%fixed = stepper%supports .or. stepper%held
     stepper%held_rows = pack([(i, i = 1, size(stepper%held))], stepper%held)
     call timer_start(phase_factorization)
-    call hold_contact(stepper, info)
+    call hold_contact(stepper, info, error)
     call timer_stop(phase_factorization)
+    if (allocated(error)) return
     if (info > 0) then
       call set_error(error, 'the effective stiffness is not positive definite at equation '//itoa(info)// &
         ' after a contact change', file=deck%cards%file, line=deck%plate%line, card='PLATE')
@@ -457,14 +466,17 @@ contains
 
   !> dU of eq. [34] with the held equations: the capacitance correction of
   !> `free`, or (refactoring strategy) a solve with S~ refactored.
-  subroutine solve_held(stepper, r)
+  subroutine solve_held(stepper, r, error)
     type(stepper_t), intent(inout) :: stepper
     integer, intent(in) :: r
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: status
     associate (point => stepper%points(r))
     if (stepper%by_refactoring) then
       stepper%solution = stepper%base
       call band_constrain_rhs(point%effective, stepper%fixed, stepper%prescribed, stepper%solution)
-      call factor_solve(point%factor, stepper%solution)
+      call factor_solve(point%factor, stepper%solution, status)
+      if (status /= 0) call set_error(error, solve_failure_text(status))
     else
       stepper%solution = stepper%free
       if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%prescribed, stepper%solution)

@@ -8,7 +8,7 @@ module visco2d_listing
                           initial_velocity, stop_name
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
   use visco2d_mesh, only: edge_set_name
-  use visco2d_record, only: record_t
+  use visco2d_record, only: record_t, summary_item_text
   use visco2d_text_file, only: text_file_t, text_open, text_put, text_close
   implicit none
   private
@@ -247,7 +247,7 @@ contains
     call text_put(out, '')
     call text_put(out, ' RESULTS')
     do i = 1, record%nsummary
-      call text_put(out, '   '//trim(record%summary(i)%key)//' = '//record%summary(i)%value)
+      call text_put(out, '   '//trim(record%summary(i)%key)//' = '//summary_item_text(record%summary(i)))
     end do
     if (record%nrow > 0) then
       call text_put(out, '')

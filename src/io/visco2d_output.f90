@@ -10,7 +10,8 @@ module visco2d_output
   use visco2d_kinds, only: dp
   use visco2d_strings, only: itoa, gtoa
   use visco2d_deck, only: deck_t, analysis_name, geometry_name
-  use visco2d_record, only: record_t, summary_item_t
+  use visco2d_record, only: record_t, summary_item_t, summary_item_text, record_real, unit_of, summary_unit, &
+                            summary_real, summary_integer
   use visco2d_hdf5, only: h5_writer_t, h5_open_file, h5_close_file, h5_group, h5_close_group, &
                           h5_write, h5_attribute
   use visco2d_text_file, only: text_file_t, text_open, text_put, text_close
@@ -21,53 +22,7 @@ module visco2d_output
   public :: write_summary, write_history, write_results_h5, unit_of, summary_unit
   public :: write_pressure, time_first_contact
 
-  !> What number_kind finds in a summary value.
-  integer, parameter :: number_none = 0, number_integer = 1, number_real = 2
-
 contains
-
-  !> Unit of a history column or summary key, from its suffix ('t_ms' -> 'ms').
-  pure function unit_of(name) result(unit)
-    character(*), intent(in) :: name
-    character(:), allocatable :: unit
-    integer :: last
-    last = index(trim(name), '_', back=.true.)
-    unit = '1'
-    if (last == 0) return
-    if (len_trim(name) > 5) then
-      if (name(len_trim(name) - 4:len_trim(name)) == '_m_s2') then
-        unit = 'm/s^2'; return
-      end if
-    end if
-    if (len_trim(name) > 4) then
-      if (name(len_trim(name) - 3:len_trim(name)) == '_m_s') then
-        unit = 'm/s'; return
-      end if
-    end if
-    select case (trim(name(last + 1:)))
-    case ('s', 'ms', 'm', 'mm', 'Pa', 'MPa', 'N', 'J', 'g', 'kg')
-      unit = trim(name(last + 1:))
-    case ('m/s')
-      unit = 'm/s'
-    end select
-  end function unit_of
-
-  !> Unit of a summary key: unit_of the key, and for an EXPECT key
-  !> (`expect_<key>_value`) the unit of <key>; a relative error is '1'.
-  pure function summary_unit(key) result(unit)
-    character(*), intent(in) :: key
-    character(:), allocatable :: unit
-    character(len=*), parameter :: prefix = 'expect_', suffix = '_value'
-    integer :: n
-    n = len_trim(key)
-    if (n > len(prefix) + len(suffix)) then
-      if (key(1:len(prefix)) == prefix .and. key(n - len(suffix) + 1:n) == suffix) then
-        unit = unit_of(key(len(prefix) + 1:n - len(suffix)))
-        return
-      end if
-    end if
-    unit = unit_of(key)
-  end function summary_unit
 
   !> summary.txt: one `key = value` per line.
   subroutine write_summary(path, record, message)
@@ -78,7 +33,7 @@ contains
     integer :: i
     call text_open(out, path)
     do i = 1, record%nsummary
-      call text_put(out, trim(record%summary(i)%key)//' = '//record%summary(i)%value)
+      call text_put(out, trim(record%summary(i)%key)//' = '//summary_item_text(record%summary(i)))
     end do
     call text_close(out)
     message = out%message
@@ -164,88 +119,31 @@ contains
       end associate
     end do
   end function h5_bytes
-  !> One summary item as a scalar dataset of /summary: an integer or a real
-  !> (with a `units` attribute) when the whole value is a number, else text.
+  !> One summary item as a scalar dataset of /summary, by its kind: a real
+  !> as a double in full precision, an integer as an integer (each with a
+  !> `units` attribute), a text or a logical (yes / no, HDF5 has no boolean)
+  !> as a string, the same words as summary.txt.
   subroutine write_summary_item(writer, group, item)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: group
     type(summary_item_t), intent(in) :: item
-    integer :: integer_value, status
-    real(dp) :: real_value
-    status = 1
-    select case (number_kind(item%value))
-    case (number_integer)
-      read(item%value, *, iostat=status) integer_value
-      if (status == 0) call h5_write(writer, group, trim(item%key), integer_value, units=summary_unit(item%key))
-    case (number_real)
-      read(item%value, *, iostat=status) real_value
-      if (status == 0) call h5_write(writer, group, trim(item%key), real_value, units=summary_unit(item%key))
+    select case (item%kind)
+    case (summary_real)
+      call h5_write(writer, group, trim(item%key), item%real_value, units=item%unit)
+    case (summary_integer)
+      call h5_write(writer, group, trim(item%key), item%integer_value, units=item%unit)
+    case default
+      call h5_write(writer, group, trim(item%key), summary_item_text(item))
     end select
-    if (status /= 0) call h5_write(writer, group, trim(item%key), item%value)
   end subroutine write_summary_item
 
-  !> What a summary value is: number_integer (digits with an optional sign,
-  !> at most 9 digits), number_real (a Fortran real literal: sign, digits
-  !> with at most one point, an optional exponent e/E/d/D with digits) or
-  !> number_none (anything else, blanks inside included).
-  pure integer function number_kind(text) result(kind)
-    character(*), intent(in) :: text
-    integer :: i, n, digits, exponent_digits
-    logical :: point, exponent
-    kind = number_none
-    n = len_trim(text)
-    i = 1
-    if (n == 0) return
-    if (scan(text(1:1), '+-') == 1) i = 2
-    digits = 0; exponent_digits = 0
-    point = .false.; exponent = .false.
-    do while (i <= n)
-      select case (text(i:i))
-      case ('0':'9')
-        if (exponent) then
-          exponent_digits = exponent_digits + 1
-        else
-          digits = digits + 1
-        end if
-      case ('.')
-        if (point .or. exponent) return
-        point = .true.
-      case ('e', 'E', 'd', 'D')
-        if (exponent .or. digits == 0) return
-        exponent = .true.
-        if (i < n) then
-          if (scan(text(i + 1:i + 1), '+-') == 1) i = i + 1
-        end if
-      case default
-        return
-      end select
-      i = i + 1
-    end do
-    if (digits == 0 .or. (exponent .and. exponent_digits == 0)) return
-    if (point .or. exponent .or. digits > 9) then
-      kind = number_real
-    else
-      kind = number_integer
-    end if
-  end function number_kind
-
   !> The time of first contact (s, deck time) from the summary's
-  !> `time_first_contact_s`; `found` is false in a run without contact.
+  !> `time_first_contact_s`, full precision; `found` is false in a run without contact.
   function time_first_contact(record, found) result(time)
     type(record_t), intent(in) :: record
     logical, intent(out) :: found
     real(dp) :: time
-    integer :: i, status
-    time = 0.0_dp
-    found = .false.
-    do i = 1, record%nsummary
-      if (record%summary(i)%key /= 'time_first_contact_s') cycle
-      if (number_kind(record%summary(i)%value) == number_none) return
-      read(record%summary(i)%value, *, iostat=status) time
-      found = status == 0
-      if (.not. found) time = 0.0_dp
-      return
-    end do
+    call record_real(record, 'time_first_contact_s', time, found)
   end function time_first_contact
 
   !> results.h5: /mesh, /summary/<key>, /history/<column>, /fields/<snapshot>/..., /xdmf/<snapshot>/...

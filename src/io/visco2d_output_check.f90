@@ -11,7 +11,7 @@ module visco2d_output_check
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: itoa, gtoa
   use visco2d_deck, only: deck_t, analysis_name, analysis_dynamic, initial_velocity
-  use visco2d_record, only: record_t, snapshot_t
+  use visco2d_record, only: record_t, snapshot_t, summary_item_text, summary_text, summary_real
   implicit none
   private
 
@@ -42,10 +42,17 @@ contains
     where = ''
     producer = 'the '//analysis_name(deck%analysis)//' analysis'
     do i = 1, record%nsummary
-      if (any(trim(record%summary(i)%key) == text_keys)) cycle
-      if (.not. allocated(record%summary(i)%value)) cycle
-      if (finite_text(record%summary(i)%value)) cycle
-      where = 'summary key '//trim(record%summary(i)%key)//' = '//record%summary(i)%value
+      select case (record%summary(i)%kind)
+      case (summary_real)
+        if (ieee_is_finite(record%summary(i)%real_value)) cycle
+      case (summary_text)                                 ! a text may quote a number (hertz_reference)
+        if (any(trim(record%summary(i)%key) == text_keys)) cycle
+        if (.not. allocated(record%summary(i)%text)) cycle
+        if (finite_text(record%summary(i)%text)) cycle
+      case default                                        ! an integer or a logical is finite
+        cycle
+      end select
+      where = 'summary key '//trim(record%summary(i)%key)//' = '//summary_item_text(record%summary(i))
       if (index(record%summary(i)%key, 'hertz_') == 1) then
         producer = 'the Hertz reference of '//producer
       else if (index(record%summary(i)%key, 'expect_') == 1) then
