@@ -31,6 +31,7 @@ build: setup
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
 	@install -m 755 scripts/visco2d_batch.py $(PREFIX)/bin/visco2d-batch   # sweeps, all cores, the cluster: doc/batch.md
+	@install -m 644 scripts/visco2d_boundary.py $(PREFIX)/bin/visco2d_boundary.py   # its boundary command (imported)
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"

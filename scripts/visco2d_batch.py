@@ -6,6 +6,8 @@
   visco2d-batch collect OUT [--keys K,...]   the table of whatever cases OUT holds
   visco2d-batch threshold TEMPLATE --param NAME=LO:HI --when 'KEY>VALUE' --tol T
                                              onset of a condition by bisection
+  visco2d-batch boundary TEMPLATE --param NAME=LO:HI --param FRUIT=v1,v2 --surface NAME=CARDS ...
+                                             a threshold per fruit and surface: table and chart
 
 A deck is a template when it holds `${name}` placeholders (string.Template);
 a sweep gives their values: `--param name=v1,v2,...` (a list),
@@ -881,21 +883,28 @@ def threshold(options):
         low, high = new_low, new_high
     critical = (low + high) / 2
     onset = 'true' if high_state else 'false'
-    print(f'{name}_critical = {format_number(critical)}')
+    record, at_bracket, warned = boundary_module().threshold_record(name, condition, options.tol, low, high,
+                                                                    critical, runs, options.out)
+    print(f'{name}_critical = {format_number(critical)}'
+          + boundary_module().warning_note(at_bracket, warned, len(runs)))
     print(f'bracket = [{format_number(low)}, {format_number(high)}]  ({key} {operator} {format_number(limit)} '
           f'is {onset} at {format_number(high)}, {"false" if high_state else "true"} at {format_number(low)})')
     print(f'runs = {len(runs)} ({rounds} rounds of at most {points_per_round} runs after the two ends)'
           if points_per_round > 1 else f'runs = {len(runs)}')
+    for case, line in at_bracket:
+        print(f'warning = {case}: {line}')
     write_table(options.out, parse_keys(options.keys) if options.keys else [key] + [
         other for other in DEFAULT_KEYS if other != key], quiet=True, names=[run[3] for run in runs])
     with open(os.path.join(options.out, 'threshold.txt'), 'w') as handle:
-        handle.write(f'parameter = {name}\ncondition = {key} {operator} {format_number(limit)}\n'
-                     f'tolerance = {format_number(options.tol)}\ncritical = {format_number(critical)}\n'
-                     f'bracket_low = {format_number(low)}\nbracket_high = {format_number(high)}\n'
-                     f'runs = {len(runs)}\n')
-        for value, state, key_value, case in runs:
-            handle.write(f'run = {format_number(value)} {key}={key_value:.10g} {str(state).lower()} {case}\n')
+        handle.write(record)      # the search, its warnings and every run (visco2d_boundary.threshold_record)
     return 0, runs
+
+
+def boundary_module():
+    """scripts/visco2d_boundary.py (installed beside this tool): the boundary command, the warnings of a search."""
+    import visco2d_boundary
+    visco2d_boundary.batch = sys.modules[__name__]
+    return visco2d_boundary
 
 
 # ---------------------------------------------------------------- command line
@@ -946,6 +955,7 @@ def build_parser():
     search.add_argument('--tol', type=float, required=True, help='final bracket width (parameter unit)')
     add_run_options(search, sweep=False)
     search.set_defaults(jobs=1, mpi=None, farm=None, mpirun_args=None, shard=None, resume=False)
+    boundary_module().add_parser(commands)
     return parser
 
 
@@ -1022,6 +1032,8 @@ def main(argv=None):
                 raise UsageError(f'-j: at least 1, got {options.jobs}')
             status, _ = threshold(options)
             return status
+        if options.command == 'boundary':
+            return boundary_module().boundary(options)
         cases, keys = sweep_cases(options)
         if options.command == 'expand':
             write_decks(cases, options.out, len(cases))
