@@ -31,7 +31,7 @@ build: setup
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
 	@install -m 755 scripts/visco2d_batch.py $(PREFIX)/bin/visco2d-batch   # sweeps, all cores, the cluster: doc/batch.md
-	@install -m 644 scripts/visco2d_boundary.py $(PREFIX)/bin/visco2d_boundary.py   # its boundary command (imported)
+	@install -m 644 scripts/visco2d_boundary.py scripts/visco2d_workers.py $(PREFIX)/bin/   # imported by it: boundary, workers
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"
@@ -91,6 +91,14 @@ study-fast: build
 .PHONY: bench
 bench: build
 	@python3 scripts/bench.py $(BENCH_ARGS)
+
+# make bench-sweep  sweep throughput: 200 level-2 peach impacts by visco2d-batch run -j (all cores) against
+#                  the per-case compute (all 200 decks in one visco2d process): cases/s achieved, ideal
+#                  (cores / per-case compute), efficiency; into out/bench-sweep/ (scripts/bench_sweep.py;
+#                  BENCH_SWEEP_ARGS="--cases 400 --level 1 -j 2 --repeat 3").
+.PHONY: bench-sweep
+bench-sweep: build
+	@python3 scripts/bench_sweep.py $(BENCH_SWEEP_ARGS)
 
 # make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
 #                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);

@@ -27,7 +27,6 @@ runs those). Details: doc/batch.md.
 """
 
 import argparse
-import concurrent.futures
 import csv
 import json
 import math
@@ -451,70 +450,20 @@ def clear_case(out, case):
 
 
 def run_local(cases, out, exe, jobs, progress, stage=None):
-    """Each case by its own `visco2d -o ROOT DECK` process, `jobs` at a time. With `stage`, into
-    that root and then moved into OUT/ (shards on several hosts never see each other's temporary folders).
-    On SIGINT (Ctrl-C) or SIGTERM no further case starts, the running ones are sent SIGINT (visco2d
-    removes what it was writing), and Interrupted is raised once they have ended."""
-    root = stage or out
-    stop = threading.Event()
-    running = {}
-    guard = threading.Lock()
+    """The cases on `jobs` local workers, each handing batches of decks to one `visco2d -o ROOT DECK...`
+    process (scripts/visco2d_workers.py: a process start costs more than a small case). With `stage`,
+    into that root and then moved into OUT/ (shards on several hosts never see each other's temporary
+    folders). Each case ends on its own (its folder, its error, the progress line). On SIGINT (Ctrl-C)
+    or SIGTERM no further case starts, the running processes are sent SIGINT (visco2d removes what it
+    was writing), and Interrupted is raised once they have ended."""
+    workers_module().run_local(cases, out, exe, jobs, progress, stage)
 
-    def run_one(case):
-        if stop.is_set():
-            case.not_run = True
-            return
-        try:
-            with guard:
-                process = subprocess.Popen([exe, '-o', root, case.deck], stdout=subprocess.PIPE,
-                                           stderr=subprocess.PIPE, text=True)
-                running[case.name] = process
-            if stop.is_set():
-                process.send_signal(signal.SIGINT)
-            stdout, stderr = process.communicate()
-            status = process.returncode
-            with guard:
-                running.pop(case.name, None)
-        except OSError as error:
-            stdout, stderr, status = '', f'visco2d: error: cannot run {exe}: {error.strerror}', 1
-        if status not in (0, EXPECT_MISSED) and (stop.is_set() or status == -signal.SIGINT):
-            folder = os.path.join(root, case.name)   # cleared before the run: what it holds is this run's
-            if not all(os.path.isfile(os.path.join(folder, name)) for name in CASE_FILES):
-                case.not_run = True      # stopped by the interrupt: no result, and no error of its own
-                return
-            status = 0                   # the signal came after its folder was moved into place: it ended
-        if status == EXPECT_MISSED:
-            case.missed = located_error(stderr)
-        if status not in (0, EXPECT_MISSED):
-            case.error = located_error(stderr)
-            if status < 0:
-                case.error = f'visco2d stopped by signal {-status}: {case.error}'
-        elif stage:
-            os.replace(os.path.join(stage, case.name), os.path.join(out, case.name))
-        finish_case(case, out)
-        progress.update(case, result_message(case, stdout))
 
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs))
-    futures = [pool.submit(run_one, case) for case in cases]
-    try:
-        with interrupts_raised():
-            for future in futures:
-                future.result()
-    except KeyboardInterrupt:
-        stop.set()
-        with guard:
-            for process in running.values():
-                try:
-                    process.send_signal(signal.SIGINT)
-                except OSError:
-                    pass
-        pool.shutdown(wait=True, cancel_futures=True)
-        for case, future in zip(cases, futures):
-            if future.cancelled():
-                case.not_run = True
-        raise Interrupted(cases) from None
-    finally:
-        pool.shutdown(wait=True)
+def workers_module():
+    """scripts/visco2d_workers.py (installed beside this tool): the local workers."""
+    import visco2d_workers
+    visco2d_workers.batch = sys.modules[__name__]
+    return visco2d_workers
 
 
 class interrupts_raised:
