@@ -101,7 +101,7 @@ PY
 check boundary_equals_threshold "$(grep -v '^# ' verdict.log | tr '\n' ' ' | head -c 600)" grep -q '^verdict ok' verdict.log
 grep '^# ' verdict.log
 steel=$(grep '^steel,0.035,' grid/boundary.csv | cut -d, -f3,4,5 | tr , ' ')
-cell=$(printf '%.4g [%.4g, %.4g]' $steel)
+cell=$(printf '%#.4g [%#.4g, %#.4g]' $steel)
 check boundary_text_table "grid/boundary.txt: no row 'radius=0.035  $cell ...' (boundary.csv: $steel)" \
   bash -c 'grep "^radius=0.035 " grid/boundary.txt | grep -qF " $0  "' "$cell"
 
@@ -150,6 +150,35 @@ batch boundary "${grid[@]}" -j 1 -q -o serial > serial.log 2>&1
 check_ok boundary_one_process $? serial.log
 check boundary_one_process_same_table "serial/boundary.csv differs from grid/boundary.csv" \
   cmp -s serial/boundary.csv grid/boundary.csv
+
+# 4b. Ctrl-C (at level 2, long enough to be caught running): exit 130, no partial folder, no process
+#     left; --resume ends the searches reusing the runs that ended, and a second --resume reruns
+#     nothing and gives the same table.
+sed 's/LEVEL=1/LEVEL=2/' peach.inp > peach2.inp
+grid2=(peach2.inp "${grid[@]:1}")
+wait_for() { local i; for i in $(seq 1 2000); do [ -e "$1" ] && return 0; sleep 0.005; done; return 1; }
+set -m
+python3 "$tool" boundary "${grid2[@]}" --exe "$exe" -j 2 -q -o stopped > stopped.log 2>&1 &
+batch_pid=$!
+set +m
+wait_for "stopped/peach2__surface=steel__radius=0.025__height=0.01/summary.txt"
+kill -INT "$batch_pid"
+wait "$batch_pid"
+check_rc interrupt_exit_130 130 $?
+check interrupt_message "stopped.log: $(first_lines stopped.log)" grep -q '^visco2d-batch: interrupted: ' stopped.log
+check interrupt_no_partial "stopped holds: $(ls -A stopped | grep '^\.' | tr '\n' ' ')" test -z "$(ls -A stopped | grep '^\.')"
+check interrupt_no_process_left "$(pgrep -af -- '-o [s]topped ' | head -c 300)" bash -c '! pgrep -f -- "-o [s]topped " > /dev/null'
+ended=$(ls -d stopped/peach2__*/ | wc -l)
+batch boundary "${grid2[@]}" -j 2 -o stopped --resume > resumed.log 2>&1
+check_ok resume_ends $? resumed.log
+check resume_reuses "resumed.log: $(grep -- '--resume' resumed.log)" \
+  grep -q -- "--resume: $ended of the [0-9]* runs had a verified result in stopped" resumed.log
+cp stopped/boundary.csv resumed.csv
+batch boundary "${grid2[@]}" -j 2 -o stopped --resume > again.log 2>&1
+runs=$(tail -n +2 stopped/boundary.csv | cut -d, -f7 | paste -sd+ | bc)
+check resume_again_reruns_nothing "again.log: $(grep -- '--resume' again.log) ($runs runs in the table)" \
+  grep -q -- "--resume: $runs of the $runs runs had a verified result" again.log
+check resume_same_table "a second --resume changed stopped/boundary.csv" cmp -s resumed.csv stopped/boundary.csv
 
 # 5. No onset in the bracket: exit 1, the cell says so; a surface given as parameters.
 sed -e 's/^\${surface}$/MATERIAL foam ELASTIC E=${pad_e} NU=0.3 RHO=100\nPAD THICKNESS=${pad_t} MAT=foam/' peach.inp > pad.inp

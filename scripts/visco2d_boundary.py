@@ -5,14 +5,16 @@
 
 Every point of the fruit grid (the product of the --param lists) on every surface is one
 threshold search of the searched parameter (the one given as LOW:HIGH), the same bisection
-(k-section) as `visco2d-batch threshold`; the searches run side by side, their runs of a round in
-one batch on every core (-j). A surface is the card text put in the template's ${surface}
-placeholder (`none`: nothing, no PAD card; `@FILE`: the cards of a file; `;` separates cards on the
-command line; a ${surface} elsewhere, in the TITLE say, is the surface's name) or a named set of parameter values (`NAME:pad_t=0.01,pad_e=2e6`) for a template
-with its own placeholders. Writes OUT/boundary.csv, OUT/boundary.txt, OUT/boundary.png (matplotlib)
-and each search's record OUT/searches/<search>.txt (threshold.txt's format). doc/batch.md.
+(k-section) as `visco2d-batch threshold`; the searches run side by side on one set of -j workers
+(scripts/visco2d_workers.py), each search's next round queued as soon as its last has ended.
+A surface is the card text put in the template's line holding ${surface} alone (`none`:
+nothing, no PAD card; `@FILE`: the cards of a file; `;` separates cards on the command line; a
+${surface} elsewhere, in the TITLE say, is the surface's name) or a named set of parameter
+values (`NAME:pad_t=0.01,pad_e=2e6`) for a template with its own placeholders. Writes
+OUT/boundary.csv, OUT/boundary.txt, OUT/boundary.png (matplotlib) and each search's record
+OUT/searches/<search>.txt (threshold.txt's format). doc/batch.md.
 
-This module is imported by visco2d_batch.py (`batch`, set by it: its sweeps, execute, the tables).
+This module is imported by visco2d_batch.py (`batch`, set by it: its sweeps, decks, workers, tables).
 """
 
 import csv
@@ -181,6 +183,7 @@ class Search:
         self.switched_back = False
         self.reported = False
         self.at_bracket, self.warned = [], 0
+        self.round, self.waiting = [], set()   # the cases of the round running, those not ended
         self.label = batch.sanitize('__'.join([batch.deck_stem(template)] +
                                               [f'{k}={v}' for k, v in fixed.items()]))
 
@@ -327,40 +330,7 @@ def boundary(options):
         print(f'{batch.PROGRAM}: boundary: {len(searches)} searches ({len(fruits)} fruits x {len(surfaces)} '
               f'surfaces) of {name} in [{batch.format_number(low)}, {batch.format_number(high)}], '
               f'{points} point(s) a round each, on {options.jobs} process(es)', flush=True)
-    index = 0
-    names = []
-    while True:
-        proposals = [(search, search.propose()) for search in searches]
-        for search, values in proposals:
-            if not values and not search.reported:
-                report_search(search, condition, options)
-        proposals = [(search, values) for search, values in proposals if values]
-        if not proposals:
-            break
-        cases = []
-        for search, values in proposals:
-            round_cases = batch.expand([search.template], [dict(search.fixed, **{name: batch.format_number(value)})
-                                                           for value in values], options.out)
-            for case in round_cases:
-                case.index = index
-                index += 1
-            cases += round_cases
-        cases = batch.execute(cases, options.out, options)
-        names += [case.name for case in cases]
-        position = 0
-        for search, values in proposals:
-            mine = cases[position:position + len(values)]
-            position += len(values)
-            failed = next((case for case in mine if case.error is not None), None)
-            if failed is not None:
-                search.status = f'failed: {failed.name}: {failed.error}'
-                report_search(search, condition, options)
-                continue
-            results = []
-            for case in mine:
-                state, value = batch.holds(case, options.out, condition)
-                results.append((state, value, case.name))
-            search.receive(results)
+    names = run_searches(searches, condition, options)
     batch.write_table(options.out, keys or [condition[0]] + [k for k in batch.DEFAULT_KEYS if k != condition[0]],
                       quiet=True, names=names)
     rows = write_boundary(searches, axes, surfaces, condition, options)
@@ -370,6 +340,86 @@ def boundary(options):
     print(f'{batch.PROGRAM}: boundary: {os.path.join(options.out, "boundary.csv")}, '
           f'{os.path.join(options.out, "boundary.txt")}, {chart}')
     return 0 if all(search.status == 'ok' for search in searches) else 1
+
+
+def run_searches(searches, condition, options):
+    """Every search on one set of workers (scripts/visco2d_workers.py): a search's next round starts
+    as soon as its last one has ended, so the cores stay busy while any search is left. The names
+    of the runs, in the order they were made."""
+    exe = batch.find_program(options.exe, 'VISCO2D', 'visco2d', 'build/install/bin/visco2d')
+    if exe is None:
+        raise batch.UsageError('no visco2d executable: run `make build` (build/install/bin/visco2d), '
+                               'or give --exe PATH')
+    os.makedirs(options.out, exist_ok=True)
+    progress = batch.Progress(0, options.quiet)
+    workers = batch.workers_module().Workers(options.out, exe, options.jobs, progress)
+    made = []                 # every case, in order
+    owner = {}                # case name -> its search
+    reused = 0
+
+    def launch(search):
+        """The next round of a search onto the workers (or its report, when it has ended)."""
+        nonlocal reused
+        while True:
+            values = search.propose()
+            if not values:
+                if not search.reported:
+                    report_search(search, condition, options)
+                return
+            cases = batch.expand([search.template], [dict(search.fixed, **{search.name: batch.format_number(value)})
+                                                     for value in values], options.out)
+            for case in cases:
+                case.index = len(made)
+                made.append(case)
+                owner[case.name] = search
+            batch.write_decks(cases, options.out, len(made))
+            todo = [case for case in cases if not (options.resume and batch.verified_result(case, options.out))]
+            reused += len(cases) - len(todo)
+            for case in todo:
+                batch.clear_case(options.out, case)
+            search.round, search.waiting = cases, {case.name for case in todo}
+            with progress.lock:
+                progress.total += len(todo)
+            if todo:
+                workers.add(todo)
+                return
+            settle(search)          # every run of the round reused: the next round at once
+
+    def settle(search):
+        """A search's round has ended: its results into the search (a failed run ends it)."""
+        failed = next((case for case in search.round if case.error is not None), None)
+        if failed is not None:
+            search.status = f'failed: {failed.name}: {failed.error}'
+            report_search(search, condition, options)
+            return
+        search.receive([batch.holds(case, options.out, condition) + (case.name,)
+                        for case in search.round])
+
+    try:
+        with batch.interrupts_raised():
+            for search in searches:
+                launch(search)
+            while any(search.waiting for search in searches):
+                for case in workers.ended():
+                    search = owner[case.name]
+                    search.waiting.discard(case.name)
+                    if not search.waiting:
+                        settle(search)
+                        if search.status == 'running':
+                            launch(search)
+                        elif not search.reported:
+                            report_search(search, condition, options)
+    except KeyboardInterrupt:
+        workers.interrupt()
+        progress.finish()
+        raise batch.Interrupted(made) from None
+    workers.close()
+    workers.join()
+    progress.finish()
+    if reused and not options.quiet:
+        print(f'{batch.PROGRAM}: --resume: {reused} of the {len(made)} runs had a verified result in '
+              f'{options.out}', flush=True)
+    return [case.name for case in made]
 
 
 def report_search(search, condition, options):
@@ -466,7 +516,7 @@ def boundary_text(rows, axes, surfaces, condition, options, name, low, high):
         search = row['search']
         fruit = ', '.join(f'{axis}={search.fruit[axis]}' for axis in fruit_names) or '-'
         if search.status == 'ok':         # four digits to read (the CSV and the records: ten)
-            cell = f'{search.critical:.4g} [{search.low:.4g}, {search.high:.4g}]'
+            cell = f'{search.critical:#.4g} [{search.low:#.4g}, {search.high:#.4g}]'
             cell += ''.join(f' *{mark}' for mark in row['marks'])
         elif search.status == 'holds at both ends':
             cell = f'< {fmt(search.low)}'

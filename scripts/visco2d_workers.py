@@ -81,43 +81,115 @@ def complete(folder):
     return all(os.path.isfile(os.path.join(folder, name)) for name in batch.CASE_FILES)
 
 
-def run_local(cases, out, exe, jobs, progress, stage=None):
-    """The cases on `jobs` workers (visco2d_batch.run_local's contract): each case ends with its
-    folder in OUT (moved there from `stage`, a shard's own root), or its error, or `not_run`
-    after an interrupt, which raises batch.Interrupted once the running processes have ended."""
-    root = stage or out
-    queue = Queue(cases, jobs)
-    stop = threading.Event()
-    running = set()
-    guard = threading.Lock()
-    environment = dict(os.environ, GFORTRAN_UNBUFFERED_PRECONNECTED='y')   # each line as it is written
+class Workers:
+    """`jobs` worker threads running the cases added to them (`add`), batches of decks a process.
+    A case that ends (its result, error or not_run) is announced to `ended()`; `close()` lets the
+    workers end once the queue is empty; `interrupt()` (Ctrl-C) stops them: no further process
+    starts, the running ones are sent SIGINT, what had not ended is `not_run`."""
 
-    def end(case, line):
-        if case.error is None and stage:
-            os.replace(os.path.join(stage, case.name), os.path.join(out, case.name))
-        batch.finish_case(case, out)
-        progress.update(case, batch.result_message(case, line))
+    def __init__(self, out, exe, jobs, progress, stage=None):
+        self.out, self.exe, self.progress, self.stage = out, exe, progress, stage
+        self.root = stage or out
+        self.queue = Queue([], jobs)
+        self.stop = threading.Event()
+        self.running = set()
+        self.guard = threading.Lock()
+        self.changed = threading.Condition()      # a case added or ended, or the queue closed
+        self.closed = False
+        self.done = collections.deque()           # the cases ended since the last ended()
+        self.environment = dict(os.environ, GFORTRAN_UNBUFFERED_PRECONNECTED='y')   # each line as written
+        self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs))
+        self.futures = [self.pool.submit(self.worker) for _ in range(max(1, jobs))]
 
-    def run_batch(decks):
+    def add(self, cases):
+        with self.changed:
+            with self.queue.lock:
+                self.queue.cases.extend(cases)
+            self.changed.notify_all()
+
+    def close(self):
+        with self.changed:
+            self.closed = True
+            self.changed.notify_all()
+
+    def ended(self, timeout=0.2):
+        """The cases that ended since the last call (waits up to `timeout` s for one)."""
+        with self.changed:
+            if not self.done:
+                self.changed.wait(timeout)
+            cases = list(self.done)
+            self.done.clear()
+            return cases
+
+    def join(self):
+        for future in self.futures:
+            future.result()
+        self.pool.shutdown(wait=True)
+
+    def interrupt(self):
+        self.stop.set()
+        with self.changed:
+            self.changed.notify_all()
+        for case in self.queue.drain():
+            case.not_run = True
+        with self.guard:
+            for process in self.running:
+                try:
+                    process.send_signal(signal.SIGINT)
+                except OSError:
+                    pass
+        self.pool.shutdown(wait=True)
+        for case in self.queue.drain():       # given back by a process that died meanwhile
+            case.not_run = True
+
+    def worker(self):
+        first = True
+        while not self.stop.is_set():
+            decks = self.queue.take(first)
+            if not decks:
+                with self.changed:
+                    if self.closed or self.stop.is_set():
+                        if not self.queue.cases:
+                            return
+                        continue
+                    self.changed.wait(0.2)
+                continue
+            first = False
+            self.queue.give_back(self.run_batch(decks))
+
+    def end(self, case, line):
+        """A case has ended: its folder finished (moved from the stage), the progress line, ended()."""
+        if case.error is None and not case.not_run:
+            if self.stage:
+                os.replace(os.path.join(self.stage, case.name), os.path.join(self.out, case.name))
+        if not case.not_run:
+            batch.finish_case(case, self.out)
+            self.progress.update(case, batch.result_message(case, line))
+        with self.changed:
+            self.done.append(case)
+            self.changed.notify_all()
+
+    def run_batch(self, decks):
         """One visco2d process for `decks`; returns the decks it did not start (to run again)."""
-        with guard:
-            if stop.is_set():
+        with self.guard:
+            if self.stop.is_set():
                 for case in decks:
                     case.not_run = True
+                    self.end(case, '')
                 return []
             try:
-                process = subprocess.Popen([exe, '-o', root] + [case.deck for case in decks],
+                process = subprocess.Popen([self.exe, '-o', self.root] + [case.deck for case in decks],
                                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                           env=environment)
+                                           env=self.environment)
             except OSError as error:
                 process = None
-                message = f'cannot run {exe}: {error.strerror}'
+                message = f'cannot run {self.exe}: {error.strerror}'
             else:
-                running.add(process)
+                self.running.add(process)
         if process is None:
             for case in decks:
                 case.error = message
-                end(case, '')
+                self.end(case, '')
             return []
         k = 0                    # the deck running: the first that has not ended
         own = []                 # its lines so far (warnings, notes)
@@ -128,7 +200,7 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
         def ended(count=1):
             nonlocal ended_at
             now = time.monotonic()
-            queue.took(now - ended_at, count)
+            self.queue.took(now - ended_at, count)
             ended_at = now
 
         for line in process.stdout:
@@ -143,7 +215,7 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
                     line = None
                 case, result, _, lines = missed
                 case.missed = batch.located_error('\n'.join(lines))
-                end(case, result)
+                self.end(case, result)
                 missed = None
                 if line is None:
                     continue
@@ -153,28 +225,28 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
                 k += 1
                 own = []
                 ended()
-                summary = os.path.join(root, case.name, 'summary.txt')
+                summary = os.path.join(self.root, case.name, 'summary.txt')
                 misses = batch.missed_expectations(batch.read_summary(summary)) if os.path.isfile(summary) else []
                 if misses:
                     missed = (case, line, len(misses), [])
                 else:
-                    end(case, line)
+                    self.end(case, line)
             elif k < len(decks) and line.startswith(ERROR):
                 case = decks[k]
                 k += 1
                 case.error = batch.located_error('\n'.join(own + [line]))
                 own = []
                 ended()
-                end(case, '')
+                self.end(case, '')
             else:
                 own.append(line)
         status = process.wait()
-        with guard:
-            running.discard(process)
+        with self.guard:
+            self.running.discard(process)
         if missed is not None:
             case, result, _, lines = missed
             case.missed = batch.located_error('\n'.join(lines)) if lines else 'outside the RTOL of its EXPECT card(s)'
-            end(case, result)
+            self.end(case, result)
         left = decks[k:]
         if not left:
             return []
@@ -182,54 +254,39 @@ def run_local(cases, out, exe, jobs, progress, stage=None):
             message = batch.located_error('\n'.join(own))
             for case in left:
                 case.error = message
-                end(case, '')
+                self.end(case, '')
             return []
         case, rest = left[0], left[1:]
-        folder = os.path.join(root, case.name)
-        interrupted = stop.is_set() or status == -signal.SIGINT
+        folder = os.path.join(self.root, case.name)
+        interrupted = self.stop.is_set() or status == -signal.SIGINT
         if complete(folder) and case.error is None:
-            end(case, f'{case.name}: done')   # the signal came after its folder was moved into place: it ended
+            self.end(case, f'{case.name}: done')   # the signal came after its folder was moved into place: it ended
         elif interrupted:
             case.not_run = True              # stopped by the interrupt: no result, and no error of its own
+            self.end(case, '')
         else:
             case.error = batch.located_error('\n'.join(own)) if own else f'visco2d exited with status {status}'
             if status < 0:
                 case.error = f'visco2d stopped by signal {-status}: {case.error}'
-            end(case, '')
+            self.end(case, '')
         if interrupted:
             for other in rest:
                 other.not_run = True
+                self.end(other, '')
             return []
         return rest                          # not started: they run again, in another process
 
-    def worker():
-        first = True
-        while not stop.is_set():
-            decks = queue.take(first)
-            if not decks:
-                return
-            first = False
-            queue.give_back(run_batch(decks))
 
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs))
-    futures = [pool.submit(worker) for _ in range(max(1, min(jobs, len(cases))))]
+def run_local(cases, out, exe, jobs, progress, stage=None):
+    """The cases on `jobs` workers (visco2d_batch.run_local's contract): each case ends with its
+    folder in OUT (moved there from `stage`, a shard's own root), or its error, or `not_run`
+    after an interrupt, which raises batch.Interrupted once the running processes have ended."""
+    workers = Workers(out, exe, min(jobs, max(1, len(cases))), progress, stage)
+    workers.add(cases)
+    workers.close()
     try:
         with batch.interrupts_raised():
-            for future in futures:
-                future.result()
+            workers.join()
     except KeyboardInterrupt:
-        stop.set()
-        for case in queue.drain():
-            case.not_run = True
-        with guard:
-            for process in running:
-                try:
-                    process.send_signal(signal.SIGINT)
-                except OSError:
-                    pass
-        pool.shutdown(wait=True)
-        for case in queue.drain():       # given back by a process that died meanwhile
-            case.not_run = True
+        workers.interrupt()
         raise batch.Interrupted(cases) from None
-    finally:
-        pool.shutdown(wait=True)
