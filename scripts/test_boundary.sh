@@ -216,6 +216,10 @@ check_rc bad_surface_exit_2 2 $?
 batch boundary peach.inp --param radius=0.03 --surface steel=none --when 'bruise_volume_cm3>0' --tol 0.1 -o usage4 \
   > usage4.log 2>&1
 check_rc no_searched_parameter_exit_2 2 $?
+timeout 60 python3 "$tool" boundary peach.inp --param height=0.01:1 --param radius=0.03 --surface steel=none \
+  --when 'no_such_key>0' --tol 0.1 --exe "$exe" -q -o nokey > nokey.log 2>&1
+check_rc unknown_key_exit_2 2 $?
+check unknown_key_message "$(first_lines nokey.log)" grep -q 'error: --when: the summary of .* has no key "no_such_key"' nokey.log
 check usage_nothing_run "a usage error ran cases: $(ls -d usage*/peach__* 2>/dev/null | head -3)" \
   test -z "$(ls -d usage*/*__height=* 2>/dev/null)"
 exit 0

@@ -413,6 +413,9 @@ def run_searches(searches, condition, options):
         workers.interrupt()
         progress.finish()
         raise batch.Interrupted(made) from None
+    except BaseException:          # an error (a summary without the --when key): stop the workers, then say it
+        workers.interrupt()
+        raise
     workers.close()
     workers.join()
     progress.finish()
