@@ -92,6 +92,14 @@ study-fast: build
 bench: build
 	@python3 -m visco2d.bench $(BENCH_ARGS)
 
+# make bench-sweep  sweep throughput: 200 level-2 peach impacts by visco2d-batch run -j (all cores) against
+#                  the per-case compute (all 200 decks in one visco2d process): cases/s achieved, ideal
+#                  (cores / per-case compute), efficiency; into out/bench-sweep/ (python/visco2d/bench_sweep.py;
+#                  BENCH_SWEEP_ARGS="--cases 400 --level 1 -j 2 --repeat 3").
+.PHONY: bench-sweep
+bench-sweep: build
+	@python3 -m visco2d.bench_sweep $(BENCH_SWEEP_ARGS)
+
 # make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
 #                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);
 #                  exit 1 on any failing deck: a crash, a hang, a partial folder, a NaN/Inf output,

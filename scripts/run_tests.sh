@@ -99,6 +99,12 @@ count "$log/batch.log"
 grep -E '^(NOTE|# )' "$log/batch.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/batch.log") checks passed"
 
+echo "== damage boundary (scripts/test_boundary.sh: visco2d-batch boundary against threshold, its table, chart, warnings)"
+bash scripts/test_boundary.sh "$exe" > "$log/boundary.log" 2>&1
+count "$log/boundary.log"
+grep -E '^(NOTE|# )' "$log/boundary.log" | sed 's/^/   /' || true
+echo "   $(grep -c '^PASS ' "$log/boundary.log") checks passed"
+
 echo "== processes and hosts (scripts/test_hosts.sh: shared output roots, case locks; batch interrupt, resume, guards)"
 bash scripts/test_hosts.sh "$exe" > "$log/hosts.log" 2>&1
 count "$log/hosts.log"

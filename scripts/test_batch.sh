@@ -274,3 +274,71 @@ check expect_miss_results_written "expects/pressure__uz=2.0e-3/summary.txt is mi
   test -f "expects/pressure__uz=2.0e-3/summary.txt"
 check expect_miss_reported "expects.log: no 'MISSED pressure__uz=2.0e-3: ...: EXPECT: probe_pole_uz_m' line" \
   grep -q '^MISSED pressure__uz=2.0e-3: .*:23:[0-9]*: EXPECT: probe_pole_uz_m = ' expects.log
+
+# 12. Batches of decks in one visco2d process (python/visco2d/workers.py): a stand-in visco2d logs each
+#     process's decks and runs them through the real one, one process for all; a 16-case sweep whose 6th
+#     case fails and whose 11th misses its EXPECT card takes fewer processes than cases, every case
+#     keeps its own result, error or miss and its result line, and the table is that of one process a case.
+printf '#!/bin/bash\necho "$(($# - 2)) ${*:3}" >> "%s/processes.log"\nexec "%s" "$@"\n' "$work" "$exe" > logging_visco2d
+chmod +x logging_visco2d
+sed -e 's/NU=0.35/NU=${nu}/' -e 's/^END$/EXPECT alpha_max_mm ${alpha} RTOL=1e-3\nEND/' peach.inp > peach_mixed.inp
+: > mixed_rows.csv
+echo 'case,height,radius,nu,alpha' > mixed_rows.csv
+for k in $(seq 1 16); do
+  nu=0.35; alpha=$(grep '^alpha_max_mm = ' "serial/peach__height=0.1__radius=0.03/summary.txt" | cut -d' ' -f3)
+  [ "$k" = 6 ] && nu=0.7
+  [ "$k" = 11 ] && alpha=9.9
+  echo "mixed_$k,0.1,0.03,$nu,$alpha" >> mixed_rows.csv
+done
+python3 "$tool" run peach_mixed.inp --table mixed_rows.csv -j 2 --exe "$work/logging_visco2d" -o mixed > mixed.log 2>&1
+check_rc batched_status_1 1 $?
+processes=$(wc -l < processes.log)
+check batched_fewer_processes "$processes processes for 16 cases: $(tr '\n' '|' < processes.log | head -c 300)" \
+  test "$processes" -lt 16
+check batched_several_decks_a_process "no process ran more than one deck: $(tr '\n' '|' < processes.log | head -c 300)" \
+  test "$(cut -d' ' -f1 processes.log | sort -n | tail -1)" -gt 1
+check batched_failed_case "mixed/table.csv: mixed_6 is not failed with MATERIAL's located error: $(grep '^mixed_6,' mixed/table.csv)" \
+  grep -q '^mixed_6,failed,.*decks/mixed_6.inp:12:[0-9]*: MATERIAL: NU must be' mixed/table.csv
+check batched_missed_case "mixed/table.csv: mixed_11 is not missed: $(grep '^mixed_11,' mixed/table.csv)" \
+  grep -q '^mixed_11,missed,.*outside the RTOL of its EXPECT card(s): alpha_max_mm' mixed/table.csv
+check batched_missed_line "mixed.log: no 'MISSED mixed_11: ...: EXPECT: alpha_max_mm' line" \
+  grep -q '^MISSED mixed_11: .*decks/mixed_11.inp:[0-9]*:[0-9]*: EXPECT: alpha_max_mm = ' mixed.log
+check batched_failed_line "mixed.log: no 'FAILED mixed_6: ...: MATERIAL: ...' line" \
+  grep -q '^FAILED mixed_6: .*decks/mixed_6.inp:12:[0-9]*: MATERIAL: NU must be' mixed.log
+check batched_others_ok "mixed/table.csv: $(grep -c ',ok,' mixed/table.csv) ok rows, expected 14" \
+  test "$(grep -c ',ok,' mixed/table.csv)" = 14
+check batched_result_lines "mixed.log: $(grep -c '^mixed_[0-9]*: .* nodes' mixed.log) result lines of ok cases, expected 14" \
+  test "$(grep -c '^mixed_[0-9]*: .* nodes' mixed.log)" = 14
+check batched_decks_beside_results "a case folder of mixed/ lacks its deck" \
+  bash -c 'for k in 1 2 3 4 5 7 8 9 10 11 12 13 14 15 16; do cmp -s "mixed/mixed_$k/mixed_$k.inp" "mixed/decks/mixed_$k.inp" || exit 1; done'
+check batched_no_folder_of_failed "mixed/mixed_6 exists" test ! -e mixed/mixed_6
+python3 - mixed/table.csv > /dev/null 2>&1 <<'PY' && summaries_equal=yes || summaries_equal=no
+import csv, sys
+rows = {row['case']: row for row in csv.DictReader(open(sys.argv[1]))}
+reference = next(csv.DictReader(open('serial/table.csv')))
+reference = next(row for row in csv.DictReader(open('serial/table.csv')) if row['case'] == 'peach__height=0.1__radius=0.03')
+for k in (1, 16):
+    assert rows[f'mixed_{k}']['alpha_max_mm'] == reference['alpha_max_mm'], (rows[f'mixed_{k}'], reference)
+PY
+check batched_same_results "mixed_1 or mixed_16: alpha_max_mm differs from the case run alone" test "$summaries_equal" = yes
+
+# A process killed in a deck (the stand-in kills itself at the 5th deck of the first batch that has
+# one): that deck fails
+# with the signal, the decks after it run in another process, all others end.
+printf '#!/bin/bash\necho "$(($# - 2)) ${*:3}" >> "%s/killed_processes.log"\nroot=$2; shift 2; n=0\nfor deck in "$@"; do\n  n=$((n + 1)); [ $n = 5 ] && mkdir "%s/killed.once" 2> /dev/null && kill -KILL $$\n  "%s" -o "$root" "$deck" 2>&1\ndone\n' \
+  "$work" "$work" "$exe" > killing_visco2d
+chmod +x killing_visco2d
+python3 "$tool" run peach.inp --param height=0.05:0.2:12 --param radius=0.03 -j 1 --exe "$work/killing_visco2d" -q \
+  -o killed_batch > killed_batch.log 2>&1
+check_rc killed_batch_status_1 1 $?
+killed=$(grep ',failed,' killed_batch/table.csv | cut -d, -f1)
+check killed_batch_one_failed "killed_batch/table.csv: failed: '$killed' (expected the 5th deck of a batch, stopped by signal 9)" \
+  bash -c 'test "$(grep -c ",failed,.*stopped by signal 9" killed_batch/table.csv)" = 1'
+check killed_batch_others_ok "killed_batch/table.csv: $(grep -c ',ok,' killed_batch/table.csv) ok rows, expected 11" \
+  test "$(grep -c ',ok,' killed_batch/table.csv)" = 11
+check killed_batch_rest_rerun "killed_processes.log: the process after the killed one does not start with the deck after its 5th: $(tr '\n' '|' < killed_processes.log | head -c 400)" \
+  python3 -c '
+import sys
+lines = [line.split() for line in open("killed_processes.log")]
+killed = next(k for k, line in enumerate(lines) if int(line[0]) >= 5)
+assert lines[killed + 1][1] == lines[killed][1 + 5], lines'

@@ -5,6 +5,8 @@
   visco2d-batch collect OUT [--keys K,...]   the table of whatever cases OUT holds
   visco2d-batch threshold TEMPLATE --param NAME=LO:HI --when 'KEY>VALUE' --tol T
                                              onset of a condition by bisection
+  visco2d-batch boundary TEMPLATE --param NAME=LO:HI --param FRUIT=v1,v2 --surface NAME=CARDS ...
+                                             a threshold per fruit and surface: table and chart
 
 A deck is a template when it holds `${name}` placeholders (string.Template);
 a sweep gives their values: `--param name=v1,v2,...` (a list),
@@ -24,7 +26,6 @@ runs those). Details: doc/batch.md.
 """
 
 import argparse
-import concurrent.futures
 import csv
 import json
 import math
@@ -424,70 +425,19 @@ def clear_case(out, case):
 
 
 def run_local(cases, out, exe, jobs, progress, stage=None):
-    """Each case by its own `visco2d -o ROOT DECK` process, `jobs` at a time. With `stage`, into
-    that root and then moved into OUT/ (shards on several hosts never see each other's temporary folders).
-    On SIGINT (Ctrl-C) or SIGTERM no further case starts, the running ones are sent SIGINT (visco2d
-    removes what it was writing), and Interrupted is raised once they have ended."""
-    root = stage or out
-    stop = threading.Event()
-    running = {}
-    guard = threading.Lock()
+    """The cases on `jobs` local workers, each handing batches of decks to one `visco2d -o ROOT DECK...`
+    process (python/visco2d/workers.py: a process start costs more than a small case). With `stage`,
+    into that root and then moved into OUT/ (shards on several hosts never see each other's temporary
+    folders). Each case ends on its own (its folder, its error, the progress line). On SIGINT (Ctrl-C)
+    or SIGTERM no further case starts, the running processes are sent SIGINT (visco2d removes what it
+    was writing), and Interrupted is raised once they have ended."""
+    workers_module().run_local(cases, out, exe, jobs, progress, stage)
 
-    def run_one(case):
-        if stop.is_set():
-            case.not_run = True
-            return
-        try:
-            with guard:
-                process = subprocess.Popen([exe, '-o', root, case.deck], stdout=subprocess.PIPE,
-                                           stderr=subprocess.PIPE, text=True)
-                running[case.name] = process
-            if stop.is_set():
-                process.send_signal(signal.SIGINT)
-            stdout, stderr = process.communicate()
-            status = process.returncode
-            with guard:
-                running.pop(case.name, None)
-        except OSError as error:
-            stdout, stderr, status = '', f'visco2d: error: cannot run {exe}: {error.strerror}', 1
-        if status not in (0, EXPECT_MISSED) and (stop.is_set() or status == -signal.SIGINT):
-            folder = os.path.join(root, case.name)   # cleared before the run: what it holds is this run's
-            if not all(os.path.isfile(os.path.join(folder, name)) for name in CASE_FILES):
-                case.not_run = True      # stopped by the interrupt: no result, and no error of its own
-                return
-            status = 0                   # the signal came after its folder was moved into place: it ended
-        if status == EXPECT_MISSED:
-            case.missed = located_error(stderr)
-        if status not in (0, EXPECT_MISSED):
-            case.error = located_error(stderr)
-            if status < 0:
-                case.error = f'visco2d stopped by signal {-status}: {case.error}'
-        elif stage:
-            os.replace(os.path.join(stage, case.name), os.path.join(out, case.name))
-        finish_case(case, out)
-        progress.update(case, result_message(case, stdout))
 
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs))
-    futures = [pool.submit(run_one, case) for case in cases]
-    try:
-        with interrupts_raised():
-            for future in futures:
-                future.result()
-    except KeyboardInterrupt:
-        stop.set()
-        with guard:
-            for process in running.values():
-                try:
-                    process.send_signal(signal.SIGINT)
-                except OSError:
-                    pass
-        pool.shutdown(wait=True, cancel_futures=True)
-        for case, future in zip(cases, futures):
-            if future.cancelled():
-                case.not_run = True
-        raise Interrupted(cases) from None
-    finally:
-        pool.shutdown(wait=True)
+def workers_module():
+    """visco2d.workers: the local workers (imported when first needed: it uses this module)."""
+    from . import workers
+    return workers
 
 
 class interrupts_raised:
@@ -841,21 +791,28 @@ def threshold(options):
         low, high = new_low, new_high
     critical = (low + high) / 2
     onset = 'true' if high_state else 'false'
-    print(f'{name}_critical = {format_number(critical)}')
+    record, at_bracket, warned = boundary_module().threshold_record(name, condition, options.tol, low, high,
+                                                                    critical, runs, options.out)
+    print(f'{name}_critical = {format_number(critical)}'
+          + boundary_module().warning_note(at_bracket, warned, len(runs)))
     print(f'bracket = [{format_number(low)}, {format_number(high)}]  ({key} {operator} {format_number(limit)} '
           f'is {onset} at {format_number(high)}, {"false" if high_state else "true"} at {format_number(low)})')
     print(f'runs = {len(runs)} ({rounds} rounds of at most {points_per_round} runs after the two ends)'
           if points_per_round > 1 else f'runs = {len(runs)}')
+    for case, line in at_bracket:
+        print(f'warning = {case}: {line}')
     write_table(options.out, parse_keys(options.keys) if options.keys else [key] + [
         other for other in DEFAULT_KEYS if other != key], quiet=True, names=[run[3] for run in runs])
     with open(os.path.join(options.out, 'threshold.txt'), 'w') as handle:
-        handle.write(f'parameter = {name}\ncondition = {key} {operator} {format_number(limit)}\n'
-                     f'tolerance = {format_number(options.tol)}\ncritical = {format_number(critical)}\n'
-                     f'bracket_low = {format_number(low)}\nbracket_high = {format_number(high)}\n'
-                     f'runs = {len(runs)}\n')
-        for value, state, key_value, case in runs:
-            handle.write(f'run = {format_number(value)} {key}={key_value:.10g} {str(state).lower()} {case}\n')
+        handle.write(record)      # the search, its warnings and every run (boundary.threshold_record)
     return 0, runs
+
+
+def boundary_module():
+    """visco2d.boundary: the boundary command, the warnings of a search (imported when first needed: it uses
+    this module)."""
+    from . import boundary
+    return boundary
 
 
 # ---------------------------------------------------------------- command line
@@ -906,6 +863,7 @@ def build_parser():
     search.add_argument('--tol', type=float, required=True, help='final bracket width (parameter unit)')
     add_run_options(search, sweep=False)
     search.set_defaults(jobs=1, mpi=None, farm=None, mpirun_args=None, shard=None, resume=False)
+    boundary_module().add_parser(commands)
     return parser
 
 
@@ -982,6 +940,8 @@ def main(argv=None):
                 raise UsageError(f'-j: at least 1, got {options.jobs}')
             status, _ = threshold(options)
             return status
+        if options.command == 'boundary':
+            return boundary_module().boundary(options)
         cases, keys = sweep_cases(options)
         if options.command == 'expand':
             write_decks(cases, options.out, len(cases))
