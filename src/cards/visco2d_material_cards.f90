@@ -4,7 +4,7 @@
 module visco2d_material_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
-  use visco2d_strings, only: short_real, rtoa, itoa, compact_real
+  use visco2d_strings, only: short_real, message_real, integer_text, compact_real
   use visco2d_ranges, only: modulus_range, density_range, rate_range, bulk_shear_ratio_limit
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, positional_word, check_fields_used, &
                            has_field, field_column
@@ -36,7 +36,7 @@ contains
     material%line = card%line
     do k = 1, size(materials)
       if (materials(k)%id == material%id) then
-        call field_error('material '//material%id//' defined twice (first on line '//itoa(materials(k)%line)//')', &
+        call field_error('material '//material%id//' defined twice (first on line '//integer_text(materials(k)%line)//')', &
                          '1'); return
       end if
     end do
@@ -144,7 +144,7 @@ contains
       do k = 1, size(rates)
         if (rates(k) /= rate) cycle
         call card_error(error, cards, card, 'material '//material%id//' already has a term with '//rate_name//' = '// &
-          short_real(rate)//' 1/s (line '//itoa(material%prony_lines(k))//'): give one term per rate, with the '// &
+          short_real(rate)//' 1/s (line '//integer_text(material%prony_lines(k))//'): give one term per rate, with the '// &
           'sum of their '//modulus_name, field_column(card, rate_name))
         return
       end do
@@ -214,7 +214,7 @@ contains
   function ratio_message(material) result(message)
     type(material_t), intent(in) :: material
     character(:), allocatable :: message
-    message = 'material '//material%id//': K/G = '//rtoa(material%bulk/material%shear)//' (nu = '// &
+    message = 'material '//material%id//': K/G = '//message_real(material%bulk/material%shear)//' (nu = '// &
       short_real(material%poisson)//') is outside ['//compact_real(1.0_dp/bulk_shear_ratio_limit)//', '// &
       compact_real(bulk_shear_ratio_limit)//']: the stiffness would be ill-conditioned '// &
       '(nu closer than 5e-7 to 0.5, or than 1e-6 to -1)'

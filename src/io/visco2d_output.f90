@@ -8,7 +8,7 @@ module visco2d_output
   use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, geometry_name
   use visco2d_record, only: record_t, summary_item_t, summary_item_text, record_real, unit_of, summary_unit, &
                             summary_real, summary_integer
@@ -57,7 +57,7 @@ contains
   end subroutine write_pressure
 
   !> A CSV table: the header row of the column names, then one row per column
-  !> of values (ncolumn, nrow), each number by gtoa (10 significant digits)
+  !> of values (ncolumn, nrow), each number by table_real (10 significant digits)
   !> but the column named `integer_column` (the deck's node numbers), written
   !> as an integer.
   subroutine write_csv(path, columns, values, message, integer_column)
@@ -83,9 +83,9 @@ contains
       do j = 1, size(columns)
         if (j > 1) line = line//','
         if (whole(j)) then
-          line = line//itoa(nint(values(j, i)))
+          line = line//integer_text(nint(values(j, i)))
         else
-          line = line//gtoa(values(j, i))
+          line = line//table_real(values(j, i))
         end if
       end do
       call text_put(out, line)
