@@ -27,7 +27,11 @@ setup:
 
 build: setup
 	@start=$$(date +%s); echo "visco2d: building with fpm (release profile; full log in build/build.log) ..."; \
-	  mkdir -p build; fpm install --profile release --prefix $(PREFIX) > build/build.log 2>&1 \
+	  mkdir -p build; sources=$$(find src app -name '*.[fFc]90' -o -name '*.c' | sort | cksum); \
+	  if [ -f build/sources.cksum ] && [ "$$(cat build/sources.cksum)" != "$$sources" ]; then \
+	    echo "visco2d: source files added, moved or removed since the last build: rebuilding all (fpm keeps stale objects)"; \
+	    rm -rf build/gfortran_*; fi; \
+	  echo "$$sources" > build/sources.cksum; fpm install --profile release --prefix $(PREFIX) > build/build.log 2>&1 \
 	    || { cat build/build.log; exit 1; }; \
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
