@@ -1,10 +1,10 @@
 # visco2d — the two commands of a new user:
 #   make run    install what is missing, build (release), run every deck in inputs/ into out/,
-#               then print the impact results beside the paper's (scripts/paper_table.py)
+#               then print the impact results beside the paper's (python/visco2d/paper_table.py)
 #   make test   install what is missing, run the tests and the reference-output diffs
-#   make figures  pictures of the paper's figures into out/figures/ (scripts/figures.py)
-#   make report   one picture per case of out/: out/<case>/report.png (scripts/report.py)
-#   make fuzz     N mutated decks through the release build (scripts/fuzz.py; N=10000: ~4 min)
+#   make figures  pictures of the paper's figures into out/figures/ (python/visco2d/figures.py)
+#   make report   one picture per case of out/: out/<case>/report.png (python/visco2d/report.py)
+#   make fuzz     N mutated decks through the release build (python/visco2d/fuzz.py; N=10000: ~4 min)
 #   make checked  every deck under -fcheck=all and the address/undefined-behaviour sanitizers
 #   make mpi      the MPI task farm build/mpi/bin/visco2d-farm (installs OpenMPI if missing)
 #   make docs     the API pages of every module, from its !> comments, into build/docs/api/ (FORD)
@@ -15,6 +15,8 @@ SHELL := /bin/bash
 PREFIX := build/install
 EXE := $(PREFIX)/bin/visco2d
 DECKS := $(sort $(wildcard inputs/*.inp))
+# The Python tools are the package in python/visco2d/ (doc/python.md): `python3 -m visco2d.<tool>`.
+export PYTHONPATH := $(CURDIR)/python$(if $(PYTHONPATH),:$(PYTHONPATH))
 
 .PHONY: all setup build run test bless check clean
 
@@ -25,22 +27,25 @@ setup:
 
 build: setup
 	@start=$$(date +%s); echo "visco2d: building with fpm (release profile; full log in build/build.log) ..."; \
-	  mkdir -p build; fpm install --profile release --prefix $(PREFIX) > build/build.log 2>&1 \
+	  mkdir -p build; sources=$$(find src app -name '*.[fFc]90' -o -name '*.c' | sort | cksum); \
+	  if [ -f build/sources.cksum ] && [ "$$(cat build/sources.cksum)" != "$$sources" ]; then \
+	    echo "visco2d: source files added, moved or removed since the last build: rebuilding all (fpm keeps stale objects)"; \
+	    rm -rf build/gfortran_*; fi; \
+	  echo "$$sources" > build/sources.cksum; fpm install --profile release --prefix $(PREFIX) > build/build.log 2>&1 \
 	    || { cat build/build.log; exit 1; }; \
-	  install -m 755 scripts/compare_outputs.py $(PREFIX)/bin/visco2d-diff; \
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
-	@install -m 755 scripts/visco2d_batch.py $(PREFIX)/bin/visco2d-batch   # sweeps, all cores, the cluster: doc/batch.md
+	@python3 python/launchers.py $(PREFIX)/bin   # visco2d-batch, visco2d-diff, visco2d-report: doc/python.md
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"
 	@$(EXE) -o out $(DECKS); status=$$?; \
-	  echo; python3 scripts/paper_table.py out; \
+	  echo; python3 -m visco2d.paper_table out; \
 	  exit $$status
 
 # make figures: PNGs of the paper's Figs. 2-6 and of the maximum shear at maximum
 # deformation into out/figures/ (runs any paper deck missing from out/, and Table 1 on a
-# level-4 mesh into out/figures/runs/); scripts/figures.py --help for options.
+# level-4 mesh into out/figures/runs/); python/visco2d/figures.py --help for options.
 .PHONY: docs
 docs: setup
 	@command -v ford > /dev/null || python3 -m pip install -q ford 2>/dev/null || python3 -m pip install -q --break-system-packages ford
@@ -50,7 +55,7 @@ docs: setup
 
 .PHONY: figures
 figures: build
-	@python3 scripts/figures.py --out out --exe $(EXE)
+	@python3 -m visco2d.figures --out out --exe $(EXE)
 
 # make report      one picture per case, <case folder>/report.png, of every case in out/ (from make run or
 #                  visco2d -o out): alpha(t), F(t), q(t), p(r), and with a BRUISE card the criterion's envelope
@@ -59,7 +64,7 @@ figures: build
 .PHONY: report
 OUT ?= out
 report: setup
-	@python3 scripts/report.py --out $(OUT) $(REPORT_ARGS)
+	@python3 -m visco2d.report --out $(OUT) $(REPORT_ARGS)
 
 check: build
 	@$(EXE) check $(DECKS)
@@ -70,9 +75,9 @@ test: build
 # make bless       on purpose only (say why in the commit): DECK=inputs/x.inp archives just that case
 #                  (several: DECK="a.inp b.inp"); without DECK every deck of inputs/, rewriting only the
 #                  references that differ beyond the diff's tolerance and printing why; a deck that fails
-#                  to run is refused, nothing written; FORCE=1 rewrites even within tolerance (scripts/bless.py).
+#                  to run is refused, nothing written; FORCE=1 rewrites even within tolerance (python/visco2d/bless.py).
 bless: build
-	@python3 scripts/bless.py --exe $(EXE) $(if $(FORCE),--force) $(or $(DECK),--all)
+	@python3 -m visco2d.bless --exe $(EXE) $(if $(FORCE),--force) $(or $(DECK),--all)
 
 # make study       what accuracy costs in time: the Table 1 and Table 2 impacts over mesh levels 1-5
 #                  and DT 0.04 ... 0.0025 ms into out/study/ (study.csv, study.md, study.png); long: the
@@ -80,26 +85,34 @@ bless: build
 # make study-fast  the same on levels 1-3 at DT 0.02 and 0.01 ms into out/study-fast/ (seconds)
 .PHONY: study study-fast
 study: build
-	@python3 scripts/study.py $(STUDY_ARGS)
+	@python3 -m visco2d.study $(STUDY_ARGS)
 
 study-fast: build
-	@python3 scripts/study.py --fast $(STUDY_ARGS)
+	@python3 -m visco2d.study --fast $(STUDY_ARGS)
 
 # make bench       seconds per phase (visco2d --timing) of the Table 1 impact at levels 1, 4, 5 into
 #                  out/bench/ (bench.md, bench.csv); BENCH_ARGS="--levels 1,2,3" for a quick one.
 .PHONY: bench
 bench: build
-	@python3 scripts/bench.py $(BENCH_ARGS)
+	@python3 -m visco2d.bench $(BENCH_ARGS)
+
+# make bench-sweep  sweep throughput: 200 level-2 peach impacts by visco2d-batch run -j (all cores) against
+#                  the per-case compute (all 200 decks in one visco2d process): cases/s achieved, ideal
+#                  (cores / per-case compute), efficiency; into out/bench-sweep/ (python/visco2d/bench_sweep.py;
+#                  BENCH_SWEEP_ARGS="--cases 400 --level 1 -j 2 --repeat 3").
+.PHONY: bench-sweep
+bench-sweep: build
+	@python3 -m visco2d.bench_sweep $(BENCH_SWEEP_ARGS)
 
 # make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
 #                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);
 #                  exit 1 on any failing deck: a crash, a hang, a partial folder, a NaN/Inf output,
-#                  an error without a line, ... (the classes: scripts/fuzz.py --help).
-#                  FUZZ_ARGS="--seed 2 --bound 5 -j 4" (scripts/fuzz.py --help).
+#                  an error without a line, ... (the classes: python/visco2d/fuzz.py --help).
+#                  FUZZ_ARGS="--seed 2 --bound 5 -j 4" (python/visco2d/fuzz.py --help).
 .PHONY: fuzz
 N ?= 1000
 fuzz: build
-	@python3 scripts/fuzz.py -n $(N) --exe $(EXE) $(FUZZ_ARGS)
+	@python3 -m visco2d.fuzz -n $(N) --exe $(EXE) $(FUZZ_ARGS)
 
 # make checked     the checked build (fpm --profile debug with -fcheck=all and the address and
 #                  undefined-behaviour sanitizers, installed in build/checked/) running every deck in

@@ -4,6 +4,7 @@
 # line "N passed, N failed" and exits non-zero on any failure.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 exe=${VISCO2D:-build/install/bin/visco2d}
 log=build/test-logs
 rm -rf "$log" && mkdir -p "$log"
@@ -35,6 +36,18 @@ echo "== walk-through (scripts/check_walkthrough.py: every line doc/walkthrough.
 python3 scripts/check_walkthrough.py doc/walkthrough.md > "$log/walkthrough.log" 2>&1
 count "$log/walkthrough.log"
 echo "   $(grep -c '^PASS ' "$log/walkthrough.log") quoted blocks match"
+
+echo "== Python package (pytest python/tests: the readers, runner, Hertz formulas, sweeps, launchers of python/visco2d/)"
+# One PASS/FAIL line per test; a collection error (no test ran) is one FAIL.
+(cd python && python3 -m pytest -v -p no:cacheprovider tests) > "$log/pytest.log" 2>&1
+pytest_status=$?
+sed -n -E 's#^(tests/[^ ]+) PASSED.*#PASS pytest \1#p; s#^(tests/[^ ]+) (FAILED|ERROR).*#FAIL pytest \1: see '"$log"'/pytest.log#p' \
+  "$log/pytest.log" > "$log/pytest.lines"
+if [ "$pytest_status" != 0 ] && ! grep -q '^FAIL ' "$log/pytest.lines"; then
+  echo "FAIL pytest: exit status $pytest_status and no failed test named: $(tail -3 "$log/pytest.log" | tr '\n' '|')" >> "$log/pytest.lines"
+fi
+count "$log/pytest.lines"
+echo "   $(grep -c '^PASS ' "$log/pytest.lines") tests passed"
 
 # fpm does not rebuild the test-side modules (visco2d_testing, ...) when a
 # library module they use changes, and a stale .mod then breaks the build of
@@ -86,6 +99,12 @@ count "$log/batch.log"
 grep -E '^(NOTE|# )' "$log/batch.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/batch.log") checks passed"
 
+echo "== damage boundary (scripts/test_boundary.sh: visco2d-batch boundary against threshold, its table, chart, warnings)"
+bash scripts/test_boundary.sh "$exe" > "$log/boundary.log" 2>&1
+count "$log/boundary.log"
+grep -E '^(NOTE|# )' "$log/boundary.log" | sed 's/^/   /' || true
+echo "   $(grep -c '^PASS ' "$log/boundary.log") checks passed"
+
 echo "== processes and hosts (scripts/test_hosts.sh: shared output roots, case locks; batch interrupt, resume, guards)"
 bash scripts/test_hosts.sh "$exe" > "$log/hosts.log" 2>&1
 count "$log/hosts.log"
@@ -125,7 +144,7 @@ for deck in inputs/*.inp; do
   if [ -n "$missed" ]; then  # a deck's EXPECT cards are its analytic answers: a miss is a failure
     echo "FAIL $case_name: outside the RTOL of its EXPECT card(s): $missed" | tee -a "$log/reference.log"
   fi
-  python3 scripts/compare_outputs.py "reference_outputs/$case_name" "build/reference-check/$case_name" \
+  python3 -m visco2d.diff "reference_outputs/$case_name" "build/reference-check/$case_name" \
     > build/reference-check/compare.log 2>&1
   status=$?
   cat build/reference-check/compare.log >> "$log/reference.log"
@@ -150,7 +169,7 @@ bash scripts/test_diff.sh "$exe" > "$log/diff.log" 2>&1
 count "$log/diff.log"
 echo "   $(grep -c '^PASS ' "$log/diff.log") checks passed"
 
-echo "== fuzz (scripts/fuzz.py: mutated decks and the regression decks of test/fuzz/)"
+echo "== fuzz (python/visco2d/fuzz.py: mutated decks and the regression decks of test/fuzz/)"
 bash scripts/test_fuzz.sh "$exe" > "$log/fuzz.log" 2>&1
 count "$log/fuzz.log"
 echo "   $(grep -c '^PASS ' "$log/fuzz.log") checks passed; $(grep '^# ' "$log/fuzz.log" | tr '\n' ' ')"

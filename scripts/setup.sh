@@ -65,6 +65,7 @@ pip_missing=()
 command -v fpm >/dev/null 2>&1 || pip_missing+=(fpm)
 "$python" -c "import h5py" 2>/dev/null || pip_missing+=(h5py)
 "$python" -c "import matplotlib" 2>/dev/null || pip_missing+=(matplotlib)   # make study, make figures
+"$python" -c "import pytest" 2>/dev/null || pip_missing+=(pytest)           # python/tests (make test)
 "$python" -c "import meshio" 2>/dev/null || pip_missing+=(meshio)           # the results.xmf test (make test)
 # VTK's legacy XDMF reader, the one ParaView's "Xdmf Reader" is (scripts/test_xdmf.sh; ~20 s, one wheel)
 "$python" -c "import vtkmodules.vtkIOXdmf2" 2>/dev/null || pip_missing+=(vtk)

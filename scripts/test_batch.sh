@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Tests of visco2d-batch (scripts/visco2d_batch.py): sweeps, local cores, shards,
+# Tests of visco2d-batch (python/visco2d/batch.py): sweeps, local cores, shards,
 # collect, failed cases, duplicate names, the threshold search, the MPI farm.
 #
 #   bash scripts/test_batch.sh PATH/TO/visco2d
@@ -11,7 +11,6 @@
 # temporary folder, removed at the end.
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-tool="$root/scripts/visco2d_batch.py"
 
 pass() { echo "PASS $1"; }
 fail() { echo "FAIL $1: $2"; }
@@ -40,19 +39,18 @@ if [ $# -ne 1 ] || [ ! -x "$1" ] || [ -d "$1" ]; then
   exit 0
 fi
 exe="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-batch() { python3 "$tool" "$@" --exe "$exe"; }
+batch() { "$tool" "$@" --exe "$exe"; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_batch.XXXXXX") || { fail mktemp "cannot create a temporary folder"; exit 0; }
 trap 'rm -rf "$work"' EXIT
 cd "$work" || { fail cd "cannot enter $work"; exit 0; }
+# visco2d-batch: the launcher `make build` writes beside the executable (python/launchers.py),
+# else one written here for this checkout's python/
+tool="$(dirname "$exe")/visco2d-batch"
+[ -x "$tool" ] || { python3 "$root/python/launchers.py" "$work/bin" > /dev/null; tool="$work/bin/visco2d-batch"; }
 
-installed="$(dirname "$exe")/visco2d-batch"
-if [ -x "$installed" ]; then
-  check installed_copy "$installed differs from scripts/visco2d_batch.py (make build installs it)" \
-    cmp -s "$installed" "$tool"
-else
-  echo "NOTE no $installed (make build installs it); testing scripts/visco2d_batch.py"
-fi
+check launcher_checkout "$tool does not import the package of this checkout ($root/python)" \
+  grep -qF "$root/python" "$tool"
 
 # The template: the peach of inputs/peach_drop.inp on the coarse mesh.
 sed -e 's/^TITLE .*/TITLE Peach, R ${radius} m, dropped ${height} m (level 1)/' \
@@ -123,14 +121,14 @@ done
 check shards_interleaved "shard 0/2 ran '$first_shard', not cases 1, 3, 5 of 6" \
   test "$first_shard" = "${cases[0]} ${cases[2]} ${cases[4]} "
 check shards_identical "two shards: summaries differ from the serial run" same_cases serial sharded "${cases[@]}"
-python3 "$tool" collect sharded > collect.log 2>&1
+"$tool" collect sharded > collect.log 2>&1
 check_ok collect_all_ok $? collect.log
 check collect_same_table "collect sharded: table.csv differs from the serial run's" cmp -s serial/table.csv sharded/table.csv
 rm -rf "sharded/${cases[5]}"
-python3 "$tool" collect sharded > collect.log 2>&1
+"$tool" collect sharded > collect.log 2>&1
 check_rc collect_missing_status 1 $?
 check collect_marks_missing "collect: ${cases[5]} not marked missing" grep -q "^${cases[5]},missing," sharded/table.csv
-check shard_usage "--shard 2/2 accepted" bash -c '! python3 "$0" run peach.inp --param height=0.1 --param radius=0.03 --shard 2/2 -o x 2>/dev/null' "$tool"
+check shard_usage "--shard 2/2 accepted" bash -c '! "$0" run peach.inp --param height=0.1 --param radius=0.03 --shard 2/2 -o x 2>/dev/null' "$tool"
 
 # 5. A failing case is marked with its located error; the others run.
 sed 's/NU=0.35/NU=${nu}/' peach.inp > peach_nu.inp
@@ -218,7 +216,7 @@ if command -v mpirun > /dev/null; then
   check mpi_stand_in_table "stand_in/table.csv differs from failing/table.csv (-j 2)" \
     cmp -s <(sed 's#stand_in/decks#failing/decks#' stand_in/table.csv) failing/table.csv
 fi
-python3 "$tool" run peach.inp --param height=0.1 --param radius=0.03 --mpi 2 --farm "$work/none" \
+"$tool" run peach.inp --param height=0.1 --param radius=0.03 --mpi 2 --farm "$work/none" \
   -o nofarm > nofarm.log 2>&1
 check_rc mpi_no_farm_status 2 $?
 check mpi_no_farm_message "$(head -c 300 nofarm.log)" grep -q 'none: not an executable' nofarm.log
@@ -276,3 +274,71 @@ check expect_miss_results_written "expects/pressure__uz=2.0e-3/summary.txt is mi
   test -f "expects/pressure__uz=2.0e-3/summary.txt"
 check expect_miss_reported "expects.log: no 'MISSED pressure__uz=2.0e-3: ...: EXPECT: probe_pole_uz_m' line" \
   grep -q '^MISSED pressure__uz=2.0e-3: .*:23:[0-9]*: EXPECT: probe_pole_uz_m = ' expects.log
+
+# 12. Batches of decks in one visco2d process (python/visco2d/workers.py): a stand-in visco2d logs each
+#     process's decks and runs them through the real one, one process for all; a 16-case sweep whose 6th
+#     case fails and whose 11th misses its EXPECT card takes fewer processes than cases, every case
+#     keeps its own result, error or miss and its result line, and the table is that of one process a case.
+printf '#!/bin/bash\necho "$(($# - 2)) ${*:3}" >> "%s/processes.log"\nexec "%s" "$@"\n' "$work" "$exe" > logging_visco2d
+chmod +x logging_visco2d
+sed -e 's/NU=0.35/NU=${nu}/' -e 's/^END$/EXPECT alpha_max_mm ${alpha} RTOL=1e-3\nEND/' peach.inp > peach_mixed.inp
+: > mixed_rows.csv
+echo 'case,height,radius,nu,alpha' > mixed_rows.csv
+for k in $(seq 1 16); do
+  nu=0.35; alpha=$(grep '^alpha_max_mm = ' "serial/peach__height=0.1__radius=0.03/summary.txt" | cut -d' ' -f3)
+  [ "$k" = 6 ] && nu=0.7
+  [ "$k" = 11 ] && alpha=9.9
+  echo "mixed_$k,0.1,0.03,$nu,$alpha" >> mixed_rows.csv
+done
+python3 "$tool" run peach_mixed.inp --table mixed_rows.csv -j 2 --exe "$work/logging_visco2d" -o mixed > mixed.log 2>&1
+check_rc batched_status_1 1 $?
+processes=$(wc -l < processes.log)
+check batched_fewer_processes "$processes processes for 16 cases: $(tr '\n' '|' < processes.log | head -c 300)" \
+  test "$processes" -lt 16
+check batched_several_decks_a_process "no process ran more than one deck: $(tr '\n' '|' < processes.log | head -c 300)" \
+  test "$(cut -d' ' -f1 processes.log | sort -n | tail -1)" -gt 1
+check batched_failed_case "mixed/table.csv: mixed_6 is not failed with MATERIAL's located error: $(grep '^mixed_6,' mixed/table.csv)" \
+  grep -q '^mixed_6,failed,.*decks/mixed_6.inp:12:[0-9]*: MATERIAL: NU must be' mixed/table.csv
+check batched_missed_case "mixed/table.csv: mixed_11 is not missed: $(grep '^mixed_11,' mixed/table.csv)" \
+  grep -q '^mixed_11,missed,.*outside the RTOL of its EXPECT card(s): alpha_max_mm' mixed/table.csv
+check batched_missed_line "mixed.log: no 'MISSED mixed_11: ...: EXPECT: alpha_max_mm' line" \
+  grep -q '^MISSED mixed_11: .*decks/mixed_11.inp:[0-9]*:[0-9]*: EXPECT: alpha_max_mm = ' mixed.log
+check batched_failed_line "mixed.log: no 'FAILED mixed_6: ...: MATERIAL: ...' line" \
+  grep -q '^FAILED mixed_6: .*decks/mixed_6.inp:12:[0-9]*: MATERIAL: NU must be' mixed.log
+check batched_others_ok "mixed/table.csv: $(grep -c ',ok,' mixed/table.csv) ok rows, expected 14" \
+  test "$(grep -c ',ok,' mixed/table.csv)" = 14
+check batched_result_lines "mixed.log: $(grep -c '^mixed_[0-9]*: .* nodes' mixed.log) result lines of ok cases, expected 14" \
+  test "$(grep -c '^mixed_[0-9]*: .* nodes' mixed.log)" = 14
+check batched_decks_beside_results "a case folder of mixed/ lacks its deck" \
+  bash -c 'for k in 1 2 3 4 5 7 8 9 10 11 12 13 14 15 16; do cmp -s "mixed/mixed_$k/mixed_$k.inp" "mixed/decks/mixed_$k.inp" || exit 1; done'
+check batched_no_folder_of_failed "mixed/mixed_6 exists" test ! -e mixed/mixed_6
+python3 - mixed/table.csv > /dev/null 2>&1 <<'PY' && summaries_equal=yes || summaries_equal=no
+import csv, sys
+rows = {row['case']: row for row in csv.DictReader(open(sys.argv[1]))}
+reference = next(csv.DictReader(open('serial/table.csv')))
+reference = next(row for row in csv.DictReader(open('serial/table.csv')) if row['case'] == 'peach__height=0.1__radius=0.03')
+for k in (1, 16):
+    assert rows[f'mixed_{k}']['alpha_max_mm'] == reference['alpha_max_mm'], (rows[f'mixed_{k}'], reference)
+PY
+check batched_same_results "mixed_1 or mixed_16: alpha_max_mm differs from the case run alone" test "$summaries_equal" = yes
+
+# A process killed in a deck (the stand-in kills itself at the 5th deck of the first batch that has
+# one): that deck fails
+# with the signal, the decks after it run in another process, all others end.
+printf '#!/bin/bash\necho "$(($# - 2)) ${*:3}" >> "%s/killed_processes.log"\nroot=$2; shift 2; n=0\nfor deck in "$@"; do\n  n=$((n + 1)); [ $n = 5 ] && mkdir "%s/killed.once" 2> /dev/null && kill -KILL $$\n  "%s" -o "$root" "$deck" 2>&1\ndone\n' \
+  "$work" "$work" "$exe" > killing_visco2d
+chmod +x killing_visco2d
+python3 "$tool" run peach.inp --param height=0.05:0.2:12 --param radius=0.03 -j 1 --exe "$work/killing_visco2d" -q \
+  -o killed_batch > killed_batch.log 2>&1
+check_rc killed_batch_status_1 1 $?
+killed=$(grep ',failed,' killed_batch/table.csv | cut -d, -f1)
+check killed_batch_one_failed "killed_batch/table.csv: failed: '$killed' (expected the 5th deck of a batch, stopped by signal 9)" \
+  bash -c 'test "$(grep -c ",failed,.*stopped by signal 9" killed_batch/table.csv)" = 1'
+check killed_batch_others_ok "killed_batch/table.csv: $(grep -c ',ok,' killed_batch/table.csv) ok rows, expected 11" \
+  test "$(grep -c ',ok,' killed_batch/table.csv)" = 11
+check killed_batch_rest_rerun "killed_processes.log: the process after the killed one does not start with the deck after its 5th: $(tr '\n' '|' < killed_processes.log | head -c 400)" \
+  python3 -c '
+import sys
+lines = [line.split() for line in open("killed_processes.log")]
+killed = next(k for k, line in enumerate(lines) if int(line[0]) >= 5)
+assert lines[killed + 1][1] == lines[killed][1 + 5], lines'

@@ -11,6 +11,7 @@
 # Everything happens in a fresh temporary folder, removed at the end.
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+export PYTHONPATH="$root/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 good_source="$root/inputs/sphere_pressure.inp"
 
 pass() { echo "PASS $1"; }
@@ -432,13 +433,13 @@ relax_error young_infinite 2 'is not a finite number' --nu 0.25 1e999 1
 cd "$work" || exit 0
 
 # ------------------------------------------------------------- paper table
-# scripts/paper_table.py: a table beside the paper's numbers from whatever
+# python/visco2d/paper_table.py: a table beside the paper's numbers from whatever
 # summaries exist; missing cases are named, never a crash (exit 0).
 mkdir paper && cd paper || exit 0
 mkdir -p tabout/table1_elastic
 printf 'alpha_max_mm = 1.234500000E+000\nt_alpha_max_ms = 1.5\nq_max_MPa = 2.0\n' \
   > tabout/table1_elastic/summary.txt
-python3 "$root/scripts/paper_table.py" tabout > table.out 2> table.err
+python3 -m visco2d.paper_table tabout > table.out 2> table.err
 check_rc paper_table_exit_0 0 $?
 check paper_table_stderr_empty "stderr: $(first_lines table.err)" test ! -s table.err
 check paper_table_paper_row "stdout: $(first_lines table.out)" \
@@ -447,7 +448,7 @@ check paper_table_visco2d_value "stdout: $(first_lines table.out)" \
   grep -q '^| \*\*visco2d\*\* (table1_elastic) | 1.234 | 1.500 | 2.000 |' table.out
 check paper_table_hertz_constant "stdout: $(first_lines table.out)" grep -q 't_m = 1.4716 alpha_m/V' table.out
 check paper_table_names_missing "stdout: $(first_lines table.out)" grep -q '^- apple_v0.7: no ' table.out
-python3 "$root/scripts/paper_table.py" no_such_folder > empty.out 2> empty.err
+python3 -m visco2d.paper_table no_such_folder > empty.out 2> empty.err
 check_rc paper_table_no_folder_exit_0 0 $?
 check paper_table_no_folder_all_missing "$(grep -c '^- ' empty.out) missing lines, expected 10" \
   test "$(grep -c '^- ' empty.out)" = 10

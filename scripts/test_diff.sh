@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# Tests of the reference diff (scripts/compare_outputs.py, installed as visco2d-diff) and of
-# blessing (scripts/bless.py, behind `make bless`), on scratch copies in a temporary folder:
+# Tests of the reference diff (python/visco2d/diff.py, installed as visco2d-diff) and of
+# blessing (python/visco2d/bless.py, behind `make bless`), on scratch copies in a temporary folder:
 # reference_outputs/ is never written.
 #
 # usage: bash scripts/test_diff.sh [PATH/TO/visco2d]
 # Prints one line per check, `PASS name` or `FAIL name: detail`.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 exe=${1:-build/install/bin/visco2d}
-diff_tool="python3 scripts/compare_outputs.py"
-bless_tool="python3 $PWD/scripts/bless.py"
+diff_tool="python3 -m visco2d.diff"
+bless_tool="python3 -m visco2d.bless"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
@@ -379,7 +380,7 @@ else
 fi
 if [ -f "$repo/reference_outputs/new_deck/summary.txt" ] && [ -f "$repo/reference_outputs/new_deck/history.csv" ] \
    && ! grep -q '^cpu_s = ' "$repo/reference_outputs/new_deck/summary.txt" \
-   && python3 scripts/compare_outputs.py "$repo/reference_outputs/new_deck" "$tmp/bless-work/new_deck" > /dev/null; then
+   && python3 -m visco2d.diff "$repo/reference_outputs/new_deck" "$tmp/bless-work/new_deck" > /dev/null; then
   pass "the new deck's reference: summary.txt without cpu_s and history.csv, matching its run"
 else
   fail "the new deck's reference" "$(ls "$repo/reference_outputs/new_deck" 2>&1)"
@@ -394,7 +395,7 @@ check_grep "bless --all says which file changed and why" "^blessed table1_elasti
 tree_sums "$repo/reference_outputs" | grep -v '\./table1_elastic/summary.txt' > "$tmp/sums_after"
 grep -v '\./table1_elastic/summary.txt' "$tmp/sums_before" > "$tmp/sums_others"
 if cmp -s "$tmp/sums_others" "$tmp/sums_after" && grep -q '^bless: 1 file of 1 case rewritten (table1_elastic)' "$tmp/out" \
-   && python3 scripts/compare_outputs.py "$repo/reference_outputs/table1_elastic" "$tmp/bless-work/table1_elastic" > /dev/null; then
+   && python3 -m visco2d.diff "$repo/reference_outputs/table1_elastic" "$tmp/bless-work/table1_elastic" > /dev/null; then
   pass "bless --all rewrote only that file, back to the code's value"
 else
   fail "bless --all rewrote only that file" "$(diff "$tmp/sums_others" "$tmp/sums_after" | head -3; tail -1 "$tmp/out")"

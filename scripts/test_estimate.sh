@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The memory estimate (src/input/visco2d_estimate.f90, model in src/core/visco2d_budget.f90)
+# The memory estimate (src/cards/visco2d_estimate.f90, model in src/core/visco2d_budget.f90)
 # against the measured peak (issue 24): every deck of inputs/ and decks made from them that
 # stress one part of the model - 60 FIELDS= snapshots (held until results.h5 is written, then
 # the file's in-memory image), a fine mesh (the band matrix and CHOLMOD's factor), a PAD, a

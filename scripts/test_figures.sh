@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Smoke check of `make figures` (scripts/figures.py): on a fresh output folder it
+# Smoke check of `make figures` (python/visco2d/figures.py): on a fresh output folder it
 # runs the decks it needs, writes every PNG, and its exact-Hertz integration
 # reproduces eqs. [43]-[45]; bad paths fail with a clear message.
 # usage: scripts/test_figures.sh [EXE]   (prints PASS/FAIL lines)
 set -uo pipefail
 cd "$(dirname "$0")/.."
+export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 exe=${1:-${VISCO2D:-build/install/bin/visco2d}}
 tmp=build/test-tmp/figures
 rm -rf "$tmp" && mkdir -p "$tmp"
@@ -13,7 +14,7 @@ pass() { echo "PASS $*"; }
 fail() { echo "FAIL $*"; }
 
 # 1. A fresh output folder, the fine Table 1 runs on level 2 (fast): everything is made.
-if python3 scripts/figures.py --out "$tmp/out" --exe "$exe" --level 2 > "$tmp/log.txt" 2>&1; then
+if python3 -m visco2d.figures --out "$tmp/out" --exe "$exe" --level 2 > "$tmp/log.txt" 2>&1; then
   pass "figures.py ran on an empty output folder"
 else
   fail "figures.py exited with status $? (see $tmp/log.txt)"; tail -5 "$tmp/log.txt"
@@ -39,7 +40,7 @@ done
   && pass "fine decks generated (LEVEL=2, SLIP) and run" || fail "fine decks not generated or not run"
 
 # 2. A second call reuses the fine runs (same deck text, same executable).
-python3 scripts/figures.py --out "$tmp/out" --exe "$exe" --level 2 > "$tmp/log2.txt" 2>&1
+python3 -m visco2d.figures --out "$tmp/out" --exe "$exe" --level 2 > "$tmp/log2.txt" 2>&1
 grep -q 'running' "$tmp/log2.txt" && fail "second call ran a deck again" || pass "second call reuses the runs"
 
 # 3. The exact Hertz curve: its peak is eq. [43] and t_m = 1.4716 alpha_m / V (the
@@ -63,9 +64,9 @@ for name, got, want, rtol in checks:
 EOF
 
 # 4. Clear errors.
-out=$(python3 scripts/figures.py --out "$tmp/bad" --exe "$tmp/no-such-exe" 2>&1); status=$?
+out=$(python3 -m visco2d.figures --out "$tmp/bad" --exe "$tmp/no-such-exe" 2>&1); status=$?
 [ $status -ne 0 ] && echo "$out" | grep -q "error: .*no-such-exe not found" \
   && pass "missing executable: clear error" || fail "missing executable: status $status, '$out'"
-out=$(python3 scripts/figures.py --out "$tmp/bad" --exe "$exe" --inputs "$tmp/no-inputs" 2>&1); status=$?
+out=$(python3 -m visco2d.figures --out "$tmp/bad" --exe "$exe" --inputs "$tmp/no-inputs" 2>&1); status=$?
 [ $status -ne 0 ] && echo "$out" | grep -q "error: deck .*no-inputs/.*\.inp not found" \
   && pass "missing deck: clear error" || fail "missing deck: status $status, '$out'"

@@ -5,14 +5,15 @@
 #
 # 0. The fuzzer's own checks: a stub executable misbehaving one way per deck
 #    (`PASS fuzz_detects_<what>`): each misbehaviour lands in its class.
-# 1. FUZZ_N (default 300) mutated decks of scripts/fuzz.py, seed FUZZ_SEED (default 1),
+# 1. FUZZ_N (default 300) mutated decks of python/visco2d/fuzz.py, seed FUZZ_SEED (default 1),
 #    each bounded to FUZZ_BOUND seconds (default 8): one line per failure class,
 #    `PASS fuzz_no_<class>` or `FAIL fuzz_no_<class>: count and examples` (the
-#    classes: scripts/fuzz.py --help). Report in build/fuzz-test/random/.
+#    classes: python/visco2d/fuzz.py --help). Report in build/fuzz-test/random/.
 # 2. Every regression deck in test/fuzz/ (test/fuzz/README.md), as it is:
 #    `PASS fuzz_regression/<deck>` or `FAIL ...: reason`. Report in build/fuzz-test/regression/.
 # Always exits 0: the caller counts the lines.
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+export PYTHONPATH="$root/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 exe=${1:-$root/build/install/bin/visco2d}
 out=$root/build/fuzz-test
 rm -rf "$out" && mkdir -p "$out"
@@ -67,7 +68,7 @@ for what in clean crash runtime hang partial nonfinite nonfinite_h5 unreadable u
   echo "$what" > "$stub/decks/$what.inp"
 done
 echo '# fuzz: exit 1' >> "$stub/decks/silent_exit.inp"   # must be refused, the stub runs it
-python3 "$root/scripts/fuzz.py" --exe "$stub/visco2d" --bound 2 --decks "$stub"/decks/*.inp --out "$stub/report" \
+python3 -m visco2d.fuzz --exe "$stub/visco2d" --bound 2 --decks "$stub"/decks/*.inp --out "$stub/report" \
   -q > "$stub/log" 2>&1
 python3 - "$stub/report/cases.csv" <<'PYTHON'
 import csv, sys
@@ -88,11 +89,11 @@ for name, wanted in expected.items():
 PYTHON
 
 start=$(date +%s)
-python3 "$root/scripts/fuzz.py" --exe "$exe" -n "$count" --seed "$seed" --bound "$bound" \
+python3 -m visco2d.fuzz --exe "$exe" -n "$count" --seed "$seed" --bound "$bound" \
   --out "$out/random" -q > "$out/random.log" 2>&1
 status=$?
 if [ ! -f "$out/random/cases.csv" ]; then
-  echo "FAIL fuzz_ran: scripts/fuzz.py (status $status) wrote no report: $(tail -3 "$out/random.log" | tr '\n' '|')"
+  echo "FAIL fuzz_ran: python/visco2d/fuzz.py (status $status) wrote no report: $(tail -3 "$out/random.log" | tr '\n' '|')"
 else
   python3 - "$out/random" "$root/scripts" <<'PYTHON'
 import csv, sys
@@ -119,7 +120,7 @@ echo "# $count mutated decks in $(( $(date +%s) - start )) s"
 start=$(date +%s)
 decks=("$root"/test/fuzz/*.inp)
 if [ -e "${decks[0]}" ]; then
-  python3 "$root/scripts/fuzz.py" --exe "$exe" --bound "${FUZZ_REGRESSION_BOUND:-20}" --decks "${decks[@]}" \
+  python3 -m visco2d.fuzz --exe "$exe" --bound "${FUZZ_REGRESSION_BOUND:-20}" --decks "${decks[@]}" \
     --out "$out/regression" -v -q --label fuzz_regression/ 2> "$out/regression.err" | grep -E '^(PASS|FAIL) '
   echo "# ${#decks[@]} regression decks in $(( $(date +%s) - start )) s"
 fi

@@ -12,7 +12,6 @@
 # (~0.6 s: long enough to be caught running); everything in a temporary folder.
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-tool="$root/scripts/visco2d_batch.py"
 
 pass() { echo "PASS $1"; }
 fail() { echo "FAIL $1: $2"; }
@@ -31,12 +30,16 @@ if [ $# -ne 1 ] || [ ! -x "$1" ] || [ -d "$1" ]; then
   exit 0
 fi
 exe="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
-batch() { python3 "$tool" "$@" --exe "$exe"; }
+batch() { "$tool" "$@" --exe "$exe"; }
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_hosts.XXXXXX") || { fail mktemp "cannot create a temporary folder"; exit 0; }
 holders=()
 trap 'for p in "${holders[@]}"; do kill "$p" 2> /dev/null; done; rm -rf "$work"' EXIT
 cd "$work" || { fail cd "cannot enter $work"; exit 0; }
+# visco2d-batch: the launcher `make build` writes beside the executable (python/launchers.py),
+# else one written here for this checkout's python/
+tool="$(dirname "$exe")/visco2d-batch"
+[ -x "$tool" ] || { python3 "$root/python/launchers.py" "$work/bin" > /dev/null; tool="$work/bin/visco2d-batch"; }
 
 sed -e 's/^MESH SPHERE R=0.03 LEVEL=3/MESH SPHERE R=0.03 LEVEL=1/' "$root/inputs/peach_drop.inp" > small.inp
 cp "$root/inputs/peach_drop.inp" slow.inp
@@ -121,7 +124,7 @@ mtimes() { find "$1" -mindepth 2 -maxdepth 2 -name summary.txt -printf '%p %T@\n
 
 # Ctrl-C: SIGINT to the batch process (job control on: a background job would otherwise ignore it).
 set -m
-python3 "$tool" run drop.inp "${sweep[@]}" --exe "$exe" -j 1 -q -o interrupted > interrupted.log 2>&1 &
+"$tool" run drop.inp "${sweep[@]}" --exe "$exe" -j 1 -q -o interrupted > interrupted.log 2>&1 &
 batch_pid=$!
 set +m
 wait_for "interrupted/$first_case/summary.txt"
@@ -148,7 +151,7 @@ check interrupt_resume_runs_the_rest "resumed.log: $(first_lines resumed.log)" \
 check interrupt_resume_table "interrupted/table.csv: $(count_ok interrupted/table.csv) ok rows" test "$(count_ok interrupted/table.csv)" = 6
 
 # --resume after a killed worker (-j 2): the killed case fails, the others end; --resume runs only it.
-python3 "$tool" run drop.inp "${sweep[@]}" --exe "$exe" -j 2 -q -o killed > killed.log 2>&1 &
+"$tool" run drop.inp "${sweep[@]}" --exe "$exe" -j 2 -q -o killed > killed.log 2>&1 &
 batch_pid=$!
 kill_a_worker "$batch_pid" killed
 check killed_worker_found "no visco2d process of the batch to kill" test $? = 0
@@ -190,14 +193,14 @@ printf '#!/bin/bash\nwhile [ "${1#-}" != "$1" ]; do case $1 in -np) shift 2;; *)
   > fakempi/mpirun
 printf '#!/bin/bash\nexec "%s" "$@"\n' "$exe" > fakempi/farm
 chmod +x fakempi/mpirun fakempi/farm
-PATH="$work/fakempi:$PATH" python3 "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm -q -o mpi \
+PATH="$work/fakempi:$PATH" "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm -q -o mpi \
   > mpi.log 2>&1 & batch_pid=$!
 kill_a_worker "$batch_pid" mpi
 wait "$batch_pid"
 check_rc mpi_killed_exit_1 1 $?
 done_before=$(count_ok mpi/table.csv)
 check mpi_killed_job_lost_the_rest "mpi/table.csv: $done_before ok rows" test "$done_before" -ge 1 -a "$done_before" -lt 6
-PATH="$work/fakempi:$PATH" python3 "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm --resume -o mpi \
+PATH="$work/fakempi:$PATH" "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm --resume -o mpi \
   > mpi_resume.log 2>&1
 check_rc mpi_resume_exit_0 0 $?
 check mpi_resume_runs_the_rest "mpi_resume.log: $(first_lines mpi_resume.log)" \
@@ -208,7 +211,7 @@ check mpi_resume_table "mpi/table.csv: $(count_ok mpi/table.csv) ok rows" test "
 
 # Ctrl-C during --mpi: mpirun (the stand-in) is sent SIGINT; the table of what ended, exit 130.
 set -m
-PATH="$work/fakempi:$PATH" python3 "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm -q \
+PATH="$work/fakempi:$PATH" "$tool" run drop.inp "${sweep[@]}" --mpi 2 --farm fakempi/farm -q \
   -o mpi_interrupted > mpi_interrupted.log 2>&1 &
 batch_pid=$!
 set +m
@@ -226,7 +229,7 @@ batch run quick.inp --param height=0.15 -q -o reused > reused.log 2>&1
 check_rc reused_exit_0 0 $?
 check reused_table_this_run "reused/table.csv: $(first_lines reused/table.csv)" \
   test "$(tail -n +2 reused/table.csv | cut -d, -f1 | tr '\n' ' ')" = "quick__height=0.15 "
-python3 "$tool" collect reused -q > /dev/null 2>&1
+"$tool" collect reused -q > /dev/null 2>&1
 check reused_collect_all "reused/table.csv after collect: $(tail -n +2 reused/table.csv | wc -l) rows" \
   test "$(tail -n +2 reused/table.csv | wc -l)" = 3
 

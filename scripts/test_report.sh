@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Smoke check of `make report` (scripts/report.py): a small dropped sphere with a
+# Smoke check of `make report` (python/visco2d/report.py): a small dropped sphere with a
 # BRUISE card (level 2, to separation, well under a second) and the same sphere
 # without the card get their report.png; a case folder with neither contact nor
 # BRUISE is skipped; a folder that is not a case fails with a clear message and
@@ -7,6 +7,7 @@
 # usage: scripts/test_report.sh [EXE]   (prints PASS/FAIL lines)
 set -uo pipefail
 cd "$(dirname "$0")/.."
+export PYTHONPATH="$PWD/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 exe=${1:-${VISCO2D:-build/install/bin/visco2d}}
 tmp=build/test-tmp/report
 rm -rf "$tmp" && mkdir -p "$tmp"
@@ -36,7 +37,7 @@ else
 fi
 
 # 1. The whole output root: the two impacts drawn, the free flight skipped.
-if python3 scripts/report.py --out "$tmp/out" > "$tmp/log.txt" 2>&1; then
+if python3 -m visco2d.report --out "$tmp/out" > "$tmp/log.txt" 2>&1; then
   pass "report.py ran on the output root"
 else
   fail "report.py exited with status $? (see $tmp/log.txt)"; tail -5 "$tmp/log.txt"
@@ -76,7 +77,7 @@ EOF
 
 # 3. A case named on the command line (a name under --out) redraws only that one.
 rm -f "$tmp/out/drop_bruise/report.png"
-python3 scripts/report.py --out "$tmp/out" drop_bruise > "$tmp/log2.txt" 2>&1 \
+python3 -m visco2d.report --out "$tmp/out" drop_bruise > "$tmp/log2.txt" 2>&1 \
   && is_png "$tmp/out/drop_bruise/report.png" && grep -q "1 files written" "$tmp/log2.txt" \
   && pass "a case named under --out is drawn alone" || fail "a named case: $(cat "$tmp/log2.txt")"
 
@@ -85,19 +86,19 @@ python3 scripts/report.py --out "$tmp/out" drop_bruise > "$tmp/log2.txt" 2>&1 \
 mkdir -p "$tmp/notacase"
 echo "not a run" > "$tmp/notacase/readme.txt"
 rm -f "$tmp/out/drop_plain/report.png"
-out=$(python3 scripts/report.py --out "$tmp/out" drop_plain "$tmp/notacase" 2>&1); status=$?
+out=$(python3 -m visco2d.report --out "$tmp/out" drop_plain "$tmp/notacase" 2>&1); status=$?
 [ $status -eq 1 ] && echo "$out" | grep -q "^report: error: $tmp/notacase is not a visco2d case folder (no results.h5" \
   && pass "not a case: clear error, status 1" || fail "not a case: status $status, '$out'"
 [ ! -e "$tmp/out/drop_plain/report.png" ] && pass "not a case: nothing drawn for the other folders" \
   || fail "not a case: drop_plain was drawn before the error"
-out=$(python3 scripts/report.py "$tmp/no-such-folder" 2>&1); status=$?
+out=$(python3 -m visco2d.report "$tmp/no-such-folder" 2>&1); status=$?
 [ $status -eq 1 ] && echo "$out" | grep -q "^report: error: $tmp/no-such-folder is not a folder" \
   && pass "missing folder: clear error" || fail "missing folder: status $status, '$out'"
-out=$(python3 scripts/report.py --out "$tmp/notacase" 2>&1); status=$?
+out=$(python3 -m visco2d.report --out "$tmp/notacase" 2>&1); status=$?
 [ $status -eq 1 ] && echo "$out" | grep -q "^report: error: no case folder .* in $tmp/notacase" \
   && pass "output root without cases: clear error" || fail "output root without cases: status $status, '$out'"
 mkdir -p "$tmp/broken" && echo "not HDF5" > "$tmp/broken/results.h5"
-out=$(python3 scripts/report.py "$tmp/broken" 2>&1); status=$?
+out=$(python3 -m visco2d.report "$tmp/broken" 2>&1); status=$?
 [ $status -eq 1 ] && echo "$out" | grep -q "^report: error: $tmp/broken/results.h5 cannot be read as HDF5" \
   && [ ! -e "$tmp/broken/report.png" ] && pass "broken results.h5: clear error" \
   || fail "broken results.h5: status $status, '$out'"

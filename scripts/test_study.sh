@@ -3,7 +3,7 @@
 #
 #   bash scripts/test_study.sh [PATH/TO/visco2d]     (default build/install/bin/visco2d)
 #
-# Runs scripts/study.py --fast (the Table 1 and Table 2 impacts on mesh levels
+# Runs python/visco2d/study.py --fast (the Table 1 and Table 2 impacts on mesh levels
 # 1-3 at DT 0.02 and 0.01 ms, and Table 1 with the four other integrators of
 # the INTEGRATOR card) into build/study-fast/ and prints one line per check,
 # `PASS name` or `FAIL name: detail`. Exit status 1 if any check failed.
@@ -24,16 +24,17 @@
 # it by < 0.1 % between 0.04 and 0.0025 ms on every level, README "What
 # accuracy costs", so the second-order methods can differ by no more).
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+export PYTHONPATH="$root/python${PYTHONPATH:+:$PYTHONPATH}"   # the package python/visco2d/ (doc/python.md)
 exe=${1:-$root/build/install/bin/visco2d}
 out=$root/build/study-fast
 rm -rf "$out"
 mkdir -p "$out"
 
 status=0
-if python3 "$root/scripts/study.py" --fast --out "$out" --exe "$exe" > "$out/study.log" 2>&1; then
+if python3 -m visco2d.study --fast --out "$out" --exe "$exe" > "$out/study.log" 2>&1; then
   echo "PASS study_fast_ran"
 else
-  echo "FAIL study_fast_ran: scripts/study.py --fast exited non-zero; see $out/study.log: $(tail -3 "$out/study.log" | tr '\n' '|')"
+  echo "FAIL study_fast_ran: python/visco2d/study.py --fast exited non-zero; see $out/study.log: $(tail -3 "$out/study.log" | tr '\n' '|')"
   status=1
 fi
 
@@ -162,13 +163,13 @@ for case in cases:
               "err_alpha_pct by level: %s" % errs)
 
 # The reference: the fast study measures its errors against the converged f* stored from a full study
-# (scripts/study_reference.json) when that file exists -- err_alpha_pct recomputed against it; its own
+# (python/visco2d/study_reference.json) when that file exists -- err_alpha_pct recomputed against it; its own
 # extrapolation (mesh Richardson over levels 1-3 at DT 0.01 ms, observed order, p = 2 if outside [0.5, 4]
 # or non-monotone, plus the DT correction at level 3 from two steps, p = 2) must then agree with the stored
 # alpha* within 0.5 % (the levels-1-3 extrapolation of a second-order quantity on the contact grid). Without
 # the file the extrapolation itself is the reference. The csv holds 10 significant digits (rounding ~1e-7 %
 # after Richardson's amplification), so 1e-3 % (absolute, in the percentage) fails any different formula.
-stored_path = os.path.join(root, "scripts", "study_reference.json")
+stored_path = os.path.join(root, "python", "visco2d", "study_reference.json")
 stored = json.load(open(stored_path))["cases"] if os.path.exists(stored_path) else {}
 for case in cases:
     try:
@@ -195,16 +196,16 @@ for case in cases:
 sys.exit(1 if failed else 0)
 EOF
 
-# scripts/integrators.py --table-only (the amplification table of doc/integrators.md, no runs): its spectral
+# python/visco2d/integrators.py --table-only (the amplification table of doc/integrators.md, no runs): its spectral
 # radius at dt/T -> infinity against the closed forms (trapezoidal 1, HHT (1 - 0.05)/(1 + 0.05) = 0.9048,
 # generalized-alpha rho_inf = 0.8000, Bathe 0, Wilson 1.4: 0.7784, the limit matrix's radius that
 # test_integrators checks), to the table's 4 decimals.
-table=$(python3 "$root/scripts/integrators.py" --table-only 2>&1)
+table=$(python3 -m visco2d.integrators --table-only 2>&1)
 radii=$(printf '%s\n' "$table" | awk -F'|' '/`INTEGRATOR /{gsub(/ /, "", $8); printf "%s ", $8}')
 if [ "$radii" = "0.7784 1.0000 0.9048 0.8000 0.0000 " ]; then
   echo "PASS integrators_table_limit_radii"
 else
-  echo "FAIL integrators_table_limit_radii: got '$radii' from scripts/integrators.py --table-only"
+  echo "FAIL integrators_table_limit_radii: got '$radii' from python/visco2d/integrators.py --table-only"
   status=1
 fi
 exit $status

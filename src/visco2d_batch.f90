@@ -8,6 +8,7 @@ module visco2d_batch
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck, case_name_of
   use visco2d_expect, only: run_line, expect_tally_t, miss_report
+  use visco2d_sorting, only: sorted_order
   implicit none
   private
 
@@ -35,8 +36,7 @@ contains
     do i = 1, size(decks)
       names(i) = case_name_of(trim(decks(i)))
     end do
-    order = [(i, i = 1, size(decks))]
-    call sort_by_name(names, order)
+    order = sorted_order(names)
     message = ''
     do k = 2, size(order)
       first = order(k - 1)
@@ -54,37 +54,6 @@ contains
     end do
   end function duplicate_case_message
 
-  !> Sort the indices order(:) by names(order(:)), keeping equal names in
-  !> their order (merge sort: n log n comparisons).
-  recursive subroutine sort_by_name(names, order)
-    character(*), intent(in) :: names(:)
-    integer, intent(inout) :: order(:)
-    integer, allocatable :: left(:), right(:)
-    integer :: middle, i, j, k
-    if (size(order) < 2) return
-    middle = size(order) / 2
-    left = order(:middle)
-    right = order(middle + 1:)
-    call sort_by_name(names, left)
-    call sort_by_name(names, right)
-    i = 1
-    j = 1
-    do k = 1, size(order)
-      if (j > size(right)) then
-        order(k) = left(i)
-        i = i + 1
-      else if (i > size(left)) then
-        order(k) = right(j)
-        j = j + 1
-      else if (names(right(j)) < names(left(i))) then
-        order(k) = right(j)
-        j = j + 1
-      else
-        order(k) = left(i)
-        i = i + 1
-      end if
-    end do
-  end subroutine sort_by_name
 
   !> Run one deck of a batch into out_root/<case>/ (run_deck): on success, line
   !> is its one-line result (run_line) and `misses` the lines to print on

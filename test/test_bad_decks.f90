@@ -666,7 +666,7 @@ contains
     if (allocated(error)) return
     call check('dynamic_valid_analysis', deck%analysis == analysis_dynamic)
     call check_close('dynamic_valid_theta', deck%dynamics%theta, 1.4_dp, 0.0_dp)
-    call check_close('dynamic_valid_gravity', deck%gravity, 9.8_dp, 0.0_dp)
+    call check_close('dynamic_valid_gravity', deck%loads%gravity, 9.8_dp, 0.0_dp)
     call check('dynamic_valid_velocity', all(initial_velocity(deck) == [0.0_dp, -1.0_dp]))
     call check('dynamic_valid_every', deck%output%every == 10)
     call check('dynamic_valid_fields', size(deck%output%field_times) == 2)
@@ -699,7 +699,7 @@ contains
     call check('dynamic_bbar_reads', .not. allocated(error))
     if (allocated(error)) return
     call check('dynamic_bbar_no_warning', size(deck%warnings) == 0)
-    call check('dynamic_bbar_formulation', deck%formulation == formulation_bbar)
+    call check('dynamic_bbar_formulation', deck%settings%formulation == formulation_bbar)
   end subroutine expect_valid_dynamic
 
   function deck_path(name) result(path)
@@ -833,7 +833,7 @@ contains
     end if
     call check('loose_deck_title', deck%title == 'Loose   deck', 'title "'//deck%title//'"')
     call check('loose_deck_analysis', deck%analysis == analysis_static)
-    call check('loose_deck_geometry', deck%geometry == geometry_plane_strain)
+    call check('loose_deck_geometry', deck%settings%geometry == geometry_plane_strain)
     call check('loose_deck_one_material', size(deck%materials) == 1)
     if (size(deck%materials) == 1) then
       call check('loose_deck_material_id', deck%materials(1)%id == 'STEEL', 'id "'//deck%materials(1)%id//'"')
@@ -847,13 +847,14 @@ contains
       call check_close('loose_deck_node2_r', deck%mesh%xy(1, 2), 1.0_dp, 0.0_dp)
       call check_close('loose_deck_node4_z', deck%mesh%xy(2, 4), 1.0_dp, 0.0_dp)
     end if
-    call check('loose_deck_fixes', size(deck%fixes) == 2)
-    if (size(deck%fixes) == 2) then
-      call check('loose_deck_fix_rz', deck%fixes(1)%fix_r .and. deck%fixes(1)%fix_z)
-      call check('loose_deck_fix_z', deck%fixes(2)%fix_z .and. .not. deck%fixes(2)%fix_r)
+    call check('loose_deck_fixes', size(deck%loads%fixes) == 2)
+    if (size(deck%loads%fixes) == 2) then
+      call check('loose_deck_fix_rz', deck%loads%fixes(1)%fix_r .and. deck%loads%fixes(1)%fix_z)
+      call check('loose_deck_fix_z', deck%loads%fixes(2)%fix_z .and. .not. deck%loads%fixes(2)%fix_r)
     end if
-    call check('loose_deck_forces', size(deck%forces) == 1)
-    if (size(deck%forces) == 1) call check_close('loose_deck_fz', deck%forces(1)%value(2), -1.0e3_dp, 1.0e-12_dp)
+    call check('loose_deck_forces', size(deck%loads%forces) == 1)
+    if (size(deck%loads%forces) == 1) call check_close('loose_deck_fz', deck%loads%forces(1)%value(2), -1.0e3_dp, &
+      1.0e-12_dp)
     call check('loose_deck_probe', size(deck%probes) == 1)
     if (size(deck%probes) == 1) call check('loose_deck_probe_node', deck%probes(1)%node == 3 &
                                            .and. deck%probes(1)%name == 'corner')

@@ -233,7 +233,8 @@ contains
       ' GRID=LEGACY MAT=flesh SKINMAT=skin SKIN_LAYERS='//achar(48 + layers), 'PRESSURE OUTER P=1e6', &
       'FIX TOP Z', 'END'])
     call read_deck(file, deck, error)
-    if (.not. allocated(error)) call solve_static(deck, solution, error)
+    if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+      solution, error)
     u_relative = huge(1.0_dp); gauss_relative = huge(1.0_dp); mean_relative = huge(1.0_dp)
     call check('Lame: the composite deck reads and solves at level '//trim(text), .not. allocated(error))
     if (allocated(error)) then

@@ -1,4 +1,4 @@
-!> Verification of the cushioned plate (PAD card: src/input/visco2d_pad_mesh.f90,
+!> Verification of the cushioned plate (PAD card: src/cards/visco2d_pad_mesh.f90,
 !> the node-to-segment contact of src/contact/visco2d_contact.f90 and
 !> visco2d_capacitance.f90) on the elastic sphere of Table 1 (E 18.11 MPa,
 !> nu 0.219, rho 756.85, R 36.6 mm, V 0.9982 m/s, g 9.8), level 1, DT 0.01 ms:

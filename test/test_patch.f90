@@ -163,7 +163,7 @@ contains
     integer :: e, gp, node
 
     call load_patch(geometry, tag, deck)
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     call check('traction patch '//tag//': solves', .not. allocated(error))
     if (allocated(error)) then
       print '(a)', error_text(error)
@@ -272,13 +272,13 @@ contains
     end if
     call check('displacement patch '//tag//': the field has shear (gamma /= 0)', abs(strain(4)) > 1.0e-4_dp)
 
-    call assemble_stiffness(deck, shear, bulk, stiffness)
+    call assemble_stiffness(deck%mesh, deck%settings, shear, bulk, stiffness)
     ! Boundary nodes: on the sides of the bounding box (they were written exactly there).
     allocate(boundary(mesh%nnode), values(2*mesh%nnode))
     boundary = mesh%xy(1, :) == 0.0_dp .or. mesh%xy(1, :) == a .or. mesh%xy(2, :) == 0.0_dp .or. mesh%xy(2, :) == b
     interior = count(.not. boundary)
     call check('displacement patch '//tag//': 16 boundary and 9 interior nodes', interior == 9)
-    fixed = support_mask(deck)      ! FIX cards of the deck + u_r = 0 on the axis in axisymmetry
+    fixed = support_mask(deck%mesh, deck%settings, deck%loads)   ! FIX cards + u_r = 0 on the axis in axisymmetry
     do node = 1, mesh%nnode
       field = c + matmul(gradient, mesh%xy(:, node))
       values(node_dof(mesh, node, 1)) = field(1)
@@ -323,7 +323,7 @@ contains
     strain_error = 0.0_dp
     strain_max = maxval(abs(strain))
     do e = 1, mesh%nelem
-      strains = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), gather(mesh, e, u))
+      strains = element_strains(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), gather(mesh, e, u))
       do gp = 1, gauss_count
         strain_error = max(strain_error, maxval(abs(strains(:, gp) - strain)))
       end do

@@ -30,7 +30,7 @@ program test_wilson
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_index
   use visco2d_spectrum, only: qp, pi_qp, spectrum_t, spectrum_of, cubic
   implicit none
@@ -142,7 +142,7 @@ contains
     if (allocated(error)) then
       call check('sdof static deck reads', .false., error_text(error)); return
     end if
-    call solve_static(deck, solution, error)
+    call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error)
     if (allocated(error)) then
       call check('sdof static run', .false., error_text(error)); return
     end if
@@ -150,7 +150,7 @@ contains
     call check_close('sdof static: both top nodes move alike', u4, u3, 1.0e-12_dp)
     stiffness = real(force, qp)/real(u3, qp)
     end associate
-    mass = lumped_mass(deck)
+    mass = lumped_mass(deck%mesh, deck%settings, deck%materials)
     node_mass = real(mass(node_dof(deck%mesh, 3, 2)), qp)
     call check_close('sdof lumped mass of a top node = rho w h/4 (symmetry)', real(node_mass, dp), &
                      block_density*block_width*block_height/4.0_dp, 1.0e-14_dp)
@@ -170,7 +170,8 @@ contains
     call write_deck(path, [character(len=200) :: block_lines('STATIC'), &
       'FORCE 3 FZ='//num(force), 'FORCE 4 FZ='//num(-force), 'END'])
     call read_deck(path, deck, error)
-    if (.not. allocated(error)) call solve_static(deck, solution, error)
+    if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+      solution, error)
     if (allocated(error)) then
       call check('sdof static tilt run', .false., error_text(error)); return
     end if
@@ -332,7 +333,7 @@ contains
     if (allocated(error)) then
       call check(name//': deck reads', .false., error_text(error)); return
     end if
-    call check(name//': '//itoa(steps)//' steps of one stage', deck%stages(1)%steps == steps .and. &
+    call check(name//': '//integer_text(steps)//' steps of one stage', deck%stages(1)%steps == steps .and. &
                size(deck%stages) == 1)
     ! The analytic model uses the program's own dt and v0.
     h = real(deck%stages(1)%dt, qp)
@@ -774,10 +775,10 @@ contains
     real(dp), allocatable :: masses(:)
     integer :: row, j, node, col_t, col_u, col_v, col_a, col_k, col_b, col_g, col_s, col_x
     v0 = deck%dynamics%velocity(2)
-    g = deck%gravity
+    g = deck%loads%gravity
     tau = deck%dynamics%theta*minval(deck%stages%dt)
-    masses = lumped_mass(deck)
-    mass = whole_body_factor(deck%geometry)*sum(masses(2::2))   ! the energies' basis: whole body
+    masses = lumped_mass(deck%mesh, deck%settings, deck%materials)
+    mass = whole_body_factor(deck%settings%geometry)*sum(masses(2::2))   ! the energies' basis: whole body
     col_t = history_index(record, 't_s')
     col_u = history_index(record, 'uz_cm_m')
     col_v = history_index(record, 'vz_cm_m_s')
@@ -864,7 +865,7 @@ contains
       end associate
     end do
     call check(name//': every node: u, v, a = the centre of mass motion (u_r = 0) at '// &
-               itoa(size(record%snapshots))//' snapshots', all(worst_node <= 1.0_dp), &
+               integer_text(size(record%snapshots))//' snapshots', all(worst_node <= 1.0_dp), &
                'worst error / tolerance (uz, ur, vz, vr, az, ar) '//trim(qtoa(real(worst_node(1), qp)))// &
                trim(qtoa(real(worst_node(2), qp)))//trim(qtoa(real(worst_node(3), qp)))// &
                trim(qtoa(real(worst_node(4), qp)))//trim(qtoa(real(worst_node(5), qp)))// &
@@ -921,7 +922,7 @@ contains
     if (allocated(error)) then
       call check('free_flight deck reads', .false., error_text(error)); return
     end if
-    call check('free_flight: no supports, no warnings', size(deck%fixes) == 0 .and. size(deck%warnings) == 0)
+    call check('free_flight: no supports, no warnings', size(deck%loads%fixes) == 0 .and. size(deck%warnings) == 0)
     call solve_dynamic(deck, record, error)
     if (allocated(error)) then
       call check('free_flight runs', .false., error_text(error)); return

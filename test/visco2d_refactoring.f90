@@ -57,7 +57,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: status
     associate (point => stepper%points(r))
-    stepper%solution = stepper%base
+    stepper%solution = stepper%effective_load
     call band_constrain_rhs(point%effective, stepper%fixed, stepper%prescribed, stepper%solution)
     call factor_solve(point%factor, stepper%solution, status)
     end associate

@@ -1,13 +1,15 @@
 !> Global assembly shared by every analysis: equation numbering, the banded
 !> stiffness S of eq. [25], lumped mass M (eq. [32]), load vectors from
-!> PRESSURE/FORCE cards (with their CURVE time histories), the support mask
-!> and prescribed displacements, and stress recovery to nodes.
+!> pressures and point loads (with their time histories), the support mask
+!> and prescribed displacements, and stress recovery to nodes. It takes the
+!> mesh, the materials, the settings and the loads (visco2d_model), never
+!> the deck they were read from.
 module visco2d_assembly
   use visco2d_kinds, only: dp, geometry_axisymmetric
-  use visco2d_deck, only: deck_t
-  use visco2d_curve, only: curve_value
   use visco2d_mesh, only: mesh_t, side_nodes
-  use visco2d_material, only: elastic_matrix
+  use visco2d_material, only: material_t, elastic_matrix
+  use visco2d_curve, only: curve_value
+  use visco2d_model, only: settings_t, loads_t
   use visco2d_element, only: element_stiffness, element_lumped_mass, edge_pressure_load, &
                              element_internal_force, gauss_to_node_extrapolation
   use visco2d_banded, only: band_matrix_t, band_create, band_add_element
@@ -80,150 +82,154 @@ contains
   end subroutine scatter_add
 
   !> Banded stiffness S = sum_e k_e with per-element moduli (G, K).
-  subroutine assemble_stiffness(deck, shear, bulk, matrix)
-    type(deck_t), intent(in) :: deck
+  subroutine assemble_stiffness(mesh, settings, shear, bulk, matrix)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
     real(dp), intent(in) :: shear(:), bulk(:)   !< (nelem)
     type(band_matrix_t), intent(out) :: matrix
     integer :: e
-    associate (mesh => deck%mesh)
     call band_create(matrix, 2*mesh%nnode, mesh%half_bandwidth)
     do e = 1, mesh%nelem
       call band_add_element(matrix, element_dofs(mesh, e), &
-        element_stiffness(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), elastic_matrix(shear(e), bulk(e)), &
-                          deck%formulation))
+        element_stiffness(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), elastic_matrix(shear(e), bulk(e)), &
+                          settings%formulation))
     end do
-    end associate
   end subroutine assemble_stiffness
 
-  !> Load vector R(t) of the PRESSURE and FORCE cards at time t (s): each
-  !> card's value times its curve (1 without a curve).
-  function external_load(deck, time) result(load)
-    type(deck_t), intent(in) :: deck
+  !> Load vector R(t) of the pressures and point loads at time t (s): each
+  !> one's value times its curve (1 without a curve).
+  function external_load(mesh, settings, loads, time) result(load)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
+    type(loads_t), intent(in) :: loads
     real(dp), intent(in) :: time
-    real(dp) :: load(2*deck%mesh%nnode)
+    real(dp) :: load(2*mesh%nnode)
     integer :: k, edge, a, b
     real(dp) :: f(4), factor
     load = 0.0_dp
-    associate (mesh => deck%mesh)
-    do k = 1, size(deck%pressures)
-      factor = curve_factor(deck, deck%pressures(k)%curve, time)
+    do k = 1, size(loads%pressures)
+      factor = curve_factor(loads, loads%pressures(k)%curve, time)
       if (factor == 0.0_dp) cycle
       do edge = 1, size(mesh%edge_set)
-        if (mesh%edge_set(edge) /= deck%pressures(k)%edge_set) cycle
+        if (mesh%edge_set(edge) /= loads%pressures(k)%edge_set) cycle
         call side_nodes(mesh, mesh%edge_element(edge), mesh%edge_side(edge), a, b)
-        f = edge_pressure_load(deck%geometry, mesh%xy(:, a), mesh%xy(:, b), factor*deck%pressures(k)%value)
+        f = edge_pressure_load(settings%geometry, mesh%xy(:, a), mesh%xy(:, b), factor*loads%pressures(k)%value)
         load(node_dof(mesh, a, 1):node_dof(mesh, a, 2)) = load(node_dof(mesh, a, 1):node_dof(mesh, a, 2)) + f(1:2)
         load(node_dof(mesh, b, 1):node_dof(mesh, b, 2)) = load(node_dof(mesh, b, 1):node_dof(mesh, b, 2)) + f(3:4)
       end do
     end do
-    do k = 1, size(deck%forces)
-      factor = curve_factor(deck, deck%forces(k)%curve, time)
-      a = deck%forces(k)%node
-      load(node_dof(mesh, a, 1)) = load(node_dof(mesh, a, 1)) + factor*deck%forces(k)%value(1)
-      load(node_dof(mesh, a, 2)) = load(node_dof(mesh, a, 2)) + factor*deck%forces(k)%value(2)
+    do k = 1, size(loads%forces)
+      factor = curve_factor(loads, loads%forces(k)%curve, time)
+      a = loads%forces(k)%node
+      load(node_dof(mesh, a, 1)) = load(node_dof(mesh, a, 1)) + factor*loads%forces(k)%value(1)
+      load(node_dof(mesh, a, 2)) = load(node_dof(mesh, a, 2)) + factor*loads%forces(k)%value(2)
     end do
-    end associate
   end function external_load
 
-  !> Value of curve `curve` of the deck at time t; 1 for curve 0 (constant load).
-  pure real(dp) function curve_factor(deck, curve, time) result(factor)
-    type(deck_t), intent(in) :: deck
+  !> Value of curve `curve` of the loads at time t; 1 for curve 0 (constant load).
+  pure real(dp) function curve_factor(loads, curve, time) result(factor)
+    type(loads_t), intent(in) :: loads
     integer, intent(in) :: curve
     real(dp), intent(in) :: time
     factor = 1.0_dp
-    if (curve > 0) factor = curve_value(deck%curves(curve), time)
+    if (curve > 0) factor = curve_value(loads%curves(curve), time)
   end function curve_factor
 
   !> Prescribed displacement of every supported equation at time t (m): the
-  !> UR=/UZ= of the FIX cards times their curves (0 for plain supports).
-  function prescribed_displacement(deck, time) result(values)
-    type(deck_t), intent(in) :: deck
+  !> values of the supports times their curves (0 for plain supports).
+  function prescribed_displacement(mesh, loads, time) result(values)
+    type(mesh_t), intent(in) :: mesh
+    type(loads_t), intent(in) :: loads
     real(dp), intent(in) :: time
-    real(dp) :: values(2*deck%mesh%nnode)
+    real(dp) :: values(2*mesh%nnode)
     integer :: k, i, c
     real(dp) :: factor
     values = 0.0_dp
-    do k = 1, size(deck%fixes)
-      associate (fix => deck%fixes(k))
+    do k = 1, size(loads%fixes)
+      associate (fix => loads%fixes(k))
       if (all(fix%value == 0.0_dp)) cycle
-      factor = curve_factor(deck, fix%curve, time)
+      factor = curve_factor(loads, fix%curve, time)
       do i = 1, size(fix%nodes)
         do c = 1, 2
-          if (merge(fix%fix_r, fix%fix_z, c == 1)) values(node_dof(deck%mesh, fix%nodes(i), c)) = factor*fix%value(c)
+          if (merge(fix%fix_r, fix%fix_z, c == 1)) values(node_dof(mesh, fix%nodes(i), c)) = factor*fix%value(c)
         end do
       end do
       end associate
     end do
   end function prescribed_displacement
 
-  !> Supported equations: the FIX cards, plus u_r = 0 on the axis in axisymmetry.
-  function support_mask(deck) result(fixed)
-    type(deck_t), intent(in) :: deck
-    logical :: fixed(2*deck%mesh%nnode)
+  !> Supported equations: the supports (FIX cards), plus u_r = 0 on the axis in axisymmetry.
+  function support_mask(mesh, settings, loads) result(fixed)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
+    type(loads_t), intent(in) :: loads
+    logical :: fixed(2*mesh%nnode)
     integer :: k, i, node
     fixed = .false.
-    associate (mesh => deck%mesh)
-    do k = 1, size(deck%fixes)
-      do i = 1, size(deck%fixes(k)%nodes)
-        node = deck%fixes(k)%nodes(i)
-        if (deck%fixes(k)%fix_r) fixed(node_dof(mesh, node, 1)) = .true.
-        if (deck%fixes(k)%fix_z) fixed(node_dof(mesh, node, 2)) = .true.
+    do k = 1, size(loads%fixes)
+      do i = 1, size(loads%fixes(k)%nodes)
+        node = loads%fixes(k)%nodes(i)
+        if (loads%fixes(k)%fix_r) fixed(node_dof(mesh, node, 1)) = .true.
+        if (loads%fixes(k)%fix_z) fixed(node_dof(mesh, node, 2)) = .true.
       end do
     end do
-    if (deck%geometry == geometry_axisymmetric) then
+    if (settings%geometry == geometry_axisymmetric) then
       do node = 1, mesh%nnode
         if (mesh%xy(1, node) == 0.0_dp) fixed(node_dof(mesh, node, 1)) = .true.
       end do
     end if
-    end associate
   end function support_mask
 
   !> Lumped (row-sum) mass per equation, eq. [32]. With volume = .true.
   !> the same row sums at unit density, int N_i dV per equation (per radian
   !> in axisymmetry): the weights of a volume average of a nodal field.
-  function lumped_mass(deck, volume) result(mass)
-    type(deck_t), intent(in) :: deck
+  function lumped_mass(mesh, settings, materials, volume) result(mass)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
+    type(material_t), intent(in) :: materials(:)
     logical, intent(in), optional :: volume
-    real(dp) :: mass(2*deck%mesh%nnode)
+    real(dp) :: mass(2*mesh%nnode)
     real(dp) :: m(4), density
     logical :: unit_density
     integer :: e
     unit_density = .false.
     if (present(volume)) unit_density = volume
     mass = 0.0_dp
-    associate (mesh => deck%mesh)
     do e = 1, mesh%nelem
       density = 1.0_dp
-      if (.not. unit_density) density = deck%materials(mesh%element_material(e))%density
-      m = element_lumped_mass(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), density)
+      if (.not. unit_density) density = materials(mesh%element_material(e))%density
+      m = element_lumped_mass(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), density)
       call scatter_add(mesh, e, [m(1), m(1), m(2), m(2), m(3), m(3), m(4), m(4)], mass)
     end do
-    end associate
   end function lumped_mass
 
-  !> Body force of gravity, rho g in -z (GRAVITY card): the consistent load
-  !> integral N_i rho g dV, which equals the lumped mass times g because the
-  !> shape functions sum to one. Zero without gravity.
-  function gravity_load(deck) result(load)
-    type(deck_t), intent(in) :: deck
-    real(dp) :: load(2*deck%mesh%nnode)
+  !> Body force of gravity, rho g in -z (loads%gravity, the GRAVITY card):
+  !> the consistent load integral N_i rho g dV, which equals the lumped mass
+  !> times g because the shape functions sum to one. Zero without gravity.
+  function gravity_load(mesh, settings, materials, loads) result(load)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
+    type(material_t), intent(in) :: materials(:)
+    type(loads_t), intent(in) :: loads
+    real(dp) :: load(2*mesh%nnode)
     load = 0.0_dp
-    if (deck%gravity == 0.0_dp) return
-    load = lumped_mass(deck)
+    if (loads%gravity == 0.0_dp) return
+    load = lumped_mass(mesh, settings, materials)
     load(1::2) = 0.0_dp
-    load(2::2) = -deck%gravity*load(2::2)
+    load(2::2) = -loads%gravity*load(2::2)
   end function gravity_load
 
   !> Internal force vector sum_e B^T sigma from Gauss-point stresses (4, 4, nelem).
-  function internal_force(deck, stress) result(force)
-    type(deck_t), intent(in) :: deck
+  function internal_force(mesh, settings, stress) result(force)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
     real(dp), intent(in) :: stress(:, :, :)
-    real(dp) :: force(2*deck%mesh%nnode)
+    real(dp) :: force(2*mesh%nnode)
     integer :: e
     force = 0.0_dp
-    do e = 1, deck%mesh%nelem
-      call scatter_add(deck%mesh, e, element_internal_force(deck%geometry, &
-        deck%mesh%xy(:, deck%mesh%connectivity(:, e)), stress(:, :, e), deck%formulation), force)
+    do e = 1, mesh%nelem
+      call scatter_add(mesh, e, element_internal_force(settings%geometry, &
+        mesh%xy(:, mesh%connectivity(:, e)), stress(:, :, e), settings%formulation), force)
     end do
   end function internal_force
 

@@ -51,7 +51,7 @@ module visco2d_factor
 
 contains
 
-  !> The solver of a deck's SOLVER card (deck%solver; solver_none: the default).
+  !> The solver of a SOLVER card (settings%solver of visco2d_model; solver_none: the default).
   pure integer function solver_of_card(card) result(solver)
     integer, intent(in) :: card
     solver = card

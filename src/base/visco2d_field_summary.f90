@@ -4,8 +4,8 @@
 !> (put_probe_summary), and the stress fields of a snapshot.
 module visco2d_field_summary
   use visco2d_kinds, only: dp
-  use visco2d_deck, only: deck_t
   use visco2d_mesh, only: mesh_t
+  use visco2d_model, only: probe_t
   use visco2d_material, only: von_mises, max_shear
   use visco2d_assembly, only: nodal_average
   use visco2d_stress_recovery, only: node_stress
@@ -57,19 +57,20 @@ contains
   end subroutine put_field_summary
 
   !> Summary keys probe_<name>_{r_m, z_m, ur_m, uz_m, sr_Pa, sz_Pa, st_Pa, trz_Pa} of a state.
-  subroutine put_probe_summary(deck, displacement, stress, record)
-    type(deck_t), intent(in) :: deck
+  subroutine put_probe_summary(mesh, probes, displacement, stress, record)
+    type(mesh_t), intent(in) :: mesh
+    type(probe_t), intent(in) :: probes(:)
     real(dp), intent(in) :: displacement(:, :), stress(:, :, :)
     type(record_t), intent(inout) :: record
     integer :: p, node, c
     character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
-    do p = 1, size(deck%probes)
-      node = deck%probes(p)%node
-      call record_put_real(record, 'probe_'//deck%probes(p)%name//'_r_m', deck%mesh%xy(1, node))
-      call record_put_real(record, 'probe_'//deck%probes(p)%name//'_z_m', deck%mesh%xy(2, node))
-      associate (values => [displacement(:, node), node_stress(deck%mesh, stress, node)])
+    do p = 1, size(probes)
+      node = probes(p)%node
+      call record_put_real(record, 'probe_'//probes(p)%name//'_r_m', mesh%xy(1, node))
+      call record_put_real(record, 'probe_'//probes(p)%name//'_z_m', mesh%xy(2, node))
+      associate (values => [displacement(:, node), node_stress(mesh, stress, node)])
       do c = 1, 6
-        call record_put_real(record, 'probe_'//deck%probes(p)%name//'_'//trim(probe_columns(c)), values(c))
+        call record_put_real(record, 'probe_'//probes(p)%name//'_'//trim(probe_columns(c)), values(c))
       end do
       end associate
     end do

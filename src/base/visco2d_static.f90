@@ -7,14 +7,14 @@ module visco2d_static
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, whole_body_factor, energy_basis
   use visco2d_error, only: error_t, set_error
-  use visco2d_deck, only: deck_t
-  use visco2d_material, only: stress_from_strain
+  use visco2d_mesh, only: mesh_t
+  use visco2d_material, only: material_t, stress_from_strain
+  use visco2d_model, only: settings_t, loads_t, probe_t, source_t
   use visco2d_element, only: element_strains
   use visco2d_banded, only: band_matrix_t, band_multiply, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
   use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, gather, nodal_average, &
                               prescribed_displacement, gravity_load, nodal_field
-  use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, history_define, &
                             history_append, record_add_snapshot
   use visco2d_solve_errors, only: check_balance, singular_error, not_finite_error
@@ -37,12 +37,18 @@ module visco2d_static
 
 contains
 
-  !> Solve the static problem of a deck. `extra_fixed` / `extra_values`
-  !> prescribe further displacements (the contact extension's plate nodes);
-  !> `given` is a displacement solved by the caller, of which only the
-  !> reactions, energies, strains and stresses are computed.
-  subroutine solve_static(deck, solution, error, extra_fixed, extra_values, given)
-    type(deck_t), intent(in) :: deck
+  !> Solve the static problem of a mesh of these materials under these
+  !> supports and loads (at t = 0); `source` locates a failure in the input
+  !> file. `extra_fixed` / `extra_values` prescribe further displacements
+  !> (the contact extension's plate nodes); `given` is a displacement solved
+  !> by the caller, of which only the reactions, energies, strains and
+  !> stresses are computed.
+  subroutine solve_static(mesh, materials, settings, loads, source, solution, error, extra_fixed, extra_values, given)
+    type(mesh_t), intent(in) :: mesh
+    type(material_t), intent(in) :: materials(:)
+    type(settings_t), intent(in) :: settings
+    type(loads_t), intent(in) :: loads
+    type(source_t), intent(in) :: source
     type(static_solution_t), intent(out) :: solution
     type(error_t), allocatable, intent(out) :: error
     logical, intent(in), optional :: extra_fixed(:)
@@ -54,13 +60,12 @@ contains
     logical, allocatable :: fixed(:)
     integer :: e, info
 
-    associate (mesh => deck%mesh)
-    shear = deck%materials(mesh%element_material)%shear
-    bulk = deck%materials(mesh%element_material)%bulk
-    call assemble_stiffness(deck, shear, bulk, stiffness)
-    load = external_load(deck, 0.0_dp) + gravity_load(deck)
-    fixed = support_mask(deck)
-    zero = prescribed_displacement(deck, 0.0_dp)
+    shear = materials(mesh%element_material)%shear
+    bulk = materials(mesh%element_material)%bulk
+    call assemble_stiffness(mesh, settings, shear, bulk, stiffness)
+    load = external_load(mesh, settings, loads, 0.0_dp) + gravity_load(mesh, settings, materials, loads)
+    fixed = support_mask(mesh, settings, loads)
+    zero = prescribed_displacement(mesh, loads, 0.0_dp)
     if (present(extra_fixed) .and. present(extra_values)) then
       zero = merge(extra_values, zero, extra_fixed)
       fixed = fixed .or. extra_fixed
@@ -70,9 +75,9 @@ contains
     else
       u = load
       call band_constrain_rhs(stiffness, fixed, zero, u)
-      call factor_compute(factor, stiffness, fixed, info, solver_of_card(deck%solver))
+      call factor_compute(factor, stiffness, fixed, info, solver_of_card(settings%solver))
       if (info > 0) then
-        call singular_error(deck, info, error)
+        call singular_error(mesh, source, info, error)
         return
       end if
       call factor_solve(factor, u, info)
@@ -82,11 +87,11 @@ contains
       end if
     end if
     if (.not. all(ieee_is_finite(u))) then
-      call not_finite_error(deck, 'the static displacement', error)
+      call not_finite_error(source, 'the static displacement', error)
       return
     end if
     if (.not. present(given)) then
-      call check_balance(deck, band_multiply(stiffness, u) - load, fixed, load, error)
+      call check_balance(mesh, source, band_multiply(stiffness, u) - load, fixed, load, error)
       if (allocated(error)) return
     end if
 
@@ -99,8 +104,8 @@ contains
 
     allocate(solution%strain(4, 4, mesh%nelem), solution%stress(4, 4, mesh%nelem))
     do e = 1, mesh%nelem
-      solution%strain(:, :, e) = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
-                                                 gather(mesh, e, u), deck%formulation)
+      solution%strain(:, :, e) = element_strains(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                                                 gather(mesh, e, u), settings%formulation)
       do info = 1, 4
         solution%stress(:, info, e) = stress_from_strain(shear(e), bulk(e), solution%strain(:, info, e))
       end do
@@ -108,27 +113,34 @@ contains
     solution%nodal_stress = nodal_average(mesh, solution%stress)
     if (.not. all(ieee_is_finite(solution%stress)) .or. .not. all(ieee_is_finite(solution%reaction)) .or. &
         .not. ieee_is_finite(solution%strain_energy) .or. .not. ieee_is_finite(solution%external_work)) &
-      call not_finite_error(deck, 'the static stress, reaction or energy', error)
-    end associate
+      call not_finite_error(source, 'the static stress, reaction or energy', error)
   end subroutine solve_static
 
   !> Summary, one-row history and the final snapshot of a static solution.
-  subroutine static_record(deck, solution, record)
-    type(deck_t), intent(in) :: deck
+  !> The body is the first `body_nodes` nodes and `body_elements` elements
+  !> (default: all; a PAD's mesh comes after them): the field summary is of
+  !> the body alone.
+  subroutine static_record(mesh, settings, probes, solution, record, body_nodes, body_elements)
+    type(mesh_t), intent(in) :: mesh
+    type(settings_t), intent(in) :: settings
+    type(probe_t), intent(in) :: probes(:)
     type(static_solution_t), intent(in) :: solution
     type(record_t), intent(inout) :: record
+    integer, intent(in), optional :: body_nodes, body_elements
     type(snapshot_t) :: snapshot
     character(len=48), allocatable :: columns(:)
     real(dp), allocatable :: row(:)
-    integer :: k, node, c
+    integer :: k, node, c, nodes, elements
     character(len=6), parameter :: probe_columns(6) = ['ur_m  ', 'uz_m  ', 'sr_Pa ', 'sz_Pa ', 'st_Pa ', 'trz_Pa']
 
-    associate (mesh => deck%mesh)
-    call put_field_summary(solution%displacement(:, :body_nodes(deck)), solution%stress(:, :, :body_elements(deck)), &
-                           record)
+    nodes = mesh%nnode
+    if (present(body_nodes)) nodes = body_nodes
+    elements = mesh%nelem
+    if (present(body_elements)) elements = body_elements
+    call put_field_summary(solution%displacement(:, :nodes), solution%stress(:, :, :elements), record)
     ! Energies and reactions on the energy_basis (whole body in axisymmetry).
-    associate (factor => whole_body_factor(deck%geometry))
-    call record_put(record, 'energy_basis', energy_basis(deck%geometry))
+    associate (factor => whole_body_factor(settings%geometry))
+    call record_put(record, 'energy_basis', energy_basis(settings%geometry))
     call record_put_real(record, 'strain_energy_J', factor*solution%strain_energy)
     call record_put_real(record, 'external_work_J', factor*solution%external_work)
     call record_put_real(record, 'reaction_r_N', factor*sum(solution%reaction(1, :)))
@@ -138,11 +150,11 @@ contains
     row = [1.0_dp, 0.0_dp, maxval(norm2(solution%displacement, dim=1)), factor*solution%strain_energy, &
            factor*solution%external_work]
     end associate
-    call put_probe_summary(deck, solution%displacement, solution%stress, record)
-    do k = 1, size(deck%probes)
-      node = deck%probes(k)%node
+    call put_probe_summary(mesh, probes, solution%displacement, solution%stress, record)
+    do k = 1, size(probes)
+      node = probes(k)%node
       do c = 1, 6
-        columns = [character(len=48) :: columns, deck%probes(k)%name//'_'//trim(probe_columns(c))]
+        columns = [character(len=48) :: columns, probes(k)%name//'_'//trim(probe_columns(c))]
       end do
       row = [row, solution%displacement(:, node), solution%nodal_stress(:, node)]
     end do
@@ -155,7 +167,6 @@ contains
     snapshot%displacement = solution%displacement
     call set_snapshot_stress(mesh, solution%stress, snapshot)
     call record_add_snapshot(record, snapshot)
-    end associate
   end subroutine static_record
 
 end module visco2d_static

@@ -33,7 +33,7 @@ module visco2d_bruise
   use visco2d_material, only: von_mises, max_shear
   use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, stored_energy_density
   use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_pad_mesh, only: is_pad_element, body_nodes, body_elements
   implicit none
   private
@@ -140,11 +140,11 @@ contains
         end if
       end do
       associate (xy => mesh%xy(:, mesh%connectivity(:, e)))
-      call element_b_matrices(deck%geometry, xy, b, factor)
+      call element_b_matrices(deck%settings%geometry, xy, b, factor)
       bruise%point(:, :, e) = element_gauss_points(xy)
       end associate
       bruise%volume(:, e) = factor                      ! |J| r (|J| in plane strain), Gauss weights 1
-      if (deck%geometry == geometry_axisymmetric) bruise%volume(:, e) = 2.0_dp*pi*factor
+      if (deck%settings%geometry == geometry_axisymmetric) bruise%volume(:, e) = 2.0_dp*pi*factor
     end do
     bruise%pole_z = minval(mesh%xy(2, :body_nodes(deck)))         ! the body's, not a PAD's
     end associate
@@ -196,7 +196,7 @@ contains
       real(dp) :: volume, absorbed
       integer :: k, i, count_extra
       basis = 'cm3'
-      if (deck%geometry /= geometry_axisymmetric) basis = 'cm3_per_m'
+      if (deck%settings%geometry /= geometry_axisymmetric) basis = 'cm3_per_m'
       names = criterion_name(deck%bruises(1)%criterion)
       do k = 2, size(deck%bruises)
         names = names//','//criterion_name(deck%bruises(k)%criterion)
@@ -221,11 +221,11 @@ contains
         count_extra = max(count_extra, size(deck%bruises(k)%extra))
       end do
       do i = 1, count_extra
-        if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//itoa(i)//'_'// &
+        if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//integer_text(i)//'_'// &
           unit_key(deck%bruises(1)%criterion), deck%bruises(1)%extra(i))
-        call record_put_real(record, 'bruise_volume_threshold_'//itoa(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
+        call record_put_real(record, 'bruise_volume_threshold_'//integer_text(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
       end do
-      if (deck%geometry == geometry_axisymmetric .and. deck%stop_at == stop_at_separation .and. &
+      if (deck%settings%geometry == geometry_axisymmetric .and. deck%stop_at == stop_at_separation .and. &
           summary_value(record, 'energy_absorbed_J', absorbed)) then
         if (absorbed > 0.0_dp) call record_put_real(record, 'bruise_susceptibility_cm3_per_J', volume/absorbed)
       end if
@@ -295,8 +295,8 @@ contains
       call add(trim(measure_names(m))//'_envelope', criterion_unit(m), bruise%envelope(m, :, :))
       call add(trim(measure_names(m))//'_time', 's', bruise%time_of_max(m, :, :))
     end do
-    call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%geometry == geometry_axisymmetric), bruise%volume, &
-             .false.)
+    call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%settings%geometry == geometry_axisymmetric), &
+             bruise%volume, .false.)
     call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
     call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
     if (size(deck%bruises) == 0) return                 ! OUTPUT ENVELOPES=YES alone: no threshold, no region

@@ -83,7 +83,8 @@ contains
     do i = 1, size(sides, 2)
       a = sides(1, i)
       b = sides(2, i)
-      if (deck%geometry == geometry_axisymmetric .and. mesh%xy(1, a) == 0.0_dp .and. mesh%xy(1, b) == 0.0_dp) cycle
+      if (deck%settings%geometry == geometry_axisymmetric .and. mesh%xy(1, a) == 0.0_dp .and. &
+          mesh%xy(1, b) == 0.0_dp) cycle
       nedge = nedge + 1
       contact%edges(:, nedge) = [a, b]
       boundary(a) = .true.
@@ -123,7 +124,7 @@ contains
     associate (mesh => deck%mesh, surface => deck%pad%surface)
     contact%pad = .true.
     contact%pad_axis = surface(1)
-    supports = support_mask(deck)
+    supports = support_mask(deck%mesh, deck%settings, deck%loads)
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
       r = abs(mesh%xy(1, node))
@@ -313,7 +314,7 @@ contains
       node = contact%candidates(i)
       if (contact%active(node)) force = force + reaction(node_dof(deck%mesh, node, 2))
     end do
-    if (deck%geometry == geometry_axisymmetric) force = 2.0_dp*pi*force
+    if (deck%settings%geometry == geometry_axisymmetric) force = 2.0_dp*pi*force
   end function contact_force
 
   !> Contact radius: the largest |r| of a contact node in the undeformed body
@@ -397,7 +398,7 @@ contains
       ra = abs(mesh%xy(1, a))
       rb = abs(mesh%xy(1, b))
       length = norm2(mesh%xy(:, a) - mesh%xy(:, b))
-      if (deck%geometry == geometry_axisymmetric) then     ! int N_a r ds, int N_b r ds
+      if (deck%settings%geometry == geometry_axisymmetric) then     ! int N_a r ds, int N_b r ds
         share_a = length*(2.0_dp*ra + rb)/6.0_dp
         share_b = length*(ra + 2.0_dp*rb)/6.0_dp
       else

@@ -18,6 +18,7 @@ module visco2d_impact
                              nearest_free_node, pad_compression
   use visco2d_hertz, only: put_hertz_summary
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column, record_warn
+  use visco2d_sorting, only: sorted_order
   implicit none
   private
 
@@ -85,7 +86,7 @@ contains
     centre(2) = dot_product(nodal_mass(2, :), deck%mesh%xy(2, :))/sum(nodal_mass(2, :))
     centre(1) = dot_product(nodal_mass(1, :), deck%mesh%xy(1, :))/max(sum(nodal_mass(1, :)), tiny(1.0_dp))
     end associate
-    if (deck%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
+    if (deck%settings%geometry == geometry_axisymmetric) centre(1) = 0.0_dp
     impact%centre_node = 1
     do node = 2, deck%mesh%nnode
       if (norm2(deck%mesh%xy(:, node) - centre) < norm2(deck%mesh%xy(:, impact%centre_node) - centre)) &
@@ -274,7 +275,7 @@ contains
       do node = 1, deck%mesh%nnode
         if (contact%active(node)) nodal_reaction(node) = reaction(node_dof(deck%mesh, node, 2))
       end do
-      if (deck%geometry == geometry_axisymmetric) nodal_reaction = 2.0_dp*pi*nodal_reaction
+      if (deck%settings%geometry == geometry_axisymmetric) nodal_reaction = 2.0_dp*pi*nodal_reaction
     end subroutine keep_profile
 
     pure subroutine keep_max(value, maximum, at)
@@ -324,8 +325,8 @@ contains
       e = pole(2, k)
       corners(2, k) = k
       associate (c => over_tau(mesh%element_material(e)), material => deck%materials(mesh%element_material(e)))
-      increment = element_strains(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), gather(mesh, e, delta_tau), &
-                                  deck%formulation)
+      increment = element_strains(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), &
+                                  gather(mesh, e, delta_tau), deck%settings%formulation)
       nterm = 0
       if (memory) nterm = element_terms(state, e)
       do g = 1, gauss_count
@@ -355,18 +356,9 @@ contains
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     integer, allocatable :: nodes(:)
-    integer :: i, j, node
+    integer :: i, node
     nodes = pack([(i, i = 1, deck%mesh%nnode)], impact%ever_active)
-    do i = 2, size(nodes)                          ! insertion sort by undeformed r (a few nodes)
-      node = nodes(i)
-      j = i - 1
-      do while (j >= 1)
-        if (deck%mesh%xy(1, nodes(j)) <= deck%mesh%xy(1, node)) exit
-        nodes(j + 1) = nodes(j)
-        j = j - 1
-      end do
-      nodes(j + 1) = node
-    end do
+    nodes = nodes(sorted_order(deck%mesh%xy(1, nodes)))   ! by undeformed r
     record%pressure%columns = [character(len=27) :: 'node', 'r_mm', 'r_force_max_mm', 'p_force_max_MPa', &
                                'r_alpha_max_mm', 'p_alpha_max_MPa', 'reaction_z_force_max_ring_N', &
                                'reaction_z_alpha_max_ring_N']

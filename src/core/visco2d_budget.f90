@@ -9,8 +9,9 @@
 !>    8 bytes for n equations of half-bandwidth b; with CHOLMOD (the default
 !>    solver) its sparse factor, about 80 bytes per n log2(n) (fitted to level 4
 !>    to 6 spheres; twice that in a run that refactors at a new Delta t), with
-!>    the band or profile solvers a second band copy for
-!>    the factor, and a third in a run that assembles a new matrix while the
+!>    the band solver a second band copy for the factor (the profile
+!>    solver's envelope is at most that: counted as one), and a third in a
+!>    run that assembles a new matrix while the
 !>    factor of the previous one is still held (a new Delta t in a later TIME
 !>    stage, or the relaxed moduli of a viscoelastic QUASISTATIC run);
 !>  - per element: B at the Gauss points, the stresses, strains and trial

@@ -7,7 +7,7 @@
 !> results.h5's /summary holds the double itself.
 module visco2d_record
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: gtoa, itoa, rtoa
+  use visco2d_strings, only: table_real, integer_text, message_real
   implicit none
   private
 
@@ -30,7 +30,7 @@ module visco2d_record
     integer :: integer_value = 0                  !< the value of an integer item
     logical :: logical_value = .false.            !< the value of a logical item (written yes / no)
     integer :: digits = 10                        !< significant digits summary.txt shows of a real:
-                                                  !< 10 (gtoa) or 4 (rtoa, the CPU time)
+                                                  !< 10 (table_real) or 4 (message_real, the CPU time)
     character(:), allocatable :: unit             !< of a number, from the key's suffix (summary_unit)
   end type summary_item_t
 
@@ -169,7 +169,7 @@ contains
   end subroutine record_put
 
   !> Set a real summary value, kept in full precision; summary.txt shows it
-  !> with 10 significant digits (gtoa), or 4 (rtoa) if digits = 4.
+  !> with 10 significant digits (table_real), or 4 (message_real) if digits = 4.
   subroutine record_put_real(record, key, value, digits)
     type(record_t), intent(inout) :: record
     character(*), intent(in) :: key
@@ -206,20 +206,20 @@ contains
     record%summary(i)%logical_value = value
   end subroutine record_put_logical
 
-  !> A summary value as summary.txt shows it: a real with gtoa (10 significant
-  !> digits; rtoa for digits = 4), an integer with itoa, a logical as yes / no.
+  !> A summary value as summary.txt shows it: a real with table_real (10 significant
+  !> digits; message_real for digits = 4), an integer with integer_text, a logical as yes / no.
   function summary_item_text(item) result(text)
     type(summary_item_t), intent(in) :: item
     character(:), allocatable :: text
     select case (item%kind)
     case (summary_real)
       if (item%digits == 4) then
-        text = rtoa(item%real_value)
+        text = message_real(item%real_value)
       else
-        text = gtoa(item%real_value)
+        text = table_real(item%real_value)
       end if
     case (summary_integer)
-      text = itoa(item%integer_value)
+      text = integer_text(item%integer_value)
     case (summary_logical)
       text = trim(merge('yes', 'no ', item%logical_value))
     case default
@@ -303,7 +303,7 @@ contains
       if (len(file) > 0) then
         warning%text = file
         if (present(line)) then
-          if (line > 0) warning%text = warning%text//':'//itoa(line)
+          if (line > 0) warning%text = warning%text//':'//integer_text(line)
         end if
         warning%text = warning%text//': '
       end if

@@ -35,8 +35,8 @@ contains
     allocate(operators%b(4, 8, gauss_count, mesh%nelem), operators%weight(gauss_count, mesh%nelem), &
              operators%dofs(8, mesh%nelem))
     do e = 1, mesh%nelem
-      call element_b_matrices(deck%geometry, mesh%xy(:, mesh%connectivity(:, e)), operators%b(:, :, :, e), &
-                              operators%weight(:, e), deck%formulation)
+      call element_b_matrices(deck%settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), operators%b(:, :, :, e), &
+                              operators%weight(:, e), deck%settings%formulation)
       operators%dofs(:, e) = element_dofs(mesh, e)
     end do
     end associate

@@ -13,7 +13,7 @@ module visco2d_hdf5
   use hdf5
   use visco2d_kinds, only: dp
   use visco2d_system, only: file_open_write, file_write, file_close
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   implicit none
   private
 
@@ -127,7 +127,7 @@ contains
     if (writer%status /= 0) return
     allocate(image(bytes), stat=status)
     if (status /= 0) then
-      call fail(writer, status, 'not enough memory for the file image ('//itoa(int(bytes, int64))//' bytes)')
+      call fail(writer, status, 'not enough memory for the file image ('//integer_text(int(bytes, int64))//' bytes)')
       return
     end if
     buffer = c_loc(image)
@@ -143,7 +143,7 @@ contains
     if (writer%status /= 0) return
     inquire(file=writer%path, size=size_on_disk, iostat=status)
     if (status /= 0 .or. size_on_disk /= int(bytes, int64)) call fail(writer, -1, 'only '// &
-      itoa(max(size_on_disk, 0_int64))//' of '//itoa(int(bytes, int64))//' bytes reached the disk '// &
+      integer_text(max(size_on_disk, 0_int64))//' of '//integer_text(int(bytes, int64))//' bytes reached the disk '// &
       '(disk full or a file size limit?)')
   end subroutine write_image
 
@@ -153,7 +153,7 @@ contains
     type(h5_writer_t), intent(inout) :: writer
     integer, intent(in) :: status
     character(*), intent(in) :: what
-    if (status /= 0) call fail(writer, status, 'HDF5 failed on '//what//' (status '//itoa(int(status, int64))//')')
+    if (status /= 0) call fail(writer, status, 'HDF5 failed on '//what//' (status '//integer_text(int(status, int64))//')')
   end subroutine check
 
   !> Keep the first failure (status /= 0) with its message.
@@ -268,89 +268,66 @@ contains
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    real(dp), intent(in) :: values(:)
+    real(dp), intent(in), target, contiguous :: values(:)
     character(*), intent(in), optional :: units
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(1)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_DOUBLE, units)
-    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_DOUBLE, c_loc(values), size(values), units)
   end subroutine write_real1
 
   subroutine write_real2(writer, parent, name, values, units)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    real(dp), intent(in) :: values(:, :)
+    real(dp), intent(in), target, contiguous :: values(:, :)
     character(*), intent(in), optional :: units
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(2)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_DOUBLE, units)
-    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_DOUBLE, c_loc(values), size(values), units)
   end subroutine write_real2
 
   subroutine write_real3(writer, parent, name, values, units)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    real(dp), intent(in) :: values(:, :, :)
+    real(dp), intent(in), target, contiguous :: values(:, :, :)
     character(*), intent(in), optional :: units
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(3)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_DOUBLE, units)
-    call h5dwrite_f(dataset, H5T_NATIVE_DOUBLE, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_DOUBLE, c_loc(values), size(values), units)
   end subroutine write_real3
 
   subroutine write_integer1(writer, parent, name, values)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    integer, intent(in) :: values(:)
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(1)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_INTEGER)
-    call h5dwrite_f(dataset, H5T_NATIVE_INTEGER, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    integer, intent(in), target, contiguous :: values(:)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_INTEGER, c_loc(values), size(values))
   end subroutine write_integer1
 
   subroutine write_integer2(writer, parent, name, values)
     type(h5_writer_t), intent(inout) :: writer
     integer(hid_t), intent(in) :: parent
     character(*), intent(in) :: name
-    integer, intent(in) :: values(:, :)
-    integer(hid_t) :: dataset
-    integer(hsize_t) :: dims(2)
-    integer :: status
-    character(:), allocatable :: what
-    if (writer%status /= 0) return
-    what = 'dataset '//name
-    dims = shape(values, kind=hsize_t)
-    dataset = new_dataset(writer, parent, name, dims, H5T_NATIVE_INTEGER)
-    call h5dwrite_f(dataset, H5T_NATIVE_INTEGER, values, dims, status); call check(writer, status, what)
-    call h5dclose_f(dataset, status); call check(writer, status, what)
+    integer, intent(in), target, contiguous :: values(:, :)
+    call write_block(writer, parent, name, shape(values, kind=hsize_t), H5T_NATIVE_INTEGER, c_loc(values), size(values))
   end subroutine write_integer2
+
+  !> One dataset of any rank: its shape `dims`, its HDF5 memory type and the
+  !> address of its `count` contiguous values (the rank-specific h5_write
+  !> procedures above pass them; an empty array makes an empty dataset).
+  subroutine write_block(writer, parent, name, dims, type_id, buffer, count, units)
+    type(h5_writer_t), intent(inout) :: writer
+    integer(hid_t), intent(in) :: parent, type_id
+    character(*), intent(in) :: name
+    integer(hsize_t), intent(in) :: dims(:)
+    type(c_ptr), intent(in) :: buffer
+    integer, intent(in) :: count
+    character(*), intent(in), optional :: units
+    integer(hid_t) :: dataset
+    integer :: status
+    if (writer%status /= 0) return
+    dataset = new_dataset(writer, parent, name, dims, type_id, units)
+    if (writer%status /= 0) return
+    if (count > 0) then
+      call h5dwrite_f(dataset, type_id, buffer, status); call check(writer, status, 'dataset '//name)
+    end if
+    call h5dclose_f(dataset, status); call check(writer, status, 'dataset '//name)
+  end subroutine write_block
 
   !> A fixed-length, null-terminated string attribute (h5py reads it as str/bytes).
   subroutine attribute_text(writer, object, name, text)

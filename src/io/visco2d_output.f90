@@ -8,7 +8,7 @@ module visco2d_output
   use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, geometry_name
   use visco2d_record, only: record_t, summary_item_t, summary_item_text, record_real, unit_of, summary_unit, &
                             summary_real, summary_integer
@@ -44,24 +44,7 @@ contains
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
     character(:), allocatable, intent(out) :: message
-    type(text_file_t) :: out
-    integer :: i, j
-    character(:), allocatable :: line
-    call text_open(out, path)
-    line = trim(record%columns(1))
-    do j = 2, size(record%columns)
-      line = line//','//trim(record%columns(j))
-    end do
-    call text_put(out, line)
-    do i = 1, record%nrow
-      line = gtoa(record%history(1, i))
-      do j = 2, size(record%columns)
-        line = line//','//gtoa(record%history(j, i))
-      end do
-      call text_put(out, line)
-    end do
-    call text_close(out)
-    message = out%message
+    call write_csv(path, record%columns, record%history(:, 1:record%nrow), message)
   end subroutine write_history
 
   !> pressure.csv: the contact pressure over radius (record%pressure, visco2d_impact's
@@ -70,32 +53,46 @@ contains
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
     character(:), allocatable, intent(out) :: message
+    call write_csv(path, record%pressure%columns, record%pressure%values, message, integer_column='node')
+  end subroutine write_pressure
+
+  !> A CSV table: the header row of the column names, then one row per column
+  !> of values (ncolumn, nrow), each number by table_real (10 significant digits)
+  !> but the column named `integer_column` (the deck's node numbers), written
+  !> as an integer.
+  subroutine write_csv(path, columns, values, message, integer_column)
+    character(*), intent(in) :: path
+    character(*), intent(in) :: columns(:)
+    real(dp), intent(in) :: values(:, :)
+    character(:), allocatable, intent(out) :: message
+    character(*), intent(in), optional :: integer_column
     type(text_file_t) :: out
+    logical :: whole(size(columns))
     integer :: i, j
     character(:), allocatable :: line
+    whole = .false.
+    if (present(integer_column)) whole = columns == integer_column
     call text_open(out, path)
-    associate (table => record%pressure)
-    line = trim(table%columns(1))
-    do j = 2, size(table%columns)
-      line = line//','//trim(table%columns(j))
+    line = trim(columns(1))
+    do j = 2, size(columns)
+      line = line//','//trim(columns(j))
     end do
     call text_put(out, line)
-    do i = 1, size(table%values, 2)
+    do i = 1, size(values, 2)
       line = ''
-      do j = 1, size(table%columns)
+      do j = 1, size(columns)
         if (j > 1) line = line//','
-        if (trim(table%columns(j)) == 'node') then          ! the deck's node number
-          line = line//itoa(nint(table%values(j, i)))
+        if (whole(j)) then
+          line = line//integer_text(nint(values(j, i)))
         else
-          line = line//gtoa(table%values(j, i))
+          line = line//table_real(values(j, i))
         end if
       end do
       call text_put(out, line)
     end do
-    end associate
     call text_close(out)
     message = out%message
-  end subroutine write_pressure
+  end subroutine write_csv
 
   !> The legacy-style printed listing.  !> About the size of results.h5: its arrays and 64 kB for groups and attributes.
   function h5_bytes(deck, record) result(bytes)
@@ -167,7 +164,7 @@ contains
     call h5_open_file(writer, path, h5_bytes(deck, record))
     call h5_attribute(writer, writer%file, 'case', case_name)
     call h5_attribute(writer, writer%file, 'title', deck%title)
-    call h5_attribute(writer, writer%file, 'geometry', geometry_name(deck%geometry))
+    call h5_attribute(writer, writer%file, 'geometry', geometry_name(deck%settings%geometry))
     call h5_attribute(writer, writer%file, 'analysis', analysis_name(deck%analysis))
 
     group = h5_group(writer, writer%file, 'mesh')

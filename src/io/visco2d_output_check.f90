@@ -9,7 +9,7 @@ module visco2d_output_check
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, analysis_dynamic, initial_velocity
   use visco2d_record, only: record_t, snapshot_t, summary_item_text, summary_text, summary_real
   implicit none
@@ -65,7 +65,7 @@ contains
         do j = 1, size(record%columns)
           if (ieee_is_finite(record%history(j, i))) cycle
           where = 'history column '//trim(record%columns(j))//' = '//non_finite_text(record%history(j, i))// &
-                  ' in row '//itoa(i)//' of '//itoa(record%nrow)//row_place(record, i)
+                  ' in row '//integer_text(i)//' of '//integer_text(record%nrow)//row_place(record, i)
           exit rows
         end do
       end do rows
@@ -78,7 +78,7 @@ contains
     end if
     if (len(where) == 0 .and. allocated(record%pressure%values)) then
       if (.not. all(ieee_is_finite(record%pressure%values))) where = 'the contact pressure over radius '// &
-        '(pressure.csv) holds '//itoa(count(.not. ieee_is_finite(record%pressure%values)))//' non-finite value(s)'
+        '(pressure.csv) holds '//integer_text(count(.not. ieee_is_finite(record%pressure%values)))//' non-finite value(s)'
     end if
     if (len(where) == 0) return
     call set_error(error, producer//' produced a non-finite result: '//where// &
@@ -98,9 +98,9 @@ contains
       if (.not. ieee_is_finite(record%history(j, row))) cycle
       if (len(text) > 0) text = text//', '
       if (trim(record%columns(j)) == 'step' .and. abs(record%history(j, row)) < 1.0e9_dp) then
-        text = text//'step '//itoa(nint(record%history(j, row)))
+        text = text//'step '//integer_text(nint(record%history(j, row)))
       else
-        text = text//trim(record%columns(j))//' = '//gtoa(record%history(j, row))
+        text = text//trim(record%columns(j))//' = '//table_real(record%history(j, row))
       end if
     end do
     if (len(text) > 0) text = ' ('//text//')'
@@ -119,7 +119,7 @@ contains
       where = 'the time of '//name//' = '//non_finite_text(snapshot%time)
       return
     end if
-    name = name//' at t = '//gtoa(snapshot%time)//' s'
+    name = name//' at t = '//table_real(snapshot%time)//' s'
     if (allocated(snapshot%displacement)) where = nodal(snapshot%displacement, 'displacement')
     if (len(where) == 0 .and. allocated(snapshot%velocity)) where = nodal(snapshot%velocity, 'velocity')
     if (len(where) == 0 .and. allocated(snapshot%acceleration)) where = nodal(snapshot%acceleration, 'acceleration')
@@ -140,7 +140,7 @@ contains
         do c = 1, size(values, 1)
           if (ieee_is_finite(values(c, k))) cycle
           text = 'field '//field//' of '//name//' = '//non_finite_text(values(c, k))//' at '//node_name(k)// &
-                 ', component '//itoa(c)
+                 ', component '//integer_text(c)
           return
         end do
       end do
@@ -156,7 +156,7 @@ contains
           do c = 1, size(values, 1)
             if (ieee_is_finite(values(c, g, e))) cycle
             text = 'field stress_gauss of '//name//' = '//non_finite_text(values(c, g, e))//' at '// &
-                   element_name(e)//', Gauss point '//itoa(g)//', component '//itoa(c)
+                   element_name(e)//', Gauss point '//integer_text(g)//', component '//integer_text(c)
             return
           end do
         end do
@@ -166,18 +166,18 @@ contains
     function node_name(k) result(text)
       integer, intent(in) :: k
       character(:), allocatable :: text
-      text = 'node index '//itoa(k)
+      text = 'node index '//integer_text(k)
       if (allocated(deck%mesh%node_id)) then
-        if (k <= size(deck%mesh%node_id)) text = 'node '//itoa(deck%mesh%node_id(k))
+        if (k <= size(deck%mesh%node_id)) text = 'node '//integer_text(deck%mesh%node_id(k))
       end if
     end function node_name
 
     function element_name(e) result(text)
       integer, intent(in) :: e
       character(:), allocatable :: text
-      text = 'element index '//itoa(e)
+      text = 'element index '//integer_text(e)
       if (allocated(deck%mesh%element_id)) then
-        if (e <= size(deck%mesh%element_id)) text = 'element '//itoa(deck%mesh%element_id(e))
+        if (e <= size(deck%mesh%element_id)) text = 'element '//integer_text(deck%mesh%element_id(e))
       end if
     end function element_name
   end function snapshot_problem
@@ -211,32 +211,32 @@ contains
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%curves)) then
-      do k = 1, size(deck%curves)
-        call check_values([deck%curves(k)%time, deck%curves(k)%value], 'points of curve '//deck%curves(k)%name, &
-                          deck%curves(k)%line, 'CURVE')
+    if (allocated(deck%loads%curves)) then
+      do k = 1, size(deck%loads%curves)
+        call check_values([deck%loads%curves(k)%time, deck%loads%curves(k)%value], &
+                          'points of curve '//deck%loads%curves(k)%name, deck%loads%curves(k)%line, 'CURVE')
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%fixes)) then
-      do k = 1, size(deck%fixes)
-        call check_values(deck%fixes(k)%value, 'prescribed displacement', deck%fixes(k)%line, 'FIX')
+    if (allocated(deck%loads%fixes)) then
+      do k = 1, size(deck%loads%fixes)
+        call check_values(deck%loads%fixes(k)%value, 'prescribed displacement', deck%loads%fixes(k)%line, 'FIX')
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%pressures)) then
-      do k = 1, size(deck%pressures)
-        call check_values([deck%pressures(k)%value], 'pressure', deck%pressures(k)%line, 'PRESSURE')
+    if (allocated(deck%loads%pressures)) then
+      do k = 1, size(deck%loads%pressures)
+        call check_values([deck%loads%pressures(k)%value], 'pressure', deck%loads%pressures(k)%line, 'PRESSURE')
         if (allocated(error)) return
       end do
     end if
-    if (allocated(deck%forces)) then
-      do k = 1, size(deck%forces)
-        call check_values(deck%forces(k)%value, 'force', deck%forces(k)%line, 'FORCE')
+    if (allocated(deck%loads%forces)) then
+      do k = 1, size(deck%loads%forces)
+        call check_values(deck%loads%forces(k)%value, 'force', deck%loads%forces(k)%line, 'FORCE')
         if (allocated(error)) return
       end do
     end if
-    call check_values([deck%gravity], 'gravity', deck%gravity_line, 'GRAVITY'); if (allocated(error)) return
+    call check_values([deck%loads%gravity], 'gravity', deck%gravity_line, 'GRAVITY'); if (allocated(error)) return
     if (deck%plate%line > 0) call check_values([deck%plate%z], 'plate height', deck%plate%line, 'PLATE')
     if (allocated(error)) return
     if (deck%analysis == analysis_dynamic) then
@@ -254,8 +254,8 @@ contains
     if (allocated(deck%mesh%xy)) then
       do i = 1, size(deck%mesh%xy, 2)
         if (all(ieee_is_finite(deck%mesh%xy(:, i)))) cycle
-        call set_error(error, 'node '//itoa(deck%mesh%node_id(i))//' has a non-finite coordinate (r, z) = ('// &
-          gtoa(deck%mesh%xy(1, i))//', '//gtoa(deck%mesh%xy(2, i))//'); no output is written', &
+        call set_error(error, 'node '//integer_text(deck%mesh%node_id(i))//' has a non-finite coordinate (r, z) = ('// &
+          table_real(deck%mesh%xy(1, i))//', '//table_real(deck%mesh%xy(2, i))//'); no output is written', &
           file=deck%cards%file, line=card_line(deck, mesh_card()), card=card_name(deck, mesh_card()))
         return
       end do
@@ -326,7 +326,7 @@ contains
     else if (value < 0.0_dp) then
       text = '-Infinity'
     else
-      text = gtoa(value)
+      text = table_real(value)
     end if
   end function non_finite_text
 

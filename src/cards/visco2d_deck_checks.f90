@@ -1,0 +1,270 @@
+!> The cross-card checks of a deck, run once every card is read (and, for
+!> those that need nodes and elements, once the mesh is built): cards that
+!> belong to one analysis kind, the plate, STOP, masses, memory materials,
+!> pressure edge sets, load sizes; and the warning for a locking material.
+module visco2d_deck_checks
+  use visco2d_kinds, only: dp, formulation_standard
+  use visco2d_error, only: error_t
+  use visco2d_strings, only: integer_text, message_real, short_real
+  use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, range_t, in_range, range_text
+  use visco2d_material, only: has_memory
+  use visco2d_dynamic_cards, only: standard_gravity
+  use visco2d_contact_cards, only: stop_name, stop_at_tend, stop_at_max_deformation, stop_at_separation
+  use visco2d_mesh, only: edge_set_name
+  use visco2d_deck_types, only: deck_t, analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
+                                initial_velocity, line_error, card_keyword_at, add_warning
+  implicit none
+  private
+
+  public :: check_time_stages, check_dynamic_cards, check_contact_cards, check_plate_position, check_mass
+  public :: check_plate_supports
+  public :: check_locking, check_memory_needs_time, check_load_sizes, check_pressures
+
+contains
+
+  !> TIME belongs to QUASISTATIC and DYNAMIC (required there), not to STATIC.
+  subroutine check_time_stages(deck, analysis_line, error)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: analysis_line
+    type(error_t), allocatable, intent(inout) :: error
+    if (deck%analysis /= analysis_static .and. size(deck%stages) == 0) then
+      call line_error(error, deck, analysis_line, analysis_name(deck%analysis)// &
+                      ' analysis needs a TIME DT=.. TEND=.. card', '1')
+    else if (deck%analysis == analysis_static .and. size(deck%stages) > 0) then
+      call line_error(error, deck, deck%stages(1)%line, &
+                      'TIME cards need ANALYSIS QUASISTATIC or DYNAMIC (STATIC has no time axis)')
+    end if
+  end subroutine check_time_stages
+
+  !> WILSON, INITIAL and DROP belong to DYNAMIC; INITIAL VZ= and DROP exclude
+  !> each other; OUTPUT needs a time axis and its FIELDS times must lie on it.
+  subroutine check_dynamic_cards(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, lines(3)
+    real(dp) :: speed(2)
+    character(len=10), parameter :: names(3) = ['WILSON    ', 'INITIAL   ', 'DROP      ']
+    associate (d => deck%dynamics)
+    lines = [d%wilson_line, d%initial_line, d%drop_line]
+    if (deck%analysis /= analysis_dynamic) then
+      do k = 1, size(lines)
+        if (lines(k) == 0) cycle
+        call line_error(error, deck, lines(k), trim(card_keyword_at(deck, lines(k), names(k)))// &
+                        ' needs ANALYSIS DYNAMIC (this deck is '// &
+                        analysis_name(deck%analysis)//')')
+        return
+      end do
+    end if
+    if (d%drop_line > 0) then
+      speed = initial_velocity(deck)
+      if (.not. in_range(speed(2), speed_range)) then
+        call line_error(error, deck, d%drop_line, 'DROP HEIGHT = '//short_real(d%drop_height)//' m with g = '// &
+          short_real(merge(deck%loads%gravity, standard_gravity, deck%gravity_line > 0))//' m/s^2 gives VZ = '// &
+          short_real(speed(2))//' m/s; the speed must be '//range_text(speed_range), 'HEIGHT')
+        return
+      end if
+    end if
+    if (d%drop_line > 0 .and. d%initial_line > 0) then
+      if (d%velocity(2) /= 0.0_dp) then
+        call line_error(error, deck, d%drop_line, 'DROP sets the initial VZ = -sqrt(2 g h); the INITIAL card '// &
+                        'on line '//integer_text(d%initial_line)//' sets VZ too: give one of them', 'HEIGHT')
+        return
+      end if
+    end if
+    end associate
+    if (deck%output%line > 0) then
+      if (deck%analysis /= analysis_dynamic) then
+        call line_error(error, deck, deck%output%line, 'OUTPUT applies to ANALYSIS DYNAMIC (this deck is '// &
+                        analysis_name(deck%analysis)//'; QUASISTATIC records every step)')
+        return
+      end if
+      if (size(deck%output%field_times) > 0 .and. size(deck%stages) > 0) then
+        if (deck%output%field_times(size(deck%output%field_times)) > deck%stages(size(deck%stages))%end_time) then
+          call line_error(error, deck, deck%output%line, 'FIELDS time '// &
+            short_real(deck%output%field_times(size(deck%output%field_times)))// &
+            ' s is after the end of the run (TEND = '//short_real(deck%stages(size(deck%stages))%end_time)//' s)', &
+            'FIELDS')
+          return
+        end if
+      end if
+    end if
+  end subroutine check_dynamic_cards
+
+  !> PLATE belongs to STATIC (the body pressed onto the plate) and DYNAMIC
+  !> (impact); STOP to DYNAMIC. MAXDEFORMATION and SEPARATION need a plate,
+  !> SEPARATION one that lets go (RELEASE=YES). A dynamic run with a plate
+  !> stops at maximum deformation unless a STOP card says otherwise.
+  subroutine check_contact_cards(deck, error)
+    type(deck_t), intent(inout) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    if (deck%plate%line > 0 .and. deck%analysis == analysis_quasistatic) then
+      call line_error(error, deck, deck%plate%line, &
+                      'PLATE needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no contact search)'); return
+    end if
+    if (deck%pad%line > 0 .and. deck%plate%line == 0) then
+      call line_error(error, deck, deck%pad%line, 'PAD needs a PLATE card: the pad lies on the rigid plate, '// &
+                      'its top surface at the PLATE card''s Z'); return
+    end if
+    if (deck%pad%line > 0 .and. deck%analysis == analysis_quasistatic) then
+      call line_error(error, deck, deck%pad%line, 'PAD needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no '// &
+                      'contact search)'); return
+    end if
+    if (deck%stop_line == 0) then
+      if (deck%plate%line > 0 .and. deck%analysis == analysis_dynamic) deck%stop_at = stop_at_max_deformation
+      return
+    end if
+    if (deck%analysis /= analysis_dynamic) then
+      call line_error(error, deck, deck%stop_line, 'STOP needs ANALYSIS DYNAMIC (this deck is '// &
+                      analysis_name(deck%analysis)//')'); return
+    end if
+    if (deck%stop_at /= stop_at_tend .and. deck%plate%line == 0) then
+      call line_error(error, deck, deck%stop_line, 'STOP AT='//stop_name(deck%stop_at)// &
+                      ' needs a PLATE card (or use STOP AT=TEND)', 'AT'); return
+    end if
+    if (deck%stop_at == stop_at_separation .and. .not. deck%plate%release) then
+      call line_error(error, deck, deck%stop_line, 'STOP AT=SEPARATION needs PLATE ... RELEASE=YES (line '// &
+                      integer_text(deck%plate%line)//'): without it contact nodes are held for good and the body never '// &
+                      'leaves the plate', 'AT'); return
+    end if
+  end subroutine check_contact_cards
+
+  !> The body starts on or above the plate: no node below z = Z.
+  subroutine check_plate_position(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: lowest
+    if (deck%plate%line == 0) return
+    lowest = minloc(deck%mesh%xy(2, :), dim=1)
+    if (deck%mesh%xy(2, lowest) < deck%plate%z - 1.0e-9_dp*deck%mesh%size) then
+      call line_error(error, deck, deck%plate%line, 'node '//integer_text(deck%mesh%node_id(lowest))//' (r = '// &
+        message_real(deck%mesh%xy(1, lowest))//', z = '//message_real(deck%mesh%xy(2, lowest))//') lies below the plate z = '// &
+        message_real(deck%plate%z)//': the body must start on or above the plate', 'Z')
+    end if
+  end subroutine check_plate_position
+
+  !> No FIX of u_z on a node that starts on the plate: the support, not the
+  !> plate, would take the contact force there (the pressure at the pole read
+  !> 0 while the plate force was 196 N), and the plate already holds the body
+  !> in z. Refused at the FIX card.
+  subroutine check_plate_supports(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, i, node
+    if (deck%plate%line == 0) return
+    do k = 1, size(deck%loads%fixes)
+      if (.not. deck%loads%fixes(k)%fix_z) cycle
+      do i = 1, size(deck%loads%fixes(k)%nodes)
+        node = deck%loads%fixes(k)%nodes(i)
+        if (deck%mesh%xy(2, node) > deck%plate%z + 1.0e-9_dp*deck%mesh%size) cycle
+        call line_error(error, deck, deck%loads%fixes(k)%line, 'node '//integer_text(deck%mesh%node_id(node))//' (r = '// &
+          message_real(deck%mesh%xy(1, node))//', z = '//message_real(deck%mesh%xy(2, node))//') lies on the plate (PLATE Z = '// &
+          message_real(deck%plate%z)//', line '//integer_text(deck%plate%line)//'): a FIX of its u_z would take the contact '// &
+          'force there instead of the plate (the pressure q would read 0); the plate already holds the body '// &
+          'in z: fix R only, or fix a node off the plate')
+        return
+      end do
+    end do
+  end subroutine check_plate_supports
+
+  !> Inertia and gravity need mass: every material in use needs RHO > 0.
+  subroutine check_mass(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (deck%analysis /= analysis_dynamic .and. deck%gravity_line == 0) return
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%density > 0.0_dp) cycle
+      if (.not. any(deck%mesh%element_material == k)) cycle
+      call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//' has no density: '// &
+        trim(merge('ANALYSIS DYNAMIC', 'GRAVITY         ', deck%analysis == analysis_dynamic))// &
+        ' needs RHO= > 0 (kg/m^3)', 'RHO')
+      return
+    end do
+  end subroutine check_mass
+
+  !> A warning for a nearly incompressible material (K/G > 1000, nu > 0.4995)
+  !> in the standard element, which locks: FORMULATION BBAR does not.
+  subroutine check_locking(deck)
+    type(deck_t), intent(inout) :: deck
+    integer :: k
+    real(dp) :: ratio
+    if (deck%settings%formulation /= formulation_standard) return
+    do k = 1, size(deck%materials)
+      if (.not. any(deck%mesh%element_material == k)) cycle
+      ratio = deck%materials(k)%bulk/max(deck%materials(k)%shear, tiny(1.0_dp))   ! instantaneous G(0)
+      if (ratio > 1000.0_dp) call add_warning(deck, deck%materials(k)%line, 'MATERIAL', 'material '// &
+        deck%materials(k)%id//' is nearly incompressible (K/G = '//message_real(ratio)//'): the standard '// &
+        'element locks (too stiff); FORMULATION BBAR avoids that')
+    end do
+  end subroutine check_locking
+
+  !> A material with memory needs time: STATIC cannot say which modulus to use.
+  subroutine check_memory_needs_time(deck, analysis_line, error)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: analysis_line
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (deck%analysis /= analysis_static) return
+    do k = 1, size(deck%materials)
+      if (.not. has_memory(deck%materials(k))) cycle
+      if (.not. any(deck%mesh%element_material == k)) cycle
+      call line_error(error, deck, analysis_line, 'material '//deck%materials(k)%id//' relaxes in time '// &
+        '(PRONY terms with BETA > 0): use ANALYSIS QUASISTATIC or DYNAMIC with TIME cards', '1')
+      return
+    end do
+  end subroutine check_memory_needs_time
+  !> A load or prescribed displacement times its curve stays in its range
+  !> (each within its own, the product too: P = 1e12 Pa with a curve up to
+  !> 1e6 would reach 1e18 Pa).
+  subroutine check_load_sizes(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    do k = 1, size(deck%loads%pressures)
+      call check_product(deck%loads%pressures(k)%line, [deck%loads%pressures(k)%value], &
+        deck%loads%pressures(k)%curve, 'P', pressure_range)
+      if (allocated(error)) return
+    end do
+    do k = 1, size(deck%loads%forces)
+      call check_product(deck%loads%forces(k)%line, deck%loads%forces(k)%value, deck%loads%forces(k)%curve, &
+        'FR, FZ', force_range)
+      if (allocated(error)) return
+    end do
+    do k = 1, size(deck%loads%fixes)
+      call check_product(deck%loads%fixes(k)%line, deck%loads%fixes(k)%value, deck%loads%fixes(k)%curve, 'UR, UZ', &
+        length_range)
+      if (allocated(error)) return
+    end do
+  contains
+    subroutine check_product(line, values, curve, names, range)
+      integer, intent(in) :: line
+      real(dp), intent(in) :: values(:)
+      integer, intent(in) :: curve
+      character(*), intent(in) :: names
+      type(range_t), intent(in) :: range
+      real(dp) :: largest
+      if (curve == 0) return
+      largest = maxval(abs(values))*maxval(abs(deck%loads%curves(curve)%value))
+      if (largest <= range%upper) return
+      call line_error(error, deck, line, names//' times curve '//deck%loads%curves(curve)%name//' (line '// &
+        integer_text(deck%loads%curves(curve)%line)//') reaches '//message_real(largest)//': it must stay ' &
+          //range_text(range), 'CURVE')
+    end subroutine check_product
+  end subroutine check_load_sizes
+
+  !> Each PRESSURE edge set has boundary edges in the mesh.
+  subroutine check_pressures(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    do k = 1, size(deck%loads%pressures)
+      if (.not. any(deck%mesh%edge_set == deck%loads%pressures(k)%edge_set)) then
+        call line_error(error, deck, deck%loads%pressures(k)%line, &
+          'edge set '//edge_set_name(deck%loads%pressures(k)%edge_set)// &
+          ' has no boundary edges in this mesh', '1')
+        return
+      end if
+    end do
+  end subroutine check_pressures
+
+end module visco2d_deck_checks

@@ -1,0 +1,230 @@
+!> The MATERIAL and PRONY cards: elastic, viscoelastic (shear Prony series,
+!> eq. [12]) and uniaxial (eq. [47], converted exactly by eq. [48]) materials,
+!> completed once all their PRONY cards are read.
+module visco2d_material_cards
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t
+  use visco2d_strings, only: short_real, message_real, integer_text, compact_real
+  use visco2d_ranges, only: modulus_range, density_range, rate_range, bulk_shear_ratio_limit
+  use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, positional_word, check_fields_used, &
+                           has_field, field_column
+  use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
+                              material_kind_uniaxial, elastic_constants_from_e_nu
+  use visco2d_relaxation, only: uniaxial_to_shear
+  use visco2d_sorting, only: sorted_order
+  implicit none
+  private
+
+  public :: read_material, read_prony, finish_material
+
+contains
+
+  !> MATERIAL id ELASTIC E=.. NU=.. [RHO=..]   or   MATERIAL id ELASTIC G=.. K=.. [RHO=..]
+  !> MATERIAL id VISCOELASTIC K=.. [RHO=..]      followed by PRONY G=.. BETA=.. cards
+  !> MATERIAL id UNIAXIAL NU=.. [RHO=..]         followed by PRONY E=.. ALPHA=.. cards
+  subroutine read_material(cards, card, materials, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(material_t), allocatable, intent(inout) :: materials(:)
+    type(error_t), allocatable, intent(inout) :: error
+    type(material_t) :: material
+    character(:), allocatable :: kind
+    integer :: k
+    call positional_word(cards, card, 1, 'material id', material%id, error); if (allocated(error)) return
+    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC or UNIAXIAL)', kind, error)
+    if (allocated(error)) return
+    material%line = card%line
+    do k = 1, size(materials)
+      if (materials(k)%id == material%id) then
+        call field_error('material '//material%id//' defined twice (first on line '//integer_text(materials(k)%line)//')', &
+                         '1'); return
+      end if
+    end do
+    call named_real(cards, card, 'RHO', material%density, error, default=0.0_dp, range=density_range)
+    if (allocated(error)) return
+    select case (kind)
+    case ('ELASTIC')
+      material%kind = material_kind_elastic
+      if ((has_field(card, 'E') .or. has_field(card, 'NU')) .and. (has_field(card, 'G') .or. has_field(card, 'K'))) then
+        call field_error('give the elastic constants one way: E= and NU=, or G= and K= (this card mixes them: '// &
+          'two constants fix an isotropic material, a third would contradict them)', &
+          trim(merge('G', 'K', has_field(card, 'G')))); return
+      end if
+      if (has_field(card, 'E') .or. has_field(card, 'NU')) then
+        call named_real(cards, card, 'E', material%young, error, range=modulus_range); if (allocated(error)) return
+        call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
+        if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
+          call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
+        end if
+        call elastic_constants_from_e_nu(material%young, material%poisson, material%shear, material%bulk)
+        if (.not. conditioned(material)) then
+          call field_error(ratio_message(material), 'NU'); return
+        end if
+      else
+        call named_real(cards, card, 'G', material%shear, error, range=modulus_range); if (allocated(error)) return
+        call named_real(cards, card, 'K', material%bulk, error, range=modulus_range); if (allocated(error)) return
+        call instantaneous_e_nu(material)
+        if (.not. conditioned(material)) then
+          call field_error(ratio_message(material), 'K'); return
+        end if
+      end if
+      material%long_term_shear = material%shear
+      call check_fields_used(cards, card, error, 'MATERIAL id ELASTIC E=.. NU=.. [RHO=..] or G=.. K=.. [RHO=..]')
+      if (allocated(error)) return
+    case ('VISCOELASTIC')
+      material%kind = material_kind_viscoelastic
+      call named_real(cards, card, 'K', material%bulk, error, range=modulus_range); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'MATERIAL id VISCOELASTIC K=.. [RHO=..], then PRONY G=.. BETA=..')
+      if (allocated(error)) return
+      allocate(material%prony_shear(0), material%prony_rate(0), material%prony_lines(0))
+    case ('UNIAXIAL')
+      material%kind = material_kind_uniaxial
+      call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
+      if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
+        call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
+      end if
+      call check_fields_used(cards, card, error, 'MATERIAL id UNIAXIAL NU=.. [RHO=..], then PRONY E=.. ALPHA=..')
+      if (allocated(error)) return
+      allocate(material%uniaxial_young(0), material%uniaxial_rate(0), material%prony_lines(0))
+    case default
+      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC or UNIAXIAL, got "'// &
+                      kind//'"', field_column(card, '2')); return
+    end select
+    material%card_column = field_column(card, 'K')
+    if (material%kind == material_kind_uniaxial) material%card_column = field_column(card, 'NU')
+    materials = [materials, material]
+  contains
+    subroutine field_error(message, name)
+      character(*), intent(in) :: message
+      character(*), intent(in), optional :: name
+      integer :: column
+      column = card%column
+      if (present(name)) column = field_column(card, name)
+      call card_error(error, cards, card, message, column)
+    end subroutine field_error
+  end subroutine read_material
+
+  !> PRONY G=.. BETA=.. (VISCOELASTIC) or PRONY E=.. ALPHA=.. (UNIAXIAL): one term of eq. [12] or [47].
+  subroutine read_prony(cards, card, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: modulus, rate
+    select case (material%kind)
+    case (material_kind_viscoelastic)
+      call named_real(cards, card, 'G', modulus, error, range=modulus_range); if (allocated(error)) return
+      call named_real(cards, card, 'BETA', rate, error, range=rate_range); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'PRONY G=.. BETA=.. after MATERIAL id VISCOELASTIC')
+      if (allocated(error)) return
+      call check_new_rate(material%prony_rate, 'BETA', 'G'); if (allocated(error)) return
+      material%prony_shear = [material%prony_shear, modulus]
+      material%prony_rate = [material%prony_rate, rate]
+      material%prony_lines = [material%prony_lines, card%line]
+    case (material_kind_uniaxial)
+      call named_real(cards, card, 'E', modulus, error, range=modulus_range); if (allocated(error)) return
+      call named_real(cards, card, 'ALPHA', rate, error, range=rate_range); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'PRONY E=.. ALPHA=.. after MATERIAL id UNIAXIAL')
+      if (allocated(error)) return
+      call check_new_rate(material%uniaxial_rate, 'ALPHA', 'E'); if (allocated(error)) return
+      material%uniaxial_young = [material%uniaxial_young, modulus]
+      material%uniaxial_rate = [material%uniaxial_rate, rate]
+      material%prony_lines = [material%prony_lines, card%line]
+    case default
+      call card_error(error, cards, card, 'PRONY terms belong to a VISCOELASTIC or UNIAXIAL material; material '// &
+                      material%id//' is ELASTIC')
+    end select
+  contains
+    !> One term per rate: a second term with the same rate (a duplicated
+    !> line?) would silently add to the first.
+    subroutine check_new_rate(rates, rate_name, modulus_name)
+      real(dp), intent(in) :: rates(:)
+      character(*), intent(in) :: rate_name, modulus_name
+      integer :: k
+      do k = 1, size(rates)
+        if (rates(k) /= rate) cycle
+        call card_error(error, cards, card, 'material '//material%id//' already has a term with '//rate_name//' = '// &
+          short_real(rate)//' 1/s (line '//integer_text(material%prony_lines(k))//'): give one term per rate, with the '// &
+          'sum of their '//modulus_name, field_column(card, rate_name))
+        return
+      end do
+    end subroutine check_new_rate
+  end subroutine read_prony
+
+  !> Complete a material once its PRONY cards are read: convert a uniaxial
+  !> series (eq. [48], exactly), fold beta = 0 terms into G_inf, sort the
+  !> memory terms by rate, and set the instantaneous G, E and nu.
+  subroutine finish_material(cards, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp), allocatable :: shear(:), rate(:)
+    character(:), allocatable :: message
+    integer, allocatable :: order(:)
+    if (material%kind == material_kind_elastic) return
+    if (material%kind == material_kind_uniaxial) then
+      if (size(material%uniaxial_young) == 0) then
+        call material_error('material '//material%id//' needs at least one PRONY E=.. ALPHA=.. card'); return
+      end if
+      call uniaxial_to_shear(material%uniaxial_young, material%uniaxial_rate, material%poisson, &
+                             material%bulk, shear, rate, message)
+      if (len(message) > 0) then
+        call material_error('material '//material%id//': the uniaxial series does not convert to shear: '// &
+                            message); return
+      end if
+    else
+      if (size(material%prony_shear) == 0) then
+        call material_error('material '//material%id//' needs at least one PRONY G=.. BETA=.. card'); return
+      end if
+      shear = material%prony_shear
+      rate = material%prony_rate
+    end if
+    material%long_term_shear = sum(shear, mask=rate == 0.0_dp)
+    shear = pack(shear, rate > 0.0_dp)
+    rate = pack(rate, rate > 0.0_dp)
+    order = sorted_order(rate)                  ! by increasing rate
+    material%prony_shear = shear(order)
+    material%prony_rate = rate(order)
+    material%shear = material%long_term_shear + sum(material%prony_shear)
+    call instantaneous_e_nu(material)
+    if (.not. conditioned(material)) call material_error(ratio_message(material), material%card_column)
+  contains
+    subroutine material_error(message, column)
+      character(*), intent(in) :: message
+      integer, intent(in), optional :: column
+      integer :: k
+      do k = 1, cards%count
+        if (cards%cards(k)%line == material%line) then
+          call card_error(error, cards, cards%cards(k), message, column)
+          return
+        end if
+      end do
+    end subroutine material_error
+  end subroutine finish_material
+
+  !> The instantaneous K/G within [1/limit, limit] (nu within about
+  !> (-1 + 1e-6, 0.5 - 1e-6)): beyond, the stiffness mixes terms 1e6 times apart
+  !> and the shear response drowns in the round-off of the bulk one.
+  pure logical function conditioned(material)
+    type(material_t), intent(in) :: material
+    conditioned = material%bulk <= bulk_shear_ratio_limit*material%shear .and. &
+                  material%shear <= bulk_shear_ratio_limit*material%bulk
+  end function conditioned
+
+  function ratio_message(material) result(message)
+    type(material_t), intent(in) :: material
+    character(:), allocatable :: message
+    message = 'material '//material%id//': K/G = '//message_real(material%bulk/material%shear)//' (nu = '// &
+      short_real(material%poisson)//') is outside ['//compact_real(1.0_dp/bulk_shear_ratio_limit)//', '// &
+      compact_real(bulk_shear_ratio_limit)//']: the stiffness would be ill-conditioned '// &
+      '(nu closer than 5e-7 to 0.5, or than 1e-6 to -1)'
+  end function ratio_message
+
+  !> E and nu of the instantaneous moduli G(0), K.
+  pure subroutine instantaneous_e_nu(material)
+    type(material_t), intent(inout) :: material
+    material%young = 9.0_dp*material%bulk*material%shear/(3.0_dp*material%bulk + material%shear)
+    material%poisson = (3.0_dp*material%bulk - 2.0_dp*material%shear)/ &
+                       (2.0_dp*(3.0_dp*material%bulk + material%shear))
+  end subroutine instantaneous_e_nu
+end module visco2d_material_cards
