@@ -18,8 +18,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from check_layers import BASE_FLOORS, FLOORS, MODULE, USE  # noqa: E402
+from check_layers import BASE_FLOORS, FLOORS, MODULE, USE  # noqa: E402  (beside this script: sys.path[0])
 
 WHAT = {
     "core": "kinds, errors, strings, the record, sorting",
