@@ -46,17 +46,16 @@ grep -q 'running' "$tmp/log2.txt" && fail "second call ran a deck again" || pass
 # 3. The exact Hertz curve: its peak is eq. [43] and t_m = 1.4716 alpha_m / V (the
 #    Timoshenko-Goodier constant), q_m eq. [45]. RK4 with 4000 steps over 1.25 t_m:
 #    the peak value is flat (error ~ (dt/t_m)^2 < 1e-6), the time is sampled to dt/2 = 2e-4 t_m.
-python3 - <<'EOF'
+python3 - <<'EOF' || fail "the Hertz checks did not run (python exit status $?)"
 import math, sys
-sys.path.insert(0, "scripts")
-import figures as F
+from visco2d import hertz as F
 E, nu, R, M, V = 18.11e6, 0.219, 0.0366, 0.155, 0.9982     # the paper's Table 1 data
-am = F.hertz_alpha_max(E, nu, R, M, V)
-t, a, q = F.hertz_exact(E, nu, R, M, V, 1.25 * 1.4716 * am / V)
+am = F.alpha_max(E, nu, R, M, V)
+t, a, q = F.exact(E, nu, R, M, V, 1.25 * 1.4716 * am / V)
 k = a.argmax()
 checks = [("alpha_m eq. [43] (paper 1.097 mm)", a[k], am, 1e-6),
           ("t_m = 1.4716 alpha_m / V", t[k], 1.4716 * am / V, 5e-4),
-          ("q_m eq. [45] (paper 2.10 MPa)", q[k], F.hertz_pressure(E, nu, R, am), 1e-6),
+          ("q_m eq. [45] (paper 2.10 MPa)", q[k], F.pressure(E, nu, R, am), 1e-6),
           ("alpha_m = 1.0962 mm (deck comment)", am * 1e3, 1.0962, 1e-4)]
 for name, got, want, rtol in checks:
     ok = abs(got - want) <= rtol * abs(want)

@@ -54,11 +54,10 @@ ls "$tmp"/out/*/*.part.png > /dev/null 2>&1 && fail "a temporary .part.png was l
 # 2. The envelope the report draws: its nodal averaging of the Gauss-point envelope is the file's
 #    own max_shear_envelope_nodal (to round-off), the outline's level (envelope / threshold = 1)
 #    lies between the smallest and largest nodal ratio, and the numbers panel quotes the summary.
-python3 - "$tmp/out/drop_bruise" <<'EOF'
+python3 - "$tmp/out/drop_bruise" <<'EOF' || fail "the envelope checks did not run (python exit status $?)"
 import sys
-sys.path.insert(0, "scripts")
 import numpy as np
-import report as R
+from visco2d import report as R
 case = R.load_case(sys.argv[1])
 data = R.envelope_data(case)
 b = case["bruise"]
