@@ -25,7 +25,7 @@ program test_plastic_static
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_static, only: static_solution_t, solve_static
-  use visco2d_plastic_static, only: plastic_summary_t, solve_plastic_static, force_tolerance
+  use visco2d_plastic_static, only: plastic_summary_t, solve_plastic_static
   use visco2d_element, only: element_gauss_points, element_b_matrices, gauss_count
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, summary_real
   use visco2d_driver, only: run_deck
@@ -77,14 +77,19 @@ contains
     end if
   end function hill_hoop
 
-  subroutine write_sphere(file, nr, p, increments, formulation, hardening)
+  subroutine write_sphere(file, nr, p, increments, formulation, hardening, iterations)
     character(*), intent(in) :: file, formulation, hardening
     integer, intent(in) :: nr, increments
     real(dp), intent(in) :: p
+    integer, intent(in), optional :: iterations
     integer :: unit
     open(newunit=unit, file=file, status='replace', action='write')
     write(unit, '(a)') 'TITLE Hill sphere'
-    write(unit, '(a, i0)') 'ANALYSIS STATIC INCREMENTS=', increments
+    if (present(iterations)) then
+      write(unit, '(a, i0, a, i0)') 'ANALYSIS STATIC INCREMENTS=', increments, ' ITERATIONS=', iterations
+    else
+      write(unit, '(a, i0)') 'ANALYSIS STATIC INCREMENTS=', increments
+    end if
     write(unit, '(a)') 'GEOMETRY AXISYMMETRIC'
     write(unit, '(a)') 'FORMULATION '//formulation
     write(unit, '(a, es24.16, a, f6.3)') 'MATERIAL flesh ELASTIC E=', young, ' NU=', poisson
@@ -433,6 +438,8 @@ contains
     call expect_error('increments_zero', s, 2, 17, 'ANALYSIS', 'INCREMENTS must be in [1, 100000], got 0')
     s(2) = 'ANALYSIS STATIC INCREMENTS=2.5'
     call expect_error('increments_not_integer', s, 2, 17, 'ANALYSIS', 'INCREMENTS')
+    s(2) = 'ANALYSIS STATIC ITERATIONS=0'
+    call expect_error('iterations_zero', s, 2, 17, 'ANALYSIS', 'ITERATIONS must be in [1, 1000], got 0')
     s = creep()                                        ! PRONY on line 5: PLASTIC on line 6
     s(2) = 'ANALYSIS QUASISTATIC INCREMENTS=5'
     call expect_error('increments_quasistatic', s, 2, 0, 'ANALYSIS', 'INCREMENTS')
@@ -459,6 +466,23 @@ contains
     print '(a)', '  '//text
     call check_text_contains('collapse: located at the ANALYSIS card', text, folder//'/hill_collapse.inp:2: ANALYSIS: ')
     call check_text_contains('collapse: names the load increment', text, 'in load increment 4 of 4')
+    ! Two Newton iterations allowed, one increment to c = 1.5 a (Hill needs 6): not converged, a located error.
+    call write_sphere(folder//'/hill_iterations.inp', 4, pressure, 1, 'BBAR', 'PLASTIC YIELD=1e4 TANGENT=0', 2)
+    call read_deck(folder//'/hill_iterations.inp', deck, error)
+    call check('not converged: the deck reads', .not. allocated(error))
+    if (allocated(error)) return
+    call check('not converged: ITERATIONS=2 read', deck%settings%iterations == 2)
+    call solve_plastic_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, summary, &
+                              error)
+    call check('not converged: the solve fails', allocated(error))
+    if (.not. allocated(error)) return
+    text = error_text(error)
+    print '(a)', '  '//text
+    call check_text_contains('not converged: located at the ANALYSIS card', text, &
+                             folder//'/hill_iterations.inp:2: ANALYSIS: ')
+    call check_text_contains('not converged: names the increment and the iterations', text, &
+                             'did not converge in load increment 1 of 1: after 2 Newton iterations the force residual is')
+    call check_text_contains('not converged: gives the energy norm', text, 'and the energy norm')
   end subroutine bad_decks
 
   !> The Hill deck (NR=8) through run_deck: the plastic path is taken and
@@ -507,7 +531,7 @@ contains
     if (allocated(error)) return
     warned = .false.
     do k = 1, size(deck%warnings)
-      if (index(deck%warnings(k)%text, 'INCREMENTS= is for plastic materials') > 0) warned = .true.
+      if (index(deck%warnings(k)%text, 'INCREMENTS= and ITERATIONS= are for plastic materials') > 0) warned = .true.
     end do
     call check('driver: INCREMENTS= without a PLASTIC card is warned about', warned)
   end subroutine through_the_driver

@@ -62,11 +62,11 @@ module visco2d_deck
     integer, allocatable :: pressure_cards(:)             !< card index of each PRESSURE card
     integer :: title_line = 0, analysis_line = 0, geometry_line = 0, formulation_line = 0
     integer :: material_card = 0                          !< index of the last MATERIAL card, 0 if none
-    logical :: increments_given = .false.                 !< ANALYSIS STATIC has INCREMENTS=
+    logical :: increments_given = .false.                 !< ANALYSIS STATIC has INCREMENTS= or ITERATIONS=
   end type reading_t
 
-  !> The largest INCREMENTS= of ANALYSIS STATIC.
-  integer, parameter :: max_increments = 100000
+  !> The largest INCREMENTS= and ITERATIONS= of ANALYSIS STATIC.
+  integer, parameter :: max_increments = 100000, max_iterations = 1000
 
 contains
 
@@ -203,13 +203,20 @@ contains
       reading%analysis_line = card%line
       call positional_word(cards, card, 1, 'analysis kind (STATIC, QUASISTATIC or DYNAMIC)', word, error)
       if (allocated(error)) return
-      if (word == 'STATIC') then                   ! the load increments of a plastic solve
+      if (word == 'STATIC') then                   ! the load increments and Newton iterations of a plastic solve
         reading%increments_given = has_field(card, 'INCREMENTS')
         call named_integer(cards, card, 'INCREMENTS', deck%settings%increments, error, default=10)
         if (allocated(error)) return
         if (deck%settings%increments < 1 .or. deck%settings%increments > max_increments) then
           call card_error(error, cards, card, 'INCREMENTS must be in [1, '//itoa(max_increments)//'], got '// &
                           itoa(deck%settings%increments), field_column(card, 'INCREMENTS')); return
+        end if
+        reading%increments_given = reading%increments_given .or. has_field(card, 'ITERATIONS')
+        call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, default=30)
+        if (allocated(error)) return
+        if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
+          call card_error(error, cards, card, 'ITERATIONS must be in [1, '//itoa(max_iterations)//'], got '// &
+                          itoa(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
         end if
       end if
       call check_fields_used(cards, card, error, 'ANALYSIS STATIC | QUASISTATIC | DYNAMIC')
@@ -386,8 +393,8 @@ contains
       end if
     end do
     if (m == 0) then
-      if (reading%increments_given) call add_warning(deck, reading%analysis_line, 'ANALYSIS', 'INCREMENTS= is '// &
-        'for plastic materials (a PLASTIC card); this deck has none and is solved in one linear step')
+      if (reading%increments_given) call add_warning(deck, reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and '// &
+        'ITERATIONS= are for plastic materials (a PLASTIC card); this deck has none and is solved in one linear step')
       return
     end if
     k = card_at_line(deck, deck%materials(m)%plastic_line)

@@ -15,7 +15,7 @@
 !>   |r|  <= force_tolerance  max(|R_k|, |F(u)|)   (free equations; F holds the reactions)
 !>   |r . K_t^-1 r| <= energy_tolerance |du_1 . r_0|   (the energy norm of the next correction,
 !>                                                     relative to the first iteration's)
-!> hold; after max_iterations a located error (the ANALYSIS card, the
+!> hold; after `settings%iterations` (ITERATIONS=, default 30) a located error (the ANALYSIS card, the
 !> increment, the iteration, both residuals) is returned, never a result.
 !>
 !> Energies (per radian in axisymmetry, as visco2d_static's): the external
@@ -50,11 +50,10 @@ module visco2d_plastic_static
   private
 
   public :: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
-  public :: force_tolerance, energy_tolerance, max_iterations
+  public :: force_tolerance, energy_tolerance
 
   real(dp), parameter :: force_tolerance = 1.0e-8_dp    !< |r| relative to the load (and reactions)
   real(dp), parameter :: energy_tolerance = 1.0e-16_dp  !< |r . K^-1 r| relative to the first iteration's
-  integer, parameter :: max_iterations = 30             !< Newton iterations allowed per increment
 
   !> What a plastic static solve adds to the static solution.
   type :: plastic_summary_t
@@ -62,7 +61,7 @@ module visco2d_plastic_static
     integer :: iterations = 0                       !< Newton iterations, all increments
     integer :: iterations_max = 0                   !< the most in one increment
     integer, allocatable :: increment_iterations(:) !< (N) Newton iterations per increment
-    real(dp), allocatable :: force_residual(:, :)   !< (max_iterations, N) |r| / max(|R_k|, |F|) after each iteration
+    real(dp), allocatable :: force_residual(:, :)   !< (ITERATIONS, N) |r| / max(|R_k|, |F|) after each iteration
     real(dp), allocatable :: equivalent_plastic(:, :) !< (gauss_count, nelem) ebar at the end
     real(dp) :: equivalent_plastic_max = 0.0_dp     !< max ebar
     real(dp) :: dissipation = 0.0_dp                !< plastic dissipation D (trapezoidal), J (per radian in axisymmetry)
@@ -103,11 +102,12 @@ contains
     type(band_matrix_t) :: stiffness
     type(factor_t) :: factor
     real(dp) :: lambda, energy_first, energy_next, force_ratio, scale
-    integer :: nelem, e, k, iteration, info, n
+    integer :: nelem, e, k, iteration, info, n, max_iterations
     logical :: converged
 
     nelem = mesh%nelem
     n = settings%increments
+    max_iterations = settings%iterations
     allocate(b(4, 8, gauss_count, nelem), weight(gauss_count, nelem), tangent(4, 4, gauss_count, nelem))
     do e = 1, nelem
       call element_b_matrices(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), b(:, :, :, e), weight(:, e), &
@@ -192,7 +192,7 @@ contains
           short_real(force_ratio)//' of the load (tolerance '//short_real(force_tolerance)//') and the energy '// &
           'norm '//short_real(energy_next/max(energy_first, tiny(1.0_dp)))//' of the first iteration''s '// &
           '(tolerance '//short_real(energy_tolerance)//'): the load may be above the limit load; give more '// &
-          'INCREMENTS= or a hardening TANGENT=')
+          'INCREMENTS= (or ITERATIONS=) or a hardening TANGENT=')
         return
       end if
       summary%increment_iterations(k) = iteration
