@@ -12,7 +12,8 @@
 !>     Gauss-point stresses in spherical components against the closed form
 !>     (a relative L2 error that falls with NR), the yielded volume against
 !>     (2 pi/3)(c^3 - a^3), Newton's iterations, the energy balance.
-!>  2. Below p_e: no plastic strain, and the solution is the linear one.
+!>  2. Below p_e: no plastic strain, and the solution is the linear one;
+!>     SOLVER BAND and the default factor give the same plastic solution.
 !>  3. A bilinear (and a tabulated) uniaxial patch: one axisymmetric element
 !>     (a solid cylinder, r free) pulled by a prescribed u_z: sigma_z follows
 !>     the curve's closed form to the Newton tolerance.
@@ -50,6 +51,7 @@ program test_plastic_static
                    hill_radial(plastic_radius*(1.0_dp - 1.0e-12_dp)), 1.0e-9_dp)
   call hill_study()
   call below_elastic_limit()
+  call solvers_agree()
   call uniaxial_patches()
   call bad_decks()
   call through_the_driver()
@@ -77,11 +79,12 @@ contains
     end if
   end function hill_hoop
 
-  subroutine write_sphere(file, nr, p, increments, formulation, hardening, iterations)
+  subroutine write_sphere(file, nr, p, increments, formulation, hardening, iterations, solver)
     character(*), intent(in) :: file, formulation, hardening
     integer, intent(in) :: nr, increments
     real(dp), intent(in) :: p
     integer, intent(in), optional :: iterations
+    character(*), intent(in), optional :: solver
     integer :: unit
     open(newunit=unit, file=file, status='replace', action='write')
     write(unit, '(a)') 'TITLE Hill sphere'
@@ -98,6 +101,7 @@ contains
       2*nr, ' ANGLE=90'
     write(unit, '(a)') 'FIX BOTTOM Z'
     write(unit, '(a, es24.16)') 'PRESSURE INNER P=', p
+    if (present(solver)) write(unit, '(a)') 'SOLVER '//solver
     write(unit, '(a)') 'END'
     close(unit)
   end subroutine write_sphere
@@ -269,6 +273,35 @@ contains
       end do
     end do
   end function all_outside_zero
+
+  !> The Hill deck (NR=8) with SOLVER BAND (the legacy LAPACK factor) and
+  !> with the default (CHOLMOD): the same answer to 1e-9 Y (one matrix,
+  !> another order of elimination, the same Newton path).
+  subroutine solvers_agree()
+    type(deck_t) :: deck
+    type(static_solution_t) :: solution(2)
+    type(plastic_summary_t) :: summary(2)
+    type(error_t), allocatable :: error
+    character(*), parameter :: file = folder//'/hill_solver.inp'
+    integer :: k, unit
+    do k = 1, 2
+      call write_sphere(file, 8, pressure, 10, 'BBAR', 'PLASTIC YIELD=1e4 TANGENT=0')
+      if (k == 1) then
+        open(newunit=unit, file=file, position='append', action='write')
+        close(unit)
+        call execute_command_line("sed -i 's/^END$/SOLVER BAND\nEND/' "//file)
+      end if
+      call read_deck(file, deck, error)
+      if (.not. allocated(error)) call solve_plastic_static(deck%mesh, deck%materials, deck%settings, deck%loads, &
+                                                            deck%source, solution(k), summary(k), error)
+      call check('solvers: the Hill deck runs ('//merge('band   ', 'default', k == 1)//')', .not. allocated(error))
+      if (allocated(error)) return
+    end do
+    call check('solvers: band and default give the same Gauss stresses to 1e-9 Y', &
+               maxval(abs(solution(1)%stress - solution(2)%stress)) <= 1.0e-9_dp*yield, &
+               rtoa(maxval(abs(solution(1)%stress - solution(2)%stress))))
+    call check('solvers: the same Newton iterations', summary(1)%iterations == summary(2)%iterations)
+  end subroutine solvers_agree
 
   !> Below the elastic limit: no plastic strain, one Newton iteration per
   !> increment, and the linear static solution (to 1e-9 of Y).
