@@ -31,6 +31,7 @@ program test_plastic_static
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, summary_real
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
+  use visco2d_expect, only: summary_value
   use visco2d_test_decks, only: deck_line_length, square, creep, dynamic, try_read_deck, check_error_location
   use visco2d_strings, only: itoa, rtoa
   implicit none
@@ -556,6 +557,19 @@ contains
     call check('driver: equivalent_plastic_strain_max > 0', summary_real(record, 'equivalent_plastic_strain_max') > 0)
     call check_close('driver: von_mises_max_Pa = Y (perfectly plastic, 1e-9)', summary_real(record, 'von_mises_max_Pa'), &
                      yield, 1.0e-9_dp)
+    ! The deck of test/decks: Hill with kiwifruit-like E and Y, its EXPECT cards (doc/plasticity.md).
+    call run_deck('test/decks/plastic_sphere_shell.inp', out_root, record, error)
+    call check('driver: test/decks/plastic_sphere_shell.inp runs', .not. allocated(error))
+    if (allocated(error)) then
+      print '(a)', '  '//error_text(error)
+      return
+    end if
+    call check('driver: plastic_sphere_shell: yielded volume within its RTOL', &
+               summary_value(record, 'expect_yielded_volume_m3_within_rtol') == 'yes')
+    call check('driver: plastic_sphere_shell: von Mises max = Y within its RTOL', &
+               summary_value(record, 'expect_von_mises_max_Pa_within_rtol') == 'yes')
+    call check('driver: plastic_sphere_shell: reaction_z = -p pi a^2 within its RTOL', &
+               summary_value(record, 'expect_reaction_z_N_within_rtol') == 'yes')
     s = square()
     s(2) = 'ANALYSIS STATIC INCREMENTS=4'
     call write_deck(folder//'/linear_increments.inp', s)

@@ -219,7 +219,7 @@ contains
                           itoa(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
         end if
       end if
-      call check_fields_used(cards, card, error, 'ANALYSIS STATIC | QUASISTATIC | DYNAMIC')
+      call check_fields_used(cards, card, error, 'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC')
       if (allocated(error)) return
       select case (word)
       case ('STATIC')
