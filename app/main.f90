@@ -14,7 +14,7 @@ program visco2d
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup, get_argument
   use visco2d_cards, only: parse_real
   use visco2d_relaxation, only: uniaxial_to_shear
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_timers, only: timers_enable
   use visco2d_progress, only: progress_configure, progress_auto, progress_on, progress_off
   use visco2d_budget, only: set_memory_limit, set_time_limit, read_limit_environment
@@ -242,7 +242,7 @@ contains
         call parse_real(option, values(count), ok)
         if (.not. ok) then
           if (index(option, '-') == 1) call usage_error('unknown option '//option, relax=.true.)
-          call usage_error('value '//itoa(count)//' ("'//option//'") is not a finite number', relax=.true.)
+          call usage_error('value '//integer_text(count)//' ("'//option//'") is not a finite number', relax=.true.)
         end if
       end if
       position = position + 1
@@ -250,7 +250,7 @@ contains
     if (.not. have_poisson) call usage_error("missing --nu NU (Poisson's ratio at t = 0)", relax=.true.)
     if (count == 0) call usage_error('no terms: give pairs E ALPHA (Pa, 1/s)', relax=.true.)
     if (mod(count, 2) /= 0) &
-      call usage_error('an odd number of values ('//itoa(count)//'): expected pairs E ALPHA', relax=.true.)
+      call usage_error('an odd number of values ('//integer_text(count)//'): expected pairs E ALPHA', relax=.true.)
 
     call uniaxial_to_shear(values(1:count:2), values(2:count:2), poisson, bulk, shear, beta, message)
     if (len(message) > 0) then

@@ -6,7 +6,7 @@
 !> so a failed deck never leaves half-written output.
 module visco2d_case_folder
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t
   use visco2d_output, only: write_summary, write_history, write_results_h5, write_pressure
@@ -168,7 +168,7 @@ contains
     end do
     reason = 'cannot be created'
     if (len(probe) == 0) then
-      probe = out_root//'/.visco2d-probe.'//itoa(process_id())
+      probe = out_root//'/.visco2d-probe.'//integer_text(process_id())
       reason = 'is not writable'
     end if
     if (make_directory(probe) /= 0 .or. .not. directory_exists(probe)) then
@@ -183,7 +183,7 @@ contains
   !> `<host>.<pid>` of this process: the end of the names of its temporary folders.
   function owner_tag() result(tag)
     character(:), allocatable :: tag
-    tag = host_name()//'.'//itoa(process_id())
+    tag = host_name()//'.'//integer_text(process_id())
   end function owner_tag
 
   !> Take the lock of case `case_name` in out_root (OUT/.<case>.lock; the root
@@ -222,7 +222,7 @@ contains
       return
     end if
     lock%path = out_root//'/.'//case_name//'.lock'
-    call lock_take(lock%path, 'process '//itoa(process_id())//' on host '//host_name(), lock%fd, status, holder, &
+    call lock_take(lock%path, 'process '//integer_text(process_id())//' on host '//host_name(), lock%fd, status, holder, &
                    patient=.true.)
     if (status == 0) then
       call interrupt_lock_arm(lock%path)
@@ -363,7 +363,7 @@ contains
     read(digits, *, iostat=status) pid
     if (status /= 0 .or. pid <= 0) return
     if (.not. directory_exists(path)) return
-    owner = 'process '//itoa(pid)//' on host '//host
+    owner = 'process '//integer_text(pid)//' on host '//host
     if (.not. lock_free(out_root//'/.'//case_name//'.lock')) return   ! held (or cannot be told): alive
     if (host /= host_name()) then
       write(0, '(a)') 'visco2d: note: left '//path//' alone: written by '//owner//', another host, whose '// &

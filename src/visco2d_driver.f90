@@ -6,7 +6,7 @@ module visco2d_driver
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
                           analysis_name, geometry_name, total_steps, formulation_name, initial_velocity, stop_name
   use visco2d_deck_types, only: solver_card_names
@@ -66,41 +66,42 @@ contains
     print '(a)', path//': ok'
     print '(a)', '  title           '//deck%title
     print '(a)', '  analysis        '//analysis_name(deck%analysis)
-    if (deck%analysis /= analysis_static) print '(a)', '  time steps      '//itoa(total_steps(deck))// &
-      ' in '//itoa(size(deck%stages))//' stage(s) to t = '//rtoa(deck%stages(size(deck%stages))%end_time)//' s'
+    if (deck%analysis /= analysis_static) print '(a)', '  time steps      '//integer_text(total_steps(deck))// &
+      ' in '//integer_text(size(deck%stages))//' stage(s) to t = '//message_real(deck%stages(size(deck%stages))%end_time)//' s'
     if (deck%analysis == analysis_dynamic) then
-      print '(a)', '  Wilson theta    '//rtoa(deck%dynamics%theta)
+      print '(a)', '  Wilson theta    '//message_real(deck%dynamics%theta)
       associate (velocity => initial_velocity(deck))
-      print '(a)', '  initial v       ('//rtoa(velocity(1))//', '//rtoa(velocity(2))//') m/s'
+      print '(a)', '  initial v       ('//message_real(velocity(1))//', '//message_real(velocity(2))//') m/s'
       end associate
     end if
-    if (deck%loads%gravity > 0.0_dp) print '(a)', '  gravity         '//rtoa(deck%loads%gravity)//' m/s^2 in -z'
+    if (deck%loads%gravity > 0.0_dp) print '(a)', '  gravity         '//message_real(deck%loads%gravity)//' m/s^2 in -z'
     if (deck%plate%line > 0) then
-      print '(a)', '  plate           z = '//rtoa(deck%plate%z)//' m, '// &
+      print '(a)', '  plate           z = '//message_real(deck%plate%z)//' m, '// &
         trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
       if (deck%analysis == analysis_dynamic) print '(a)', '  stop at         '//stop_name(deck%stop_at)
     end if
-    if (deck%pad%first_node > 0) print '(a)', '  pad             '//rtoa(deck%pad%thickness)//' m of '//deck%pad%material// &
-      ', top at z = '//rtoa(deck%plate%z)//' m, '//itoa(deck%mesh%nnode - deck%pad%first_node + 1)//' nodes, '// &
-      itoa(deck%mesh%nelem - deck%pad%first_element + 1)//' elements, bottom '// &
+    if (deck%pad%first_node > 0) print '(a)', '  pad             '//message_real(deck%pad%thickness)//' m of ' &
+      //deck%pad%material// &
+      ', top at z = '//message_real(deck%plate%z)//' m, '//integer_text(deck%mesh%nnode - deck%pad%first_node + 1)//' nodes, '// &
+      integer_text(deck%mesh%nelem - deck%pad%first_element + 1)//' elements, bottom '// &
       trim(merge('BONDED', 'SLIP  ', deck%pad%bonded))
     scales = time_scales(deck)
-    if (scales%contact_duration > 0.0_dp) print '(a)', '  contact time    '//rtoa(scales%contact_duration)// &
-      ' s (Hertz, eqs. [43]-[44]): '//rtoa(scales%contact_duration/deck%stages(1)%dt)//' steps of the first DT'
-    if (scales%pole_transit > 0.0_dp) print '(a)', '  pole transit    '//rtoa(scales%pole_transit)// &
-      ' s (wave transit of the pole element at c_p = '//rtoa(scales%wave_speed)//' m/s): DT = '// &
-      rtoa(deck%stages(1)%dt/scales%pole_transit)//' transits'
-    if (scales%body_transit > 0.0_dp) print '(a)', '  body transit    '//rtoa(scales%body_transit)// &
-      ' s (wave transit of the body): DT = '//rtoa(deck%stages(1)%dt/scales%body_transit)//' transits'
+    if (scales%contact_duration > 0.0_dp) print '(a)', '  contact time    '//message_real(scales%contact_duration)// &
+      ' s (Hertz, eqs. [43]-[44]): '//message_real(scales%contact_duration/deck%stages(1)%dt)//' steps of the first DT'
+    if (scales%pole_transit > 0.0_dp) print '(a)', '  pole transit    '//message_real(scales%pole_transit)// &
+      ' s (wave transit of the pole element at c_p = '//message_real(scales%wave_speed)//' m/s): DT = '// &
+      message_real(deck%stages(1)%dt/scales%pole_transit)//' transits'
+    if (scales%body_transit > 0.0_dp) print '(a)', '  body transit    '//message_real(scales%body_transit)// &
+      ' s (wave transit of the body): DT = '//message_real(deck%stages(1)%dt/scales%body_transit)//' transits'
     print '(a)', '  formulation     '//formulation_name(deck%settings%formulation)
     print '(a)', '  geometry        '//geometry_name(deck%settings%geometry)
     print '(a)', '  effects         '//effects_text(scene_effects(deck))
-    print '(a)', '  materials       '//itoa(size(deck%materials))
-    print '(a)', '  nodes           '//itoa(deck%mesh%nnode)
-    print '(a)', '  elements        '//itoa(deck%mesh%nelem)
-    print '(a)', '  equations       '//itoa(2*deck%mesh%nnode)
-    print '(a)', '  half-bandwidth  '//itoa(deck%mesh%half_bandwidth_before)//' as input, '// &
-                 itoa(deck%mesh%half_bandwidth)//' after reverse Cuthill-McKee'
+    print '(a)', '  materials       '//integer_text(size(deck%materials))
+    print '(a)', '  nodes           '//integer_text(deck%mesh%nnode)
+    print '(a)', '  elements        '//integer_text(deck%mesh%nelem)
+    print '(a)', '  equations       '//integer_text(2*deck%mesh%nnode)
+    print '(a)', '  half-bandwidth  '//integer_text(deck%mesh%half_bandwidth_before)//' as input, '// &
+                 integer_text(deck%mesh%half_bandwidth)//' after reverse Cuthill-McKee'
     call print_estimate(estimate)
   end subroutine check_deck
 
@@ -176,7 +177,7 @@ contains
     call record_put_integer(record, 'warnings', size(deck%warnings) + run_warning_count(record))
     call put_warning_keys(deck, record)
     call cpu_time(cpu_end)
-    call record_put(record, 'cpu_s', rtoa(real(cpu_end - cpu_start, dp)))
+    call record_put(record, 'cpu_s', message_real(real(cpu_end - cpu_start, dp)))
     ! The last line of defence: nothing non-finite reaches listing.txt, summary.txt, history.csv, results.h5.
     call check_finite_outputs(deck, record, error)
     if (allocated(error)) return
@@ -187,8 +188,8 @@ contains
     if (allocated(error)) return
     if (timers_enabled()) then
       call system_clock(clock_end)
-      call timers_report(6, case_name//' ('//itoa(2*deck%mesh%nnode)//' equations, half-bandwidth '// &
-        itoa(deck%mesh%half_bandwidth)//')', real(clock_end - clock_start, dp)/real(clock_rate, dp))
+      call timers_report(6, case_name//' ('//integer_text(2*deck%mesh%nnode)//' equations, half-bandwidth '// &
+        integer_text(deck%mesh%half_bandwidth)//')', real(clock_end - clock_start, dp)/real(clock_rate, dp))
     end if
 
   contains
@@ -284,11 +285,11 @@ contains
     n = 0
     do k = 1, size(deck%warnings)
       n = n + 1
-      call record_put(record, 'warning_'//itoa(n), deck%warnings(k)%text)
+      call record_put(record, 'warning_'//integer_text(n), deck%warnings(k)%text)
     end do
     do k = 1, run_warning_count(record)
       n = n + 1
-      call record_put(record, 'warning_'//itoa(n), record%warnings(k)%text)
+      call record_put(record, 'warning_'//integer_text(n), record%warnings(k)%text)
     end do
   end subroutine put_warning_keys
 

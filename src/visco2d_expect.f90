@@ -4,7 +4,7 @@
 module visco2d_expect
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error, error_text
-  use visco2d_strings, only: itoa, rtoa, to_upper, to_lower, short_real
+  use visco2d_strings, only: integer_text, message_real, to_upper, to_lower, short_real
   use visco2d_deck, only: deck_t, expect_t
   use visco2d_record, only: record_t, record_put, record_put_real
   use visco2d_output_check, only: finite_text
@@ -44,7 +44,7 @@ contains
       do j = 1, k - 1
         if (deck%expects(j)%key /= expect%key) cycle
         call set_error(error, 'key '//to_lower(expect%key)//' is already expected on line '// &
-          itoa(deck%expects(j)%line)//' (one EXPECT card per key)', file=deck%cards%file, line=expect%line, &
+          integer_text(deck%expects(j)%line)//' (one EXPECT card per key)', file=deck%cards%file, line=expect%line, &
           column=positional_column(deck, expect%line, 1), card='EXPECT')
         return
       end do
@@ -132,7 +132,7 @@ contains
     type(error_t), allocatable :: miss
     call set_error(miss, key//' = '//trim(adjustl(computed))//' is not within RTOL = '// &
       short_real(expect%tolerance)//' of the expected '//short_real(expect%value)//' (relative error '// &
-      rtoa(relative)//'): the deck misses its own EXPECT card (its results are written)', &
+      message_real(relative)//'): the deck misses its own EXPECT card (its results are written)', &
       file=deck%cards%file, line=expect%line, column=positional_column(deck, expect%line, 2), card='EXPECT')
     if (.not. allocated(tally%misses)) tally%misses = ''
     if (len(tally%misses) > 0) tally%misses = tally%misses//new_line('a')
@@ -199,7 +199,7 @@ contains
       line = line//'; '//summary_value(record, 'warnings')//' warning(s)'
     if (tally%count > 0) then
       write(buffer, '(es10.2e3)') tally%worst
-      line = line//'; EXPECT '//itoa(tally%within)//'/'//itoa(tally%count)//' within RTOL (worst rel. error '// &
+      line = line//'; EXPECT '//integer_text(tally%within)//'/'//integer_text(tally%count)//' within RTOL (worst rel. error '// &
              trim(adjustl(buffer))//')'
     end if
     line = line//'; cpu '//summary_value(record, 'cpu_s')//' s'

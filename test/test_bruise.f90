@@ -77,7 +77,7 @@ program test_bruise
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
   use visco2d_bruise, only: measure_names
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
   use visco2d_test_decks, only: deck_line_length, pressed_sphere, try_read_deck, check_error_location
   use visco2d_analytic, only: hertz_axis_maximum
@@ -272,7 +272,7 @@ contains
     deck_lines(4) = 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.3 RHO=756.85'
     deck_lines = [character(len=deck_line_length) :: deck_lines(1:7), 'BRUISE CRITERION=MAXSHEAR STRESS=0.3e6', &
                   deck_lines(8)]
-    call run('hertz_level_'//itoa(level), deck_lines, record)
+    call run('hertz_level_'//integer_text(level), deck_lines, record)
     volume = summary_real(record, 'bruise_volume_cm3')
   end function hertz_volume
 
@@ -309,7 +309,7 @@ contains
     type(record_t) :: record
     integer :: k
     do k = 1, 3
-      call run('impact_'//itoa(k), [character(len=deck_line_length) :: 'TITLE dropped sphere', 'ANALYSIS DYNAMIC', &
+      call run('impact_'//integer_text(k), [character(len=deck_line_length) :: 'TITLE dropped sphere', 'ANALYSIS DYNAMIC', &
         'GEOMETRY AXISYMMETRIC', 'MATERIAL apple ELASTIC E=6e6 NU=0.3 RHO=800', 'MESH SPHERE R=0.0381 LEVEL=2', &
         'INITIAL VZ=-'//exact_text(speeds(k)), 'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=MAXDEFORMATION', &
         'TIME DT=1e-5 TEND=4e-3', 'BRUISE CRITERION=MAXSHEAR STRESS=0.2e6 THRESHOLDS=0.3e6', 'END'], record)
@@ -318,9 +318,9 @@ contains
       recomputed = 1.0e6_dp*sum(field(record, 'volume_weight'), &
                                 mask=field(record, 'max_shear_envelope') >= field(record, 'threshold') .and. &
                                      field(record, 'assessed') > 0.5_dp)
-      call check_close('impact_'//itoa(k)//'_summary_volume_equals_fields', volume(k), recomputed, 1.0e-9_dp, &
+      call check_close('impact_'//integer_text(k)//'_summary_volume_equals_fields', volume(k), recomputed, 1.0e-9_dp, &
                        atol=1.0e-12_dp)
-      call check('impact_'//itoa(k)//'_extra_threshold_volume_smaller', extra(k) <= volume(k), &
+      call check('impact_'//integer_text(k)//'_extra_threshold_volume_smaller', extra(k) <= volume(k), &
                  exact_text(extra(k))//' > '//exact_text(volume(k)))
       print '(a, f4.1, a, es12.5, a, es12.5, a)', '# impact V = ', speeds(k), ' m/s: bruise volume ', volume(k), &
         ' cm^3 (', extra(k), ' cm^3 above 0.3 MPa)'

@@ -57,7 +57,7 @@ program test_contact_dynamic
   use visco2d_hertz, only: hertz_duration_constant, put_hertz_summary
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
-  use visco2d_strings, only: itoa, to_lower
+  use visco2d_strings, only: integer_text, to_lower
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
                              history_column, history_last
   implicit none
@@ -118,7 +118,7 @@ contains
     lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC']
     if (present(formulation)) call add(lines, 'FORMULATION '//formulation)
     call add(lines, 'MATERIAL apple ELASTIC E=18.11e6 NU='//nu//' RHO=756.85')
-    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
+    call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//integer_text(level))
     call add(lines, 'INITIAL VZ=-0.9982 AZ=-9.8')
     call add(lines, 'GRAVITY G=9.8')
     call add(lines, 'WILSON THETA=1.4')
@@ -453,14 +453,14 @@ contains
     print '(a)', ''
     print '(a)', '### 1. Convergence: elastic sphere of Table 1 (V 0.9982 m/s, STICK, stop at maximum deformation)'
     do l = 1, 4
-      mesh(l) = run_case('table1_level'//itoa(l), table1_deck(l, 1.0e-5_dp, 4.0e-3_dp, 'PLATE Z=0'))
+      mesh(l) = run_case('table1_level'//integer_text(l), table1_deck(l, 1.0e-5_dp, 4.0e-3_dp, 'PLATE Z=0'))
       if (.not. mesh(l)%ok) return
     end do
     do l = 1, 4
       if (l == 3) then
         steps(l) = mesh(3)
       else
-        steps(l) = run_case('table1_dt'//itoa(l), table1_deck(3, dts(l), 4.0e-3_dp, 'PLATE Z=0'))
+        steps(l) = run_case('table1_dt'//integer_text(l), table1_deck(3, dts(l), 4.0e-3_dp, 'PLATE Z=0'))
         if (.not. steps(l)%ok) return
       end if
     end do
@@ -478,7 +478,8 @@ contains
     do l = 1, 4
       alpha(l) = value_of(mesh(l), 'alpha_max_mm')
       force(l) = value_of(mesh(l), 'force_max_N')
-      print '(a)', '| '//itoa(l)//' | '//itoa(mesh(l)%elements)//' | '//itoa(mesh(l)%nodes)//' | '//fx(alpha(l), 4)//' | '// &
+      print '(a)', '| '//integer_text(l)//' | '//integer_text(mesh(l)%elements)//' | '//integer_text(mesh(l)%nodes)//' | ' &
+        //fx(alpha(l), 4)//' | '// &
         fx(value_of(mesh(l), 't_alpha_max_ms'), 3)//' | '//fx(value_of(mesh(l), 'q_max_MPa'), 3)//' | '// &
         fx(value_of(mesh(l), 't_q_max_ms'), 3)//' | '//fx(minval(mesh(l)%q), 3)//' | '// &
         fx(value_of(mesh(l), 'q_surface_max_MPa'), 3)//' | '//fx(force(l), 2)//' | '// &
@@ -516,9 +517,9 @@ contains
     ! boundary mass) is never negative and peaks with alpha, within the
     ! arrival interval of a node ring (0.1 ms at these levels), on every level.
     do l = 1, 4
-      call check('table1_level'//itoa(l)//'_q_never_negative', minval(mesh(l)%q) >= 0.0_dp, &
+      call check('table1_level'//integer_text(l)//'_q_never_negative', minval(mesh(l)%q) >= 0.0_dp, &
                  'min q = '//fx(minval(mesh(l)%q), 3)//' MPa')
-      call check_close('table1_level'//itoa(l)//'_q_peaks_with_alpha', value_of(mesh(l), 't_q_max_ms'), &
+      call check_close('table1_level'//integer_text(l)//'_q_peaks_with_alpha', value_of(mesh(l), 't_q_max_ms'), &
                        value_of(mesh(l), 't_alpha_max_ms'), 0.0_dp, 0.1_dp)
     end do
     call check('table1_mesh_alpha_changes_halve', abs(alpha(2) - alpha(1)) >= 2.0_dp*abs(alpha(3) - alpha(2)) .and. &
@@ -724,7 +725,7 @@ contains
       ! during loading, and once unloading has begun the contact only shrinks.
       call chatter(run%t, run%n, value_of(run, 't_alpha_max_ms'), early, recaptured)
       call check(tag//'_no_release_before_alpha_max_no_recapture', early == 0 .and. recaptured == 0, &
-                 itoa(early)//' early releases, '//itoa(recaptured)//' recaptures')
+                 integer_text(early)//' early releases, '//integer_text(recaptured)//' recaptures')
       alpha_m = value_of(run, 'alpha_max_mm')
       v_in = value_of(run, 'impact_velocity_m_s')
       duration = value_of(run, 'contact_duration_ms')
@@ -765,13 +766,13 @@ contains
     do level = 3, 4
       lines = [character(len=line_length) :: 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
                'MATERIAL apple VISCOELASTIC K=13.5e6 RHO=757', 'PRONY G=3.91e6 BETA=203']
-      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//itoa(level))
+      call add(lines, 'MESH SPHERE R=0.0366 LEVEL='//integer_text(level))
       call add(lines, 'DROP HEIGHT=0.05')
       call add(lines, 'GRAVITY G=9.8')
       call add(lines, 'WILSON THETA=1.4')
       call add(lines, 'TIME DT=1e-5 TEND=4e-3')
       call add(lines, 'PLATE Z=0')
-      runs(level) = run_case('table2_level'//itoa(level), lines)
+      runs(level) = run_case('table2_level'//integer_text(level), lines)
       if (.not. runs(level)%ok) return
       t_alpha(level) = value_of(runs(level), 't_alpha_max_ms')
       t_q(level) = value_of(runs(level), 't_q_max_ms')
@@ -802,7 +803,7 @@ contains
     print '(a)', '| paper (Table 2) | 1.34 | 1.80 | 1.17 | 1.60 | | | | | | 0.20 | | | | |'
     do level = 3, 4
       associate (run => runs(level))
-      print '(a)', '| visco2d level '//itoa(level)//' | '//fx(value_of(run, 'alpha_max_mm'), 4)//' | '// &
+      print '(a)', '| visco2d level '//integer_text(level)//' | '//fx(value_of(run, 'alpha_max_mm'), 4)//' | '// &
         fx(t_alpha(level), 3)//' | '//fx(value_of(run, 'q_max_MPa'), 4)//' | '//fx(t_q(level), 3)//' | '// &
         fx(value_of(run, 'q_surface_max_MPa'), 4)//' | '//fx(value_of(run, 't_q_surface_max_ms'), 3)//' | '// &
         fx(value_of(run, 'force_max_N'), 2)//' | '//fx(value_of(run, 't_force_max_ms'), 3)//' | '// &
@@ -812,7 +813,7 @@ contains
       end associate
     end do
     do level = 3, 4
-      tag = 'table2_level'//itoa(level)
+      tag = 'table2_level'//integer_text(level)
       associate (run => runs(level))
       ! The relaxing sphere unloads its pole before the centre stops: q leads
       ! alpha by more than the sampling (2 dt) and the level 3 -> 4 change.
@@ -866,7 +867,7 @@ contains
       call add(lines, 'INITIAL VZ=-1.2 AZ=-9.8')
       call add(lines, 'TIME DT=1e-5 TEND=3.3e-3')
     end if
-    call add(lines, 'MESH SPHERE R=0.035 LEVEL='//itoa(level))
+    call add(lines, 'MESH SPHERE R=0.035 LEVEL='//integer_text(level))
     call add(lines, 'GRAVITY G=9.8')
     call add(lines, 'WILSON THETA=1.4')
     call add(lines, 'PLATE Z=0 STICK RELEASE=YES')
@@ -885,7 +886,7 @@ contains
     print '(a)', '### 4. Apples of Table 3 (R 35 mm, rho 790, STICK RELEASE=YES, dt 1e-5, run past both maxima)'
     do level = 3, 4
       do k = 1, 2
-        runs(k, level) = run_case('apple_'//speeds(k)//'_level'//itoa(level), apple_deck(level, k == 1))
+        runs(k, level) = run_case('apple_'//speeds(k)//'_level'//integer_text(level), apple_deck(level, k == 1))
         if (.not. runs(k, level)%ok) return
         t_alpha(k, level) = value_of(runs(k, level), 't_alpha_max_ms')
         t_q(k, level) = value_of(runs(k, level), 't_q_max_ms')
@@ -902,7 +903,7 @@ contains
     do level = 3, 4
       do k = 1, 2
         associate (run => runs(k, level))
-        print '(a)', '| '//speeds(k)//' | '//itoa(level)//' | '//fx(value_of(run, 'alpha_max_mm'), 4)//' | '// &
+        print '(a)', '| '//speeds(k)//' | '//integer_text(level)//' | '//fx(value_of(run, 'alpha_max_mm'), 4)//' | '// &
           fx(t_alpha(k, level), 3)//' | '//fx(value_of(run, 'q_max_MPa'), 4)//' | '//fx(t_q(k, level), 3)//' | '// &
           fx(value_of(run, 'force_max_N'), 2)//' | '//fx(value_of(run, 't_force_max_ms'), 3)//' | '// &
           fx(ring(k, level), 3)//' | '//fx(lead(k, level), 3)//' | '//fx(value_of(run, 'hertz_alpha_max_mm'), 4)// &
@@ -930,7 +931,7 @@ contains
     print '(a)', '| ring interval before t_q ms | '//fx(ring(1, 4), 3)//' | '//fx(ring(2, 4), 3)//' | | |'
     do level = 3, 4
       do k = 1, 2
-        tag = 'apple_'//speeds(k)//'_level'//itoa(level)
+        tag = 'apple_'//speeds(k)//'_level'//integer_text(level)
         ! Both maxima are interior: the run went on at least 0.2 ms past them.
         call check(tag//'_maxima_inside_run', max(t_alpha(k, level), t_q(k, level)) < t_end(k, level) - 0.2_dp, &
                    't_alpha '//fx(t_alpha(k, level), 3)//', t_q '//fx(t_q(k, level), 3)//', end '// &
@@ -1037,7 +1038,7 @@ contains
         fx(value_of(release(k), 'coefficient_of_restitution'), 5)//' | '// &
         fx(value_of(release(k), 'contact_duration_ms'), 3)//' | '//fx(hertz_duration_constant* &
         value_of(release(k), 'alpha_max_mm')/value_of(release(k), 'impact_velocity_m_s'), 3)//' | '// &
-        itoa(early(k))//' | '//itoa(recaptured(k))//' | '//fx(value_of(release(k), 'force_max_N'), 1)//' | '// &
+        integer_text(early(k))//' | '//integer_text(recaptured(k))//' | '//fx(value_of(release(k), 'force_max_N'), 1)//' | '// &
         fx(value_of(release(k), 'q_max_MPa'), 2)//' |'
     end do
     ! Through rebound: an elastic body cannot come back faster than it came
@@ -1053,10 +1054,10 @@ contains
       call check_close('release_bbar_nu'//trim(nus(k))//'_duration_hertz', value_of(release(k), 'contact_duration_ms'), &
                        hertz_duration_constant*value_of(release(k), 'alpha_max_mm')/ &
                        value_of(release(k), 'impact_velocity_m_s'), 0.02_dp)
-      if (early(k) > 0) print '(a)', 'NOTE RELEASE=YES, BBAR nu = '//trim(nus(k))//': '//itoa(early(k))// &
-        ' releases before maximum deformation and '//itoa(recaptured(k))//' recaptures'
+      if (early(k) > 0) print '(a)', 'NOTE RELEASE=YES, BBAR nu = '//trim(nus(k))//': '//integer_text(early(k))// &
+        ' releases before maximum deformation and '//integer_text(recaptured(k))//' recaptures'
     end do
-    call check('release_bbar_nu'//trim(nus(1))//'_no_early_release', early(1) == 0, itoa(early(1))//' early releases')
+    call check('release_bbar_nu'//trim(nus(1))//'_no_early_release', early(1) == 0, integer_text(early(1))//' early releases')
 
     ! BBAR does not lock: alpha_m follows Hertz's (1 - nu^2) scaling from
     ! nu = 0.49 to 0.4999 (-0.52 %) to 0.5 % (measured 0.05 %; the level-3

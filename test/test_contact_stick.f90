@@ -37,7 +37,7 @@ program test_contact_stick
   use visco2d_assembly, only: node_dof, band_vector, lumped_mass
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, exact_text
   use visco2d_test_decks, only: pressed_sphere
   implicit none
@@ -165,7 +165,7 @@ contains
     nodes = count(contact%active)
     call check(tag//': the nodes on the plate are the contact_nodes', &
                nodes == nint(summary_real(record, 'contact_nodes', absent)), &
-               itoa(nodes)//' vs '//summary_value(record, 'contact_nodes'))
+               integer_text(nodes)//' vs '//summary_value(record, 'contact_nodes'))
     call check(tag//': no free node through the plate', deepest >= -contact%tolerance, exact_text(deepest))
     values = merge(u, 0.0_dp, held)
     call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, error, held, values)
@@ -199,10 +199,11 @@ contains
     real(dp) :: alpha_slip, alpha_stick, alpha_h, a_h, q_h, r_slip, r_stick
     integer :: n_slip, n_stick
     logical :: ok_slip, ok_stick
-    tag = 'level '//itoa(level)//' F = '//itoa(nint(force))//' N'
-    call press(sphere_deck(level, force, 'SLIP', 'slip_'//itoa(level)//'_'//itoa(nint(force))), tag//' SLIP', slip, &
+    tag = 'level '//integer_text(level)//' F = '//integer_text(nint(force))//' N'
+    call press(sphere_deck(level, force, 'SLIP', 'slip_'//integer_text(level)//'_'//integer_text(nint(force))), tag//' SLIP',&
+      slip, &
                n_slip, r_slip, ok_slip)
-    call press(sphere_deck(level, force, 'STICK', 'stick_'//itoa(level)//'_'//itoa(nint(force))), tag//' STICK', &
+    call press(sphere_deck(level, force, 'STICK', 'stick_'//integer_text(level)//'_'//integer_text(nint(force))), tag//' STICK', &
                stick, n_stick, r_stick, ok_stick)
     if (.not. (ok_slip .and. ok_stick)) return
     ! The plate carries the whole weight M G = F (the summary's 10 digits).
@@ -234,7 +235,7 @@ contains
       exact = log(3.0_dp - 4.0_dp*nus(i))*(1.0_dp - nus(i))/(1.0_dp - 2.0_dp*nus(i))
       do level = 2, 4
         ratio(i, level) = patch_ratio(level, nus(i), 'BBAR')
-        call check('patch level '//itoa(level)//' nu = '//exact_text(nus(i))//': bonded is stiffer (exact)', &
+        call check('patch level '//integer_text(level)//' nu = '//exact_text(nus(i))//': bonded is stiffer (exact)', &
                    ratio(i, level) > 1.0_dp, exact_text(ratio(i, level)))
       end do
       ! The patch is the same nodes on every level, r <= 1.885 mm (a/R =
@@ -311,7 +312,7 @@ contains
     file = folder//'/patch.inp'
     call write_deck(file, [character(len=80) :: 'TITLE patch', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
       'FORMULATION '//formulation, 'MATERIAL m ELASTIC E=18.11e6 NU='//exact_text(nu)//' RHO=756.85', &
-      'MESH SPHERE R=0.0366 LEVEL='//itoa(level), 'PLATE Z=0 STICK', 'GRAVITY G=100', 'END'])
+      'MESH SPHERE R=0.0366 LEVEL='//integer_text(level), 'PLATE Z=0 STICK', 'GRAVITY G=100', 'END'])
     ratio = 0.0_dp
     call read_deck(file, deck, error)
     if (allocated(error)) then
@@ -381,7 +382,7 @@ contains
       'MATERIAL m ELASTIC E=5.0e6 NU=0.3', 'MESH RECT R0=0 R1=0.05 Z0=0 Z1=0.005 NR=20 NZ=4', 'PLATE Z=0 SLIP', &
       'FORCE 105 FZ=-10', 'END'])
     call press(file, 'disc SLIP lifted at a degenerate start', record, nodes, r_out, ok)
-    if (ok) call check('disc SLIP: it rests on its rim (2 nodes)', nodes == 2, itoa(nodes))
+    if (ok) call check('disc SLIP: it rests on its rim (2 nodes)', nodes == 2, integer_text(nodes))
     call lifted_off()
     call overflowed()
   end subroutine regressions

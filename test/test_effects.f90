@@ -23,7 +23,7 @@ program test_effects
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
   use visco2d_record, only: record_t
-  use visco2d_strings, only: rtoa
+  use visco2d_strings, only: message_real
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
                              history_index, history_last, read_lines
   implicit none

@@ -60,7 +60,7 @@ program test_envelope_spike
   use visco2d_error, only: error_t
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, message_of
   use visco2d_test_decks, only: deck_line_length
   use visco2d_analytic, only: hertz_axis_maximum
@@ -78,7 +78,7 @@ program test_envelope_spike
     do k = 1, 3
       call one_run(level, k)
     end do
-    call check('spike_level_'//itoa(level)//'_dt_spread_within_1pc', &
+    call check('spike_level_'//integer_text(level)//'_dt_spread_within_1pc', &
                maxval(maximum(level, :)) - minval(maximum(level, :)) <= 0.01_dp*reference, &
                'envelope maxima over DT 0.01, 0.02, 0.04 ms: '//real_list(maximum(level, :)))
   end do
@@ -97,10 +97,10 @@ contains
     type(error_t), allocatable :: error
     character(:), allocatable :: name
     real(dp) :: force, radius, value
-    name = 'l'//itoa(level)//'_dt'//dt_text(k)
+    name = 'l'//integer_text(level)//'_dt'//dt_text(k)
     call write_deck(folder//'/'//name//'.inp', [character(len=deck_line_length) :: &
       'TITLE Table 1 sphere at 2 m/s, frictionless', 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
-      'MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &
+      'MATERIAL apple ELASTIC E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL='//integer_text(level), &
       'INITIAL VZ=-2', 'TIME DT='//dt_text(k)//' TEND=4e-3', 'PLATE Z=0 SLIP', 'STOP AT=MAXDEFORMATION', &
       'OUTPUT EVERY=1000', 'BRUISE CRITERION=MAXSHEAR STRESS=1e6', 'END'])
     call run_deck(folder//'/'//name//'.inp', folder//'/out', record, error)

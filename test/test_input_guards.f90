@@ -18,7 +18,7 @@ program test_input_guards
   use visco2d_record, only: record_t
   use visco2d_cards, only: parse_real, max_line_length
   use visco2d_curve, only: curve_t, curve_value
-  use visco2d_strings, only: itoa, rtoa, gtoa, es_field, short_real, compact_real
+  use visco2d_strings, only: integer_text, message_real, table_real, es_field, short_real, compact_real
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, message_of, &
                              read_lines
   use visco2d_test_decks, only: deck_line_length, square, creep, impact_in_gravity, try_read_deck
@@ -73,7 +73,7 @@ contains
     if (.not. allocated(error)) then
       call check('long_line_two_fixes', size(deck%loads%fixes) == 2)
       if (size(deck%loads%fixes) == 2) call check('long_line_tail_kept', deck%loads%fixes(2)%value(2) == -1.0e-4_dp, &
-        'the UZ= after column 5000 was lost: u_z = '//rtoa(deck%loads%fixes(2)%value(2)))
+        'the UZ= after column 5000 was lost: u_z = '//message_real(deck%loads%fixes(2)%value(2)))
     end if
 
     ! A line longer than any deck needs is an error at its line, never a cut.
@@ -91,7 +91,7 @@ contains
       integer :: k
       curve = 'CURVE load'
       do k = 0, 399
-        curve = curve//' '//itoa(k)//'e-3 '//itoa(mod(k, 7))
+        curve = curve//' '//integer_text(k)//'e-3 '//integer_text(mod(k, 7))
       end do
       path = folder//'/many_fields.inp'
       lines = creep()
@@ -148,11 +148,11 @@ contains
         if (record%summary(i)%value == 'yes') within = within + 1
       end if
     end do
-    call check('long_keys_three_checks', checks == 3, itoa(checks)//' EXPECT checks recorded, 3 given')
-    call check('long_keys_two_within', within == 2, itoa(within)//' within RTOL, 2 expected')
+    call check('long_keys_three_checks', checks == 3, integer_text(checks)//' EXPECT checks recorded, 3 given')
+    call check('long_keys_two_within', within == 2, integer_text(within)//' within RTOL, 2 expected')
     key = 'expect_probe_'//name//'_uz_m_within_rtol'
     call check('long_keys_whole_key', summary_value(record, key) == 'no', &
-               key//' ('//itoa(len(key))//' characters) = "'//summary_value(record, key)//'"')
+               key//' ('//integer_text(len(key))//' characters) = "'//summary_value(record, key)//'"')
   end subroutine long_summary_keys
 
   !> parse_real: finite, normal doubles only.
@@ -310,7 +310,7 @@ contains
     call read_deck(folder//'/two_stages.inp', deck, error)
     call check('two_stages_read', .not. allocated(error), message_of(error))
     if (.not. allocated(error)) call check('two_stages_total', total_steps(deck) == 14, &
-                                           'total_steps = '//itoa(total_steps(deck))//', expected 10 + 4')
+                                           'total_steps = '//integer_text(total_steps(deck))//', expected 10 + 4')
   end subroutine time_ranges
 
   !> EXPECT: a nonzero finite value, a tolerance, one card per key.
@@ -333,13 +333,14 @@ contains
 
   !> Numbers in messages: the E of a three-digit exponent is kept.
   subroutine message_numbers()
-    call check_text('rtoa_small', rtoa(1.0e-300_dp), '1.0000E-300')
-    call check_text('rtoa_large', rtoa(-1.5e300_dp), '-1.5000E+300')
-    call check_text('rtoa_usual', rtoa(1.811e7_dp), '1.8110E+07')       ! unchanged for usual exponents
-    call check_text('rtoa_rounds_up', rtoa(9.99999e99_dp), '1.0000E+100')
-    call check_text('gtoa_usual', gtoa(1.811e7_dp), '1.811000000E+007')  ! the summary format, unchanged
+    call check_text('rtoa_small', message_real(1.0e-300_dp), '1.0000E-300')
+    call check_text('rtoa_large', message_real(-1.5e300_dp), '-1.5000E+300')
+    call check_text('rtoa_usual', message_real(1.811e7_dp), '1.8110E+07')       ! unchanged for usual exponents
+    call check_text('rtoa_rounds_up', message_real(9.99999e99_dp), '1.0000E+100')
+    call check_text('gtoa_usual', table_real(1.811e7_dp), '1.811000000E+007')  ! the summary format, unchanged
     call check_text('short_real_huge', short_real(1.0e308_dp), '1.0E+308')
-    call check_text('short_real_subnormal', short_real(tiny(1.0_dp)*1.0e-15_dp), '2.5E-323')   ! the subnormal nearest 2.2e-323 is 2.47e-323
+    call check_text('short_real_subnormal', short_real(tiny(1.0_dp)*1.0e-15_dp),&
+      '2.5E-323')   ! the subnormal nearest 2.2e-323 is 2.47e-323
     call check_text('short_real_small', short_real(1.0e-7_dp), '1.0E-07')
     call check_text('short_real_plain', short_real(0.002_dp), '0.002')
     call check_text('short_real_integer', short_real(18.11e6_dp), '18110000.0')
@@ -358,7 +359,7 @@ contains
       do k = 1, size(values)
         text = short_real(values(k))
         read(text, *, iostat=ios) back
-        call check('short_real_round_trip_'//itoa(k), ios == 0 .and. back == values(k), short_real(values(k)))
+        call check('short_real_round_trip_'//integer_text(k), ios == 0 .and. back == values(k), short_real(values(k)))
       end do
     end block
   end subroutine message_numbers
@@ -520,7 +521,7 @@ contains
     curve%time = [0.0_dp, 1.0_dp, 3.0_dp, 4.0_dp]
     curve%value = [0.0_dp, 2.0_dp, -1.0_dp, 5.0_dp]
     do k = 1, size(t)
-      call check_close('curve_value_at_'//itoa(k), curve_value(curve, t(k)), expected(k), 0.0_dp, 1.0e-15_dp)
+      call check_close('curve_value_at_'//integer_text(k), curve_value(curve, t(k)), expected(k), 0.0_dp, 1.0e-15_dp)
     end do
   end subroutine curve_lookup
 
@@ -550,7 +551,7 @@ contains
     character(:), allocatable :: reason
     call parse_real(text, value, ok, reason)
     call check('parse_real_'//text, ok .eqv. ok_expected, 'ok = '//merge('T', 'F', ok)//', reason "'//reason//'"')
-    if (ok .and. ok_expected) call check('parse_real_value_'//text, value == value_expected, gtoa(value))
+    if (ok .and. ok_expected) call check('parse_real_value_'//text, value == value_expected, table_real(value))
     if (present(reason_fragment)) call check_text_contains('parse_real_reason_'//text, reason, reason_fragment)
   end subroutine expect_number
 
@@ -590,9 +591,9 @@ contains
     call check(name//'_error', refused, 'read_deck accepted '//path)
     if (.not. refused) return
     if (column > 0) then
-      call check_text_contains(name//'_location', text, path//':'//itoa(line)//':'//itoa(column)//': ')
+      call check_text_contains(name//'_location', text, path//':'//integer_text(line)//':'//integer_text(column)//': ')
     else
-      call check_text_contains(name//'_location', text, path//':'//itoa(line)//':')
+      call check_text_contains(name//'_location', text, path//':'//integer_text(line)//':')
     end if
     if (len(card) > 0) call check_text_contains(name//'_card', text, ': '//card//': ')
     call check_text_contains(name//'_message', text, fragment)

@@ -40,7 +40,7 @@ program test_integrators
   use visco2d_assembly, only: assemble_stiffness, lumped_mass, node_dof, support_mask
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_index, exact_text
   use visco2d_spectrum, only: qp, pi_qp, spectrum_t, spectrum_of, cubic
   implicit none
@@ -390,7 +390,7 @@ contains
     column_u = history_index(record, 'free_uz_m')
     column_v = history_index(record, 'free_vz_m_s')
     call check(name//': history has every step', record%nrow == steps + 1 .and. column_u > 0 .and. column_v > 0, &
-               'rows '//itoa(record%nrow))
+               'rows '//integer_text(record%nrow))
     if (record%nrow /= steps + 1 .or. column_u == 0 .or. column_v == 0) return
     u = record%history(column_u, 1:steps + 1)
     v = record%history(column_v, 1:steps + 1)
@@ -443,7 +443,7 @@ contains
       if (crossings == 1) crossing_first = (n - 1) + shift
       crossing_last = (n - 1) + shift
     end do
-    call check(name//': at least 20 zero crossings measured', crossings >= 20, itoa(crossings))
+    call check(name//': at least 20 zero crossings measured', crossings >= 20, integer_text(crossings))
     if (crossings < 20) return
     period_measured = 2.0_qp*(crossing_last - crossing_first)/(crossings - 1)*big_omega/(2.0_qp*pi_qp)
     ! (program period in units of the exact period T) - 1

@@ -24,7 +24,7 @@ program test_integrators_fe
   use visco2d_expect, only: summary_value
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, read_lines
-  use visco2d_dynamic_cards, only: dynamics_t, integrator_newmark, integrator_hht, integrator_bathe
+  use visco2d_dynamic_cards, only: dynamic_settings_t, integrator_newmark, integrator_hht, integrator_bathe
   use visco2d_integrators, only: integrator_t, integrator_create, energy_overshoot
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   implicit none
@@ -109,7 +109,7 @@ contains
   !> method never raises it (factor 1 to round-off); HHT's first-step overshoot grows as
   !> (omega dt)^2 at large omega dt (ratio 100 from 1e3 to 1e4, within 1 %).
   subroutine overshoot_factors()
-    type(dynamics_t) :: dynamics
+    type(dynamic_settings_t) :: dynamics
     type(integrator_t) :: integrator
     real(dp) :: large, larger
     dynamics%integrator = integrator_newmark

@@ -33,7 +33,7 @@ program test_lame
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_element, only: element_gauss_points, strain_displacement, gauss_count, gauss_xi, gauss_eta
   use visco2d_testing, only: check, check_close, test_summary
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks'
@@ -111,7 +111,7 @@ contains
       call one_mesh(geometry, trim(tag), divisions(k), stress_error(k), zz_error(k), centre_error(k), bore_error(k), &
                     bore_nodes(k), uz_ratio(k), ok)
       if (.not. ok) return
-      call check(trim(tag)//' NR='//itoa(divisions(k))//': the bore has NT+1 nodes (ring) or NZ+1 = 3 (slice)', &
+      call check(trim(tag)//' NR='//integer_text(divisions(k))//': the bore has NT+1 nodes (ring) or NZ+1 = 3 (slice)', &
                  bore_nodes(k) == merge(2*divisions(k) + 1, 3, geometry == geometry_plane_strain))
     end do
     order = 0.0_dp
@@ -157,13 +157,13 @@ contains
     !    centre, nodal displacement): measured 1.96..2.00; bound 1.8 on the last
     !    three refinements (asymptotic range), which an O(h) defect would fail.
     call check(trim(tag)//': observed Gauss-point stress order >= 0.9 on every refinement', &
-               all(order(2:) >= 0.9_dp), 'min order '//rtoa(minval(order(2:))))
+               all(order(2:) >= 0.9_dp), 'min order '//message_real(minval(order(2:))))
     call check(trim(tag)//': observed Gauss-point sigma_zz order >= 0.9 on every refinement', &
-               all(zz_order(2:) >= 0.9_dp), 'min order '//rtoa(minval(zz_order(2:))))
+               all(zz_order(2:) >= 0.9_dp), 'min order '//message_real(minval(zz_order(2:))))
     call check(trim(tag)//': observed element-centre stress order >= 1.8 on the last three refinements', &
-               all(centre_order(nmesh - 2:) >= 1.8_dp), 'min order '//rtoa(minval(centre_order(nmesh - 2:))))
+               all(centre_order(nmesh - 2:) >= 1.8_dp), 'min order '//message_real(minval(centre_order(nmesh - 2:))))
     call check(trim(tag)//': observed bore displacement order >= 1.8 on the last three refinements', &
-               all(bore_order(nmesh - 2:) >= 1.8_dp), 'min order '//rtoa(minval(bore_order(nmesh - 2:))))
+               all(bore_order(nmesh - 2:) >= 1.8_dp), 'min order '//message_real(minval(bore_order(nmesh - 2:))))
     ! The brief's accuracy target for the finest mesh: 0.5 % (relative L2 of
     ! (sigma_r, sigma_theta) at the Gauss points, and bore u_r). Not applied to
     ! sigma_zz: sigma_r + sigma_theta = 2A is smaller than |sigma_theta| (up to
@@ -194,13 +194,13 @@ contains
 
     stress_error = huge(1.0_dp); zz_error = huge(1.0_dp); bore_error = huge(1.0_dp); centre_error = huge(1.0_dp)
     uz_ratio = huge(1.0_dp); bore_nodes = 0
-    file = folder//'/test_lame_'//tag//'_'//itoa(nr)//'.inp'
+    file = folder//'/test_lame_'//tag//'_'//integer_text(nr)//'.inp'
     call write_deck(file, geometry, nr)
     call read_deck(file, deck, error)
     if (.not. allocated(error)) call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
       solution, error)
     ok = .not. allocated(error)
-    call check(tag//' NR='//itoa(nr)//': deck reads and solves', ok)
+    call check(tag//' NR='//integer_text(nr)//': deck reads and solves', ok)
     if (.not. ok) then
       print '(a)', error_text(error)
       return

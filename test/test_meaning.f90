@@ -14,7 +14,7 @@ program test_meaning
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value, expect_tally_t
   use visco2d_record, only: record_t
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
   use visco2d_test_decks, only: deck_line_length, impact, press, square, creep, dynamic, try_read_deck, &
                                 check_error_location
@@ -98,10 +98,10 @@ contains
     integer :: found, total
     character(:), allocatable :: text
     call read_warnings(name, deck_lines, fragment, found, total, text)
-    call check(name//'_warnings', found == expected, itoa(found)//' warning(s) holding "'//fragment// &
-               '", expected '//itoa(expected)//' (of '//itoa(total)//'): '//text)
+    call check(name//'_warnings', found == expected, integer_text(found)//' warning(s) holding "'//fragment// &
+               '", expected '//integer_text(expected)//' (of '//integer_text(total)//'): '//text)
     if (found > 0 .and. present(line) .and. present(card)) &
-      call check_text_contains(name//'_located', text, deck_path(name)//':'//itoa(line)//': '//card//': ')
+      call check_text_contains(name//'_located', text, deck_path(name)//':'//integer_text(line)//': '//card//': ')
   end subroutine expect_warning
 
   ! ------------------------------------------------------------------ cases
@@ -168,10 +168,10 @@ contains
                'stop_reason = '//summary_value(record, 'stop_reason'))
     found = 0
     do k = 1, 20
-      if (index(summary_value(record, 'warning_'//itoa(k)), deck_path('fields_late')//':10: OUTPUT: 2 FIELDS time(s) '// &
+      if (index(summary_value(record, 'warning_'//integer_text(k)), deck_path('fields_late')//':10: OUTPUT: 2 FIELDS time(s) '// &
                 'from 0.007 s on not written') == 1) found = found + 1
     end do
-    call check('fields_late_warned', found == 1, itoa(found)//' OUTPUT warning_N key(s)')
+    call check('fields_late_warned', found == 1, integer_text(found)//' OUTPUT warning_N key(s)')
     call check('fields_late_counted', summary_value(record, 'warnings') == '1', &
                'warnings = '//summary_value(record, 'warnings'))
   end subroutine fields_after_the_stop

@@ -22,7 +22,7 @@ program test_mesh_guards
                             seconds_text, sphere_mesh_counts, grid_mesh_counts, machine_memory
   use visco2d_estimate, only: estimate_run, check_run_size, long_run_note
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, read_lines
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_test_decks, only: deck_line_length, square, try_read_deck, check_error_location
   implicit none
 
@@ -284,15 +284,15 @@ contains
     integer :: level
     do level = 1, 5
       lines = sphere_deck(level)
-      call write_deck(deck_path('sphere_level'//itoa(level)), lines)
-      call read_deck(deck_path('sphere_level'//itoa(level)), deck, error)
-      call check('sphere_level'//itoa(level)//'_reads', .not. allocated(error))
+      call write_deck(deck_path('sphere_level'//integer_text(level)), lines)
+      call read_deck(deck_path('sphere_level'//integer_text(level)), deck, error)
+      call check('sphere_level'//integer_text(level)//'_reads', .not. allocated(error))
       if (allocated(error)) return
       call sphere_mesh_counts(level, nodes, elements, width)
-      call check('sphere_level'//itoa(level)//'_nodes', nodes == deck%mesh%nnode, count_text(nodes))
-      call check('sphere_level'//itoa(level)//'_elements', elements == deck%mesh%nelem, count_text(elements))
-      call check('sphere_level'//itoa(level)//'_bandwidth_bound', width <= deck%mesh%half_bandwidth .and. &
-        width >= deck%mesh%half_bandwidth - 2, count_text(width)//' against '//itoa(deck%mesh%half_bandwidth))
+      call check('sphere_level'//integer_text(level)//'_nodes', nodes == deck%mesh%nnode, count_text(nodes))
+      call check('sphere_level'//integer_text(level)//'_elements', elements == deck%mesh%nelem, count_text(elements))
+      call check('sphere_level'//integer_text(level)//'_bandwidth_bound', width <= deck%mesh%half_bandwidth .and. &
+        width >= deck%mesh%half_bandwidth - 2, count_text(width)//' against '//integer_text(deck%mesh%half_bandwidth))
     end do
     lines = rect_deck(7, 3)
     call write_deck(deck_path('rect_7x3'), lines)
@@ -303,14 +303,14 @@ contains
     call check('rect_nodes', nodes == deck%mesh%nnode)
     call check('rect_elements', elements == deck%mesh%nelem)
     call check('rect_bandwidth_bound', width <= deck%mesh%half_bandwidth, &
-               count_text(width)//' against '//itoa(deck%mesh%half_bandwidth))
+               count_text(width)//' against '//integer_text(deck%mesh%half_bandwidth))
   end subroutine check_estimator_counts
 
   function sphere_deck(level) result(deck_lines)
     integer, intent(in) :: level
     character(len=deck_line_length), allocatable :: deck_lines(:)
     deck_lines = [character(len=deck_line_length) :: 'TITLE sphere', 'ANALYSIS STATIC', &
-      'MATERIAL m ELASTIC E=1e6 NU=0.3', 'MESH SPHERE R=0.0366 LEVEL='//itoa(level), 'FIX BOTTOM Z', &
+      'MATERIAL m ELASTIC E=1e6 NU=0.3', 'MESH SPHERE R=0.0366 LEVEL='//integer_text(level), 'FIX BOTTOM Z', &
       'PRESSURE OUTER P=1e3', 'END']
   end function sphere_deck
 
@@ -318,7 +318,7 @@ contains
     integer, intent(in) :: nr, nz
     character(len=deck_line_length), allocatable :: deck_lines(:)
     deck_lines = [character(len=deck_line_length) :: 'TITLE rect', 'ANALYSIS STATIC', &
-      'MATERIAL m ELASTIC E=1e6 NU=0.3', 'MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR='//itoa(nr)//' NZ='//itoa(nz), &
+      'MATERIAL m ELASTIC E=1e6 NU=0.3', 'MESH RECT R0=0 R1=1 Z0=0 Z1=1 NR='//integer_text(nr)//' NZ='//integer_text(nz), &
       'FIX BOTTOM Z', 'PRESSURE TOP P=1e3', 'END']
   end function rect_deck
 
@@ -386,7 +386,7 @@ contains
     call expect_error('rect_3000x3000', lines, 4, 31, 'MESH', &
       'MESH RECT makes 9,006,001 nodes and 9,000,000 elements: a run on it needs at least')
     call cpu_time(finish)
-    call check('rect_3000x3000_refused_at_once', finish - start < 1.0, 'took '//itoa(nint(1000*(finish - start)))//' ms')
+    call check('rect_3000x3000_refused_at_once', finish - start < 1.0, 'took '//integer_text(nint(1000*(finish - start)))//' ms')
     lines = rect_deck(3000, 3000)
     call expect_error('rect_3000x3000_limit_named', lines, 4, 0, 'MESH', &
       'more than the limit of 8.00 GiB set by the test (a coarser mesh, or raise the limit with --max-memory')
@@ -479,7 +479,7 @@ contains
     call system_clock(clock2)
     call check('level5_no_overlap', finding%kind == overlap_none)
     call check('level5_work_linear', pairs <= 8_int64*deck%mesh%nelem, &
-               count_text(pairs)//' tests for '//itoa(deck%mesh%nelem)//' elements')
+               count_text(pairs)//' tests for '//integer_text(deck%mesh%nelem)//' elements')
     read_seconds = real(clock1 - clock0, dp)/rate
     check_seconds = real(clock2 - clock1, dp)/rate
     print '(a, i0, a, i0, a, es9.2, a, es9.2, a)', '# level 5: ', deck%mesh%nelem, ' elements, ', pairs, &
@@ -505,6 +505,6 @@ contains
       call check('input_reads_'//trim(paths(k)), .not. allocated(error))
       if (allocated(error)) deallocate(error)
     end do
-    call check('inputs_found', size(paths) >= 10, itoa(size(paths))//' decks')
+    call check('inputs_found', size(paths) >= 10, integer_text(size(paths))//' decks')
   end subroutine check_shipped_decks
 end program test_mesh_guards

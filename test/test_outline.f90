@@ -44,7 +44,7 @@ program test_outline
   use visco2d_mesh_measures, only: shape_measures
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real
   use visco2d_test_decks, only: try_read_deck, check_error_location
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_outline'
@@ -132,14 +132,14 @@ contains
     integer, allocatable :: sphere_connectivity(:, :), sphere_element(:), sphere_side(:), sphere_set(:)
     character(:), allocatable :: tag
     real(dp) :: difference
-    tag = 'sphere_'//name//'_level'//itoa(level)
+    tag = 'sphere_'//name//'_level'//integer_text(level)
     call outline_of(sphere_points(radius, 19), sphere_z(radius, 19), tag, outline)
     call sphere_grid(radius, level, sphere_default_grade(grid), sphere_default_core(grid), grid, sphere_xy, &
                      sphere_connectivity, sphere_element, sphere_side, sphere_set)
     call outline_grid(outline, level, sphere_default_grade(grid), sphere_default_core(grid), grid, xy, &
                       connectivity, edge_element, edge_side, edge_set)
     difference = maxval(abs(xy - sphere_xy))/radius
-    call check(tag//'_nodes_are_the_sphere_grid', difference <= 1.0e-13_dp, 'differ by '//rtoa(difference)//' R')
+    call check(tag//'_nodes_are_the_sphere_grid', difference <= 1.0e-13_dp, 'differ by '//message_real(difference)//' R')
     call check(tag//'_topology', all(connectivity == sphere_connectivity) .and. all(edge_element == sphere_element) &
                .and. all(edge_side == sphere_side) .and. all(edge_set == sphere_set))
     print '(a, es9.2, a)', '  '//tag//': nodes within ', difference, ' R of MESH SPHERE'
@@ -213,7 +213,7 @@ contains
         + ellipse_radius(ratio, phi + 2e-2_dp))/1e-8_dp)
     end do
     bound = 5.0_dp/384.0_dp*h**4*fourth
-    call check(tag//'_spline_within_its_error_bound', worst <= bound, rtoa(worst)//' > '//rtoa(bound))
+    call check(tag//'_spline_within_its_error_bound', worst <= bound, message_real(worst)//' > '//message_real(bound))
     print '(a, es9.2, a, es9.2, a)', '  '//tag//': spline within ', worst/radius, ' A of the ellipse (bound ', &
       bound/radius, ' A)'
     call check_close(tag//'_pole_curvature_radius_A^2/C', outline_pole_curvature_radius(outline), &
@@ -225,8 +225,8 @@ contains
       call outline_grid(outline, level, sphere_default_grade(1), sphere_default_core(1), sphere_grid_contact, xy, &
                         connectivity, edge_element, edge_side, edge_set)
       call shape_measures(xy, connectivity, smallest, largest, least_jacobian, volume)
-      call check(tag//'_level'//itoa(level)//'_jacobians_positive', least_jacobian > 0.0_dp)
-      call check_close(tag//'_level'//itoa(level)//'_volume_4/3_pi_A^2_C', volume, exact_volume, &
+      call check(tag//'_level'//integer_text(level)//'_jacobians_positive', least_jacobian > 0.0_dp)
+      call check_close(tag//'_level'//integer_text(level)//'_volume_4/3_pi_A^2_C', volume, exact_volume, &
                        3.0_dp*bound/(min(ratio, 1.0_dp)*radius))   ! V ~ rho^3: 3 |d rho|/rho_min
       print '(a, i0, a, f6.1, a, f6.1, a, es9.2)', '  '//tag//' level ', level, ': angles ', smallest, ' .. ', &
         largest, ' deg, volume/(4/3 pi A^2 C) - 1 = ', volume/exact_volume - 1.0_dp
@@ -247,13 +247,13 @@ contains
     mass = density*4.0_dp*pi*ratio*radius**3/3.0_dp
     do i = 1, size(contact_ratios)
       target_force = 4.0_dp/3.0_dp*modulus*(contact_ratios(i)*radius)**3/curvature_radius
-      call press('MESH OUTLINE LEVEL=4 '//point_text(r, z), target_force/mass, name//'_outline_'//itoa(i), &
+      call press('MESH OUTLINE LEVEL=4 '//point_text(r, z), target_force/mass, name//'_outline_'//integer_text(i), &
                  force(1), alpha(1))
       call press('MESH SPHEROID A='//exact(radius)//' C='//exact(ratio*radius)//' LEVEL=4', target_force/mass, &
-                 name//'_spheroid_'//itoa(i), force(2), alpha(2))
+                 name//'_spheroid_'//integer_text(i), force(2), alpha(2))
       alpha_hertz = (0.75_dp*force(2)/(modulus*sqrt(curvature_radius)))**(2.0_dp/3.0_dp)
-      call check_close(name//'_outline_force_'//itoa(i), force(1), force(2), 1.0e-6_dp)
-      call check_close(name//'_outline_alpha_within_1%_of_the_spheroids_'//itoa(i), alpha(1), alpha(2), 0.01_dp)
+      call check_close(name//'_outline_force_'//integer_text(i), force(1), force(2), 1.0e-6_dp)
+      call check_close(name//'_outline_alpha_within_1%_of_the_spheroids_'//integer_text(i), alpha(1), alpha(2), 0.01_dp)
       print '(a, f5.2, a, f9.3, a, f9.6, a, f9.6, a, f7.3, a, f7.3, a)', '  '//name//' a_H/A = ', contact_ratios(i), &
         ', F = ', force(2), ' N: alpha ', 1.0e3_dp*alpha(1), ' mm (outline), ', 1.0e3_dp*alpha(2), &
         ' mm (MESH SPHEROID); alpha/alpha_H - 1 = ', 100*(alpha(1)/alpha_hertz - 1), ' %, ', &
@@ -279,9 +279,9 @@ contains
       call outline_grid(outline, level, sphere_default_grade(1), sphere_default_core(1), sphere_grid_contact, xy, &
                         connectivity, edge_element, edge_side, edge_set)
       call shape_measures(xy, connectivity, smallest, largest, least_jacobian, volume)
-      call check_close(tag//'_level'//itoa(level)//'_is_the_splines', volume, outline_volume(outline), 1.0e-12_dp)
-      call check(tag//'_level'//itoa(level)//'_is_the_polygons_within_the_caps', &
-                 abs(volume - polygon) <= 2.0_dp*caps, 'differ by '//rtoa(volume - polygon)//', caps '//rtoa(caps))
+      call check_close(tag//'_level'//integer_text(level)//'_is_the_splines', volume, outline_volume(outline), 1.0e-12_dp)
+      call check(tag//'_level'//integer_text(level)//'_is_the_polygons_within_the_caps', &
+                 abs(volume - polygon) <= 2.0_dp*caps, 'differ by '//message_real(volume - polygon)//', caps '//message_real(caps))
     end do
     print '(a, es12.5, a, es12.5, a, es9.2, a, es9.2)', '  '//tag//': mesh ', volume, ' m^3, polygon (Pappus) ', &
       polygon, ' m^3, relative difference ', volume/polygon - 1.0_dp, ', caps estimate ', caps/polygon
@@ -325,14 +325,14 @@ contains
     integer, allocatable :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
     real(dp) :: smallest, largest, least_jacobian, volume, depth
     character(:), allocatable :: tag
-    tag = 'apple_level'//itoa(level)
+    tag = 'apple_level'//integer_text(level)
     call outline_of(apple(1, :), apple(2, :), tag, outline)
     call outline_grid(outline, level, sphere_default_grade(1), sphere_default_core(1), sphere_grid_contact, xy, &
                       connectivity, edge_element, edge_side, edge_set)
     call shape_measures(xy, connectivity, smallest, largest, least_jacobian, volume)
-    call check(tag//'_jacobians_positive', least_jacobian > 0.0_dp, 'least corner Jacobian '//rtoa(least_jacobian))
+    call check(tag//'_jacobians_positive', least_jacobian > 0.0_dp, 'least corner Jacobian '//message_real(least_jacobian))
     call check(tag//'_angles_in_30_150', smallest >= 30.0_dp .and. largest <= 150.0_dp, &
-               'angles '//rtoa(smallest)//' .. '//rtoa(largest)//' deg')
+               'angles '//message_real(smallest)//' .. '//message_real(largest)//' deg')
     depth = maxval(xy(2, :)) - maxval(xy(2, :), mask=xy(1, :) == 0.0_dp)   ! the far pole: the top node on the axis
     ! The cavity (5.4 mm deep on the spline, its rim 159.9 deg round) needs a
     ! surface node at its rim. On the default grid the node next to the far
@@ -342,7 +342,7 @@ contains
     ! level 3 keeps it (5.30 mm; level 4 5.28 mm). On the GRADE 2.5 grid
     ! level 2 already kept it (5.4-5.5 mm from level 2 on).
     if (level >= 3) call check(tag//'_far_pole_below_the_shoulders', depth > 5.0e-3_dp, &
-                               'far pole '//rtoa(depth)//' m below the top')
+                               'far pole '//message_real(depth)//' m below the top')
     print '(a, i0, a, f6.1, a, f6.1, a, f9.4, a, f8.3, a, f6.3, a)', '  apple level ', level, ': angles ', smallest, &
       ' .. ', largest, ' deg, volume ', 1.0e6_dp*volume, ' cm^3, radius of curvature at the pole ', &
       1.0e3_dp*outline_pole_curvature_radius(outline), ' mm, far pole ', 1.0e3_dp*depth, ' mm below the top'
@@ -363,9 +363,9 @@ contains
     call check('apple_regions_read', .not. allocated(error), message(error))
     if (allocated(error)) return
     call check('apple_regions_skin', count(deck%mesh%element_material == material_index(deck, 'SKIN')) == 2*2*20, &
-               itoa(count(deck%mesh%element_material == material_index(deck, 'SKIN')))//' skin elements')
+               integer_text(count(deck%mesh%element_material == material_index(deck, 'SKIN')))//' skin elements')
     call check('apple_regions_core', count(deck%mesh%element_material == material_index(deck, 'CORE')) == 2*16, &
-               itoa(count(deck%mesh%element_material == material_index(deck, 'CORE')))//' core elements')
+               integer_text(count(deck%mesh%element_material == material_index(deck, 'CORE')))//' core elements')
   end subroutine check_apple_regions
 
   integer function material_index(deck, id)
@@ -391,7 +391,7 @@ contains
     if (allocated(error)) return
     call make_outline(apple(1, :), apple(2, :), outline)
     call shape_measures(deck%mesh%xy, deck%mesh%connectivity, smallest, largest, least_jacobian, volume)
-    call check('apple_deck_level3', deck%mesh%nelem == 1408, itoa(deck%mesh%nelem)//' elements')
+    call check('apple_deck_level3', deck%mesh%nelem == 1408, integer_text(deck%mesh%nelem)//' elements')
     call check_close('apple_deck_volume_is_these_points', volume, outline_volume(outline), 1.0e-12_dp)
   end subroutine check_apple_deck
 

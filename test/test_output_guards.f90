@@ -18,7 +18,7 @@ program test_output_guards
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_negative_inf, &
                                            ieee_is_finite
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: gtoa, itoa
+  use visco2d_strings, only: table_real, integer_text
   use visco2d_error, only: error_t
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_record, only: record_t, snapshot_t, record_put, record_put_real, history_define, history_append, &
@@ -149,14 +149,14 @@ contains
     call check_finite_outputs(deck, record, error)
     call check_text_contains('guard_snapshot_names_field', message_of(error), &
       'field stress of snapshot step_000002 (final) at t = 2.000000000E-004 s = NaN at node '// &
-      itoa(deck%mesh%node_id(5))//', component 2')
+      integer_text(deck%mesh%node_id(5))//', component 2')
 
     call clean_record(deck, record)
     record%snapshots(1)%stress_gauss(1, 3, 2) = infinity
     call check_finite_outputs(deck, record, error)
     call check_text_contains('guard_gauss_names_element', message_of(error), &
       'field stress_gauss of snapshot step_000002 (final) at t = 2.000000000E-004 s = Infinity at element '// &
-      itoa(deck%mesh%element_id(2))//', Gauss point 3, component 1')
+      integer_text(deck%mesh%element_id(2))//', Gauss point 3, component 1')
 
     call clean_record(deck, record)
     record%snapshots(1)%time = nan
@@ -187,7 +187,7 @@ contains
     deck%mesh%xy(2, 3) = nan
     call check_finite_outputs(deck, record, error)
     call check_text_contains('guard_node_named', message_of(error), &
-      'node '//itoa(deck%mesh%node_id(3))//' has a non-finite coordinate')
+      'node '//integer_text(deck%mesh%node_id(3))//' has a non-finite coordinate')
   end subroutine test_deck_numbers_guard
 
   !> |c - e|/|e| without overflow; finite for every finite pair with e /= 0.
@@ -199,8 +199,8 @@ contains
     call check('relative_error_zero_computed', relative_error(0.0_dp, 3.0_dp) == 1.0_dp)
     call check('relative_error_opposite_huge', abs(relative_error(-1.0e308_dp, 1.0e308_dp) - 2.0_dp) < 1.0e-14_dp)
     call check('relative_error_denormal_expected_capped', relative_error(1.0e308_dp, tiny_denormal) == 1.0e300_dp)
-    call check('relative_error_denormal_expected_writable', finite_text(gtoa(relative_error(-9.8_dp, tiny_denormal))), &
-               gtoa(relative_error(-9.8_dp, tiny_denormal)))
+    call check('relative_error_denormal_expected_writable', finite_text(table_real(relative_error(-9.8_dp, tiny_denormal))), &
+               table_real(relative_error(-9.8_dp, tiny_denormal)))
     call check('relative_error_denormals', abs(relative_error(2.0_dp*tiny_denormal, tiny_denormal) - 1.0_dp) < 1.0e-14_dp)
   end subroutine test_relative_error
 
@@ -303,7 +303,7 @@ contains
     call check('root_fresh_not_created', .not. path_exists(folder//'/fresh'))
     call prepare_output_root(folder, error)
     call check('root_existing_accepted', .not. allocated(error), message_of(error))
-    call check('root_existing_no_probe_left', .not. path_exists(folder//'/.visco2d-probe.'//itoa(process_id())))
+    call check('root_existing_no_probe_left', .not. path_exists(folder//'/.visco2d-probe.'//integer_text(process_id())))
   end subroutine test_output_root
 
   !> Stale folders of a dead process go (an old folder comes back if its case
@@ -320,13 +320,13 @@ contains
     open(newunit=unit, file=folder//'/dead.pid', status='old', action='read')
     read(unit, *) dead
     close(unit)
-    call check('stale_pid_is_dead', .not. process_alive(dead), 'process '//itoa(dead)//' is alive')
+    call check('stale_pid_is_dead', .not. process_alive(dead), 'process '//integer_text(dead)//' is alive')
     call check('stale_own_pid_alive', process_alive(process_id()))
     call check('stale_pid_zero_never_alive', .not. process_alive(0) .and. .not. process_alive(-1))
-    dead_text = itoa(dead)
+    dead_text = integer_text(dead)
     call make_one(root, '.a.partial.'//dead_text)
     call make_one(root, '.b.partial.1')
-    call make_one(root, '.c.partial.'//itoa(process_id()))
+    call make_one(root, '.c.partial.'//integer_text(process_id()))
     call make_one(root, '.d.old.'//dead_text)
     call make_one(root, '.e.old.'//dead_text)
     call make_one(root, 'e')
@@ -352,7 +352,7 @@ contains
     call check('stale_link_not_followed', path_exists(folder//'/outside/keep.txt'))
     call check('stale_pattern_characters_removed', .not. path_exists(root//'/.h*[x].partial.'//dead_text))
     call check('stale_live_partial_kept', directory_exists(root//'/.b.partial.1'))
-    call check('stale_own_partial_kept', directory_exists(root//'/.c.partial.'//itoa(process_id())))
+    call check('stale_own_partial_kept', directory_exists(root//'/.c.partial.'//integer_text(process_id())))
     call check('stale_old_put_back', path_exists(root//'/d/summary.txt') .and. &
                .not. path_exists(root//'/.d.old.'//dead_text))
     call check('stale_old_removed_beside_case', .not. path_exists(root//'/.e.old.'//dead_text) .and. &
@@ -369,7 +369,7 @@ contains
     call lock_case(root, 'k', second, error)
     call check('lock_second_refused', allocated(error), 'a second lock of case k was granted')
     if (allocated(error)) call check_text_contains('lock_second_names_holder', message_of(error), &
-      'by another run (process '//itoa(process_id())//' on host '//host_name()//', which holds '//root//'/.k.lock)')
+      'by another run (process '//integer_text(process_id())//' on host '//host_name()//', which holds '//root//'/.k.lock)')
     if (allocated(error)) deallocate(error)
     call remove_stale_folders(root)
     call check('stale_own_host_dead_removed', .not. path_exists(root//'/.i.partial.'//host_name()//'.'//dead_text))

@@ -33,7 +33,7 @@ program test_plastic_static
   use visco2d_record, only: record_t
   use visco2d_expect, only: summary_value
   use visco2d_test_decks, only: deck_line_length, square, creep, dynamic, try_read_deck, check_error_location
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks/plastic'
@@ -168,12 +168,12 @@ contains
     exact_volume = 2.0_dp*pi/3.0_dp*(plastic_radius**3 - ra**3)/(2.0_dp*pi)   ! per radian
     quadratic_ok = .true.
     do k = 1, nmesh
-      file = folder//'/hill_'//itoa(divisions(k))//'.inp'
+      file = folder//'/hill_'//integer_text(divisions(k))//'.inp'
       call write_sphere(file, divisions(k), pressure, 10, 'BBAR', 'PLASTIC YIELD=1e4 TANGENT=0')
       call read_deck(file, deck, error)
       if (.not. allocated(error)) call solve_plastic_static(deck%mesh, deck%materials, deck%settings, deck%loads, &
                                                             deck%source, solution, summary, error)
-      call check('Hill NR='//itoa(divisions(k))//': the deck reads and the solve converges', .not. allocated(error))
+      call check('Hill NR='//integer_text(divisions(k))//': the deck reads and the solve converges', .not. allocated(error))
       if (allocated(error)) then
         print '(a)', '  '//error_text(error)
         return
@@ -211,7 +211,7 @@ contains
       volume_order(k) = log(volume_error(k - 1)/volume_error(k))/log(2.0_dp)
     end do
     print '(a)', ''
-    print '(a)', '  Hill sphere, p = '//rtoa(pressure)//' Pa (c/a = 1.5), 10 increments, B-bar:'
+    print '(a)', '  Hill sphere, p = '//message_real(pressure)//' Pa (c/a = 1.5), 10 increments, B-bar:'
     print '(a)', '     NR   L2(Gauss)  order   L2(centre) order  max|err|/Y  volume err order  |W-U-D|/W  Newton tot/max'
     do k = 1, nmesh
       print '(3x, i4, 2x, es10.3, 1x, f5.2, 2x, es10.3, 1x, f5.2, 2x, es10.3, 1x, es10.3, 1x, f5.2, 1x, es10.3, &
@@ -230,26 +230,26 @@ contains
     ! errors 30 % above the measured ones.
     call check('Hill: the Gauss stress L2 error falls with NR', all(stress_error(2:) < stress_error(:nmesh - 1)))
     call check('Hill: observed Gauss stress order >= 0.9 on every refinement', all(order(2:) >= 0.9_dp), &
-               'min '//rtoa(minval(order(2:))))
+               'min '//message_real(minval(order(2:))))
     call check('Hill: finest mesh (NR=32) Gauss stress L2 error < 2.5 %', stress_error(nmesh) < 2.5e-2_dp, &
-               rtoa(stress_error(nmesh)))
+               message_real(stress_error(nmesh)))
     call check('Hill: observed element-centre stress order >= 1.8 on every refinement', &
-               all(centre_order(2:) >= 1.8_dp), 'min '//rtoa(minval(centre_order(2:))))
+               all(centre_order(2:) >= 1.8_dp), 'min '//message_real(minval(centre_order(2:))))
     call check('Hill: finest mesh (NR=32) element-centre stress L2 error < 0.15 %', centre_error(nmesh) < 1.5e-3_dp, &
-               rtoa(centre_error(nmesh)))
+               message_real(centre_error(nmesh)))
     call check('Hill: observed yielded-volume order >= 1.8 on every refinement', all(volume_order(2:) >= 1.8_dp), &
-               'min '//rtoa(minval(volume_order(2:))))
+               'min '//message_real(minval(volume_order(2:))))
     call check('Hill: finest mesh yielded volume within 2e-4 of (2 pi/3)(c^3 - a^3)', volume_error(nmesh) < 2.0e-4_dp, &
-               rtoa(volume_error(nmesh)))
+               message_real(volume_error(nmesh)))
     ! Newton with the consistent tangent: at most 6 iterations in any increment (measured 5).
     call check('Hill: at most 6 Newton iterations per increment on every mesh', all(worst <= 6), &
-               'max '//itoa(maxval(worst)))
+               'max '//integer_text(maxval(worst)))
     call check('Hill: quadratic convergence (last residual <= previous^1.5 once below 1e-2)', quadratic_ok)
     ! W = U + D: the trapezoidal work splits exactly into the stored energy
     ! and the trapezoidal dissipation (visco2d_plastic_static); what is
     ! left is the work of the Newton residual, <= 1e-8 of the load per
     ! increment: 1e-7 bounds the sum over 10 increments (measured 4e-11 and below).
-    call check('Hill: W = U + D to 1e-7 on every mesh', all(balance <= 1.0e-7_dp), 'max '//rtoa(maxval(balance)))
+    call check('Hill: W = U + D to 1e-7 on every mesh', all(balance <= 1.0e-7_dp), 'max '//message_real(maxval(balance)))
     print '(a, 2es12.4)', '  finest mesh: dissipation trapezoidal, backward (J per radian):', summary%dissipation, &
       summary%dissipation_backward
     call check('Hill: the dissipation is positive', summary%dissipation > 0.0_dp)
@@ -300,7 +300,7 @@ contains
     end do
     call check('solvers: band and default give the same Gauss stresses to 1e-9 Y', &
                maxval(abs(solution(1)%stress - solution(2)%stress)) <= 1.0e-9_dp*yield, &
-               rtoa(maxval(abs(solution(1)%stress - solution(2)%stress))))
+               message_real(maxval(abs(solution(1)%stress - solution(2)%stress))))
     call check('solvers: the same Newton iterations', summary(1)%iterations == summary(2)%iterations)
   end subroutine solvers_agree
 
@@ -326,7 +326,7 @@ contains
     call check('below p_e: one Newton iteration per increment', all(summary%increment_iterations == 1))
     call check('below p_e: the Gauss stresses are the linear solve''s to 1e-9 Y', &
                maxval(abs(solution%stress - linear%stress)) <= 1.0e-9_dp*yield, &
-               rtoa(maxval(abs(solution%stress - linear%stress))))
+               message_real(maxval(abs(solution%stress - linear%stress))))
     call check_close('below p_e: the work is the linear (1/2) R.u', solution%external_work, linear%external_work, &
                      1.0e-9_dp)
     call check_close('below p_e: the stored energy is the linear (1/2) u.S.u', solution%strain_energy, &
@@ -347,7 +347,7 @@ contains
       else
         expected = y0 + et*(strain - y0/e_modulus)
       end if
-      call one_patch('bilinear_'//itoa(k), 'PLASTIC YIELD=1e4 TANGENT=2e5', strain, expected, k)
+      call one_patch('bilinear_'//integer_text(k), 'PLASTIC YIELD=1e4 TANGENT=2e5', strain, expected, k)
     end do
     ! A table (1e4, 1.5e4 at ebar 0.01, perfectly plastic beyond): h = 5e5 Pa
     ! on the first segment, sigma = (sigma_1 + h (eps - ebar_1))/(1 + h/E).
@@ -379,7 +379,7 @@ contains
     write(displacement, '(es24.16)') strain*0.01_dp
     open(newunit=unit, file=file, status='replace', action='write')
     write(unit, '(a)') 'TITLE uniaxial patch'
-    write(unit, '(a)') 'ANALYSIS STATIC INCREMENTS='//itoa(3 + k)
+    write(unit, '(a)') 'ANALYSIS STATIC INCREMENTS='//integer_text(3 + k)
     write(unit, '(a)') 'GEOMETRY AXISYMMETRIC'
     write(unit, '(a)') 'MATERIAL m ELASTIC E=1e6 NU=0.3'
     write(unit, '(a)') plastic_cards
@@ -398,7 +398,7 @@ contains
     end if
     ! The element's state is uniform and exact; sigma_z to 1e-7 (the Newton
     ! tolerance 1e-8 on the force, a few times over), sigma_r = sigma_theta = 0.
-    call check_close('patch '//tag//': sigma_z = the curve''s closed form (eps = '//rtoa(strain)//')', &
+    call check_close('patch '//tag//': sigma_z = the curve''s closed form (eps = '//message_real(strain)//')', &
                      solution%stress(2, 1, 1), expected, 1.0e-7_dp)
     call check('patch '//tag//': sigma_r, sigma_theta, tau_rz = 0 (1e-7 of sigma_z)', &
                maxval(abs(solution%stress([1, 3, 4], :, 1))) <= 1.0e-7_dp*abs(expected))

@@ -14,7 +14,7 @@ program test_progress
     progress_step, progress_end, progress_enabled, progress_estimate, progress_format, progress_expect_end, &
     progress_impact_end
   use visco2d_testing, only: check, check_close, test_summary
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   implicit none
   integer, parameter :: max_lines = 100
   character(len=200) :: line, lines(max_lines)
@@ -80,7 +80,7 @@ program test_progress
   do k = 1, 3
     t_end_at(k) = progress_impact_end(0.25e-3_dp, alpha_at(k), -v_at(k), -1.0_dp, k == 3)   ! contact at 0.25 ms, downward
     t_hertz = 0.25e-3_dp + merge(2.0_dp, 1.0_dp, k == 3)*t_max_exact
-    call check_close('hertz_end_from_state_'//itoa(k), t_end_at(k), t_hertz, 3.0e-5_dp)
+    call check_close('hertz_end_from_state_'//integer_text(k), t_end_at(k), t_hertz, 3.0e-5_dp)
   end do
   call check('hertz_end_unknown_at_contact', progress_impact_end(0.0_dp, 0.0_dp, -1.0_dp, -1.0_dp, .false.) < 0.0_dp)
   call check('hertz_end_unknown_speeding_up', progress_impact_end(0.0_dp, 1.0e-4_dp, -1.1_dp, -1.0_dp, .false.) < 0.0_dp)
@@ -98,7 +98,7 @@ program test_progress
   do k = 1, min(count, max_lines)
     print '(a)', '  '//trim(lines(k))
   end do
-  call check('on_has_lines', count >= 2, 'lines: '//itoa(count))
+  call check('on_has_lines', count >= 2, 'lines: '//integer_text(count))
   call check('on_first_at_step_1', index(lines(1), 'visco2d: fake: step 1, t = 0.1000 ms, ~') == 1, trim(lines(1)))
   call check('on_first_no_alpha', index(lines(1), 'alpha') == 0, trim(lines(1)))
   call check('on_every_line_labelled', all([(index(lines(k), 'visco2d: fake: step ') == 1, k = 1, count)]))
@@ -109,7 +109,7 @@ program test_progress
   ! Whole lines come at most once a second after the first: count - 1 step
   ! lines, the first at ~0 s, the others >= 1 s apart, within the run's time.
   call check('on_rate_limited', count - 1 <= 1 + int(elapsed_run/1.0_dp), &
-             itoa(count - 1)//' step lines in '//rtoa(elapsed_run)//' s')
+             integer_text(count - 1)//' step lines in '//message_real(elapsed_run)//' s')
 
   ! ------------------------------------------ a delay: nothing before it
   ! 0.3 s delay, 12 steps of 50 ms: the first line at the first step whose
@@ -124,36 +124,36 @@ program test_progress
   if (first_shown > 1) then
     ! after_begin <= the module's start <= ... : guaranteed orderings only.
     call check('delay_not_before', after(first_shown) >= 0.3_dp, &
-               'step '//itoa(first_shown)//' shown '//rtoa(after(first_shown))//' s after begin')
+               'step '//integer_text(first_shown)//' shown '//message_real(after(first_shown))//' s after begin')
     call check('delay_not_late', before(first_shown - 1) < 0.3_dp, &
-               'step '//itoa(first_shown - 1)//' not shown at '//rtoa(before(first_shown - 1))//' s')
+               'step '//integer_text(first_shown - 1)//' not shown at '//message_real(before(first_shown - 1))//' s')
   end if
 
   ! ------------------------------------------------- short runs stay silent
   call progress_configure(progress_on, delay=5.0_dp, unit=scratch)
   call fake_run('short', 5, 0.01_dp, 1.0e-4_dp)
   call read_back(count)
-  call check('short_run_silent', count == 0, 'lines: '//itoa(count)//' '//trim(lines(1)))
+  call check('short_run_silent', count == 0, 'lines: '//integer_text(count)//' '//trim(lines(1)))
 
   call progress_configure(progress_off, delay=0.0_dp, unit=scratch)
   call check('off_disabled', .not. progress_enabled())
   call fake_run('off', 5, 0.01_dp, 1.0e-4_dp)
   call read_back(count)
-  call check('off_silent', count == 0, 'lines: '//itoa(count))
+  call check('off_silent', count == 0, 'lines: '//integer_text(count))
 
   ! auto with a unit that is not stderr: not a terminal anyone sees.
   call progress_configure(progress_auto, delay=0.0_dp, unit=scratch)
   call check('auto_file_disabled', .not. progress_enabled())
   call fake_run('auto', 5, 0.01_dp, 1.0e-4_dp)
   call read_back(count)
-  call check('auto_file_silent', count == 0, 'lines: '//itoa(count))
+  call check('auto_file_silent', count == 0, 'lines: '//integer_text(count))
 
   ! A step without begin (or after end) writes nothing.
   call progress_configure(progress_on, delay=0.0_dp, unit=scratch)
   call progress_step(1, 1.0_dp, 1.0_dp)
   call progress_end()
   call read_back(count)
-  call check('no_begin_silent', count == 0, 'lines: '//itoa(count))
+  call check('no_begin_silent', count == 0, 'lines: '//integer_text(count))
 
   ! ------------------------------------------------ a better end, later
   ! progress_expect_end moves the end the estimate aims at (0 left from it on),

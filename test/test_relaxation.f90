@@ -5,7 +5,7 @@
 program test_relaxation
   use visco2d_kinds, only: dp
   use visco2d_relaxation, only: uniaxial_to_shear, uniaxial_to_shear_with_bulk, shear_to_uniaxial
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan, ieee_positive_inf
   implicit none
@@ -51,7 +51,7 @@ contains
     call uniaxial_to_shear([young], [0.0_dp], 0.25_dp, bulk, shear, beta, message)
     call check('elastic_limit_ok', len(message) == 0, message)
     if (len(message) > 0) return
-    call check('elastic_limit_one_term', size(shear) == 1, 'got '//itoa(size(shear))//' terms')
+    call check('elastic_limit_one_term', size(shear) == 1, 'got '//integer_text(size(shear))//' terms')
     call check_close('elastic_limit_bulk', bulk, young/1.5_dp, 1.0e-14_dp)
     call check_close('elastic_limit_shear', shear(1), 3.0_dp*bulk*young/(9.0_dp*bulk - young), 1.0e-14_dp)
     call check_close('elastic_limit_shear_is_e_over_2_1_plus_nu', shear(1), young/2.5_dp, 1.0e-14_dp)
@@ -73,13 +73,13 @@ contains
     bulk = young/(3.0_dp*(1.0_dp - 2.0_dp*0.41_dp))
     do i = 1, size(rates)
       call uniaxial_to_shear_with_bulk([young], [rates(i)], bulk, shear, beta, message)
-      call check('maxwell_ok_'//itoa(i), len(message) == 0, message)
+      call check('maxwell_ok_'//integer_text(i), len(message) == 0, message)
       if (len(message) > 0) cycle
-      print '(a, 2es9.2)', '# maxwell '//itoa(i)//': relative errors of beta and G', &
+      print '(a, 2es9.2)', '# maxwell '//integer_text(i)//': relative errors of beta and G', &
         abs(beta(1)/(9.0_dp*bulk*rates(i)/(9.0_dp*bulk - young)) - 1.0_dp), &
         abs(shear(1)/(3.0_dp*bulk*young/(9.0_dp*bulk - young)) - 1.0_dp)
-      call check_close('maxwell_beta_'//itoa(i), beta(1), 9.0_dp*bulk*rates(i)/(9.0_dp*bulk - young), 1.0e-13_dp)
-      call check_close('maxwell_shear_'//itoa(i), shear(1), 3.0_dp*bulk*young/(9.0_dp*bulk - young), 1.0e-13_dp)
+      call check_close('maxwell_beta_'//integer_text(i), beta(1), 9.0_dp*bulk*rates(i)/(9.0_dp*bulk - young), 1.0e-13_dp)
+      call check_close('maxwell_shear_'//integer_text(i), shear(1), 3.0_dp*bulk*young/(9.0_dp*bulk - young), 1.0e-13_dp)
     end do
     ! Table 2 pairs this uniaxial term (Rumsey and Fridley) with phi1 = 3.91
     ! exp(-203 t) MPa, i.e. it keeps the uniaxial rate. Exactly, G(0) = 3KE/(9K - E)
@@ -137,12 +137,12 @@ contains
     if (len(message) == 0) call uniaxial_to_shear_with_bulk(young, alpha, bulk, shear_back, beta_back, message)
     call check(name//'_ok', len(message) == 0, message)
     if (len(message) > 0) return
-    call check(name//'_terms', size(shear_back) == size(shear), itoa(size(shear_back))//' terms')
+    call check(name//'_terms', size(shear_back) == size(shear), integer_text(size(shear_back))//' terms')
     if (size(shear_back) /= size(shear)) return
     worst = 0.0_dp
     do m = 1, size(shear)
-      call check_close(name//'_G'//itoa(m), shear_back(m), shear(m), 1.0e-10_dp)
-      call check_close(name//'_beta'//itoa(m), beta_back(m), beta(m), 1.0e-10_dp)
+      call check_close(name//'_G'//integer_text(m), shear_back(m), shear(m), 1.0e-10_dp)
+      call check_close(name//'_beta'//integer_text(m), beta_back(m), beta(m), 1.0e-10_dp)
       worst = max(worst, abs(shear_back(m)/shear(m) - 1.0_dp))
       if (beta(m) > 0.0_dp) worst = max(worst, abs(beta_back(m)/beta(m) - 1.0_dp))
     end do
@@ -161,12 +161,12 @@ contains
     if (len(message) == 0) call shear_to_uniaxial(shear, beta, bulk, young_back, alpha_back, message)
     call check(name//'_ok', len(message) == 0, message)
     if (len(message) > 0) return
-    call check(name//'_terms', size(young_back) == size(young), itoa(size(young_back))//' terms')
+    call check(name//'_terms', size(young_back) == size(young), integer_text(size(young_back))//' terms')
     if (size(young_back) /= size(young)) return
     worst = 0.0_dp
     do i = 1, size(young)
-      call check_close(name//'_E'//itoa(i), young_back(i), young(i), 1.0e-10_dp)
-      call check_close(name//'_alpha'//itoa(i), alpha_back(i), alpha(i), 1.0e-10_dp)
+      call check_close(name//'_E'//integer_text(i), young_back(i), young(i), 1.0e-10_dp)
+      call check_close(name//'_alpha'//integer_text(i), alpha_back(i), alpha(i), 1.0e-10_dp)
       worst = max(worst, abs(young_back(i)/young(i) - 1.0_dp))
       if (alpha(i) > 0.0_dp) worst = max(worst, abs(alpha_back(i)/alpha(i) - 1.0_dp))
     end do
@@ -272,7 +272,7 @@ contains
                            message)
     call check('merge_equal_rates_ok', len(message) == 0, message)
     if (len(message) > 0) return
-    call check('merge_equal_rates_two_terms', size(shear) == 2, itoa(size(shear))//' terms')
+    call check('merge_equal_rates_two_terms', size(shear) == 2, integer_text(size(shear))//' terms')
     if (size(shear) /= 2) return
     call check_close('merge_equal_rates_G1', shear(1), shear_reference(1), 1.0e-14_dp)
     call check_close('merge_equal_rates_G2', shear(2), shear_reference(2), 1.0e-14_dp)
@@ -323,9 +323,9 @@ contains
         write(line, '(a, i0, 2(2x, es12.5, 2x, es10.3, 2x, es10.2))') '# ', m, shear(m)/1.0e6_dp, &
           table3_shear(m, velocity)/1.0e6_dp, difference_shear, beta(m), table3_beta(m, velocity), difference_beta
         print '(a)', trim(line)
-        call check_close('table3_'//velocity_tag(velocity)//'_G'//itoa(m), shear(m), table3_shear(m, velocity), &
+        call check_close('table3_'//velocity_tag(velocity)//'_G'//integer_text(m), shear(m), table3_shear(m, velocity), &
                          1.6e-2_dp)
-        call check_close('table3_'//velocity_tag(velocity)//'_beta'//itoa(m), beta(m), table3_beta(m, velocity), &
+        call check_close('table3_'//velocity_tag(velocity)//'_beta'//integer_text(m), beta(m), table3_beta(m, velocity), &
                          0.9e-2_dp)
       end do
     end do

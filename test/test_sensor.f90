@@ -35,7 +35,7 @@ program test_sensor
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
                              history_column, summary_real
   use visco2d_expect, only: summary_value
@@ -84,7 +84,7 @@ contains
     az = history_column(record, 'middle_sensor_az_m_s2')
     ar = history_column(record, 'middle_sensor_ar_m_s2')
     whole = history_column(record, 'whole_sensor_az_m_s2')
-    call check('free flight: rows', size(az) > 10, itoa(size(az))//' rows')
+    call check('free flight: rows', size(az) > 10, integer_text(size(az))//' rows')
     call check('free flight: sensor a_z = -g at every row (1e-9 relative)', &
                all(abs(az + 9.8_dp) <= 1.0e-9_dp*9.8_dp), 'worst '//real_text(maxval(abs(az + 9.8_dp))))
     call check('free flight: sensor a_r = 0 at every row', all(abs(ar) <= 1.0e-9_dp*9.8_dp), &
@@ -110,15 +110,15 @@ contains
     print '(a)', '| level | centre node peak (g) | sensor peak, RADIUS 5 mm (g) | sensor nodes | centre of mass peak (g) |'
     print '(a)', '|---|---|---|---|---|'
     do level = 1, 2
-      if (.not. run_deck('apple_L'//itoa(level), [character(len=line_length) :: 'ANALYSIS DYNAMIC', &
+      if (.not. run_deck('apple_L'//integer_text(level), [character(len=line_length) :: 'ANALYSIS DYNAMIC', &
           'GEOMETRY AXISYMMETRIC', 'MATERIAL golden VISCOELASTIC K=1.756e6 RHO=790', 'PRONY G=0.636e6 BETA=0.000347', &
           'PRONY G=0.111e6 BETA=0.0409', 'PRONY G=0.208e6 BETA=1.121', 'PRONY G=0.099e6 BETA=35.26', &
-          'MESH SPHERE R=0.035 LEVEL='//itoa(level), 'DROP HEIGHT=0.0254', 'GRAVITY G=9.8', &
+          'MESH SPHERE R=0.035 LEVEL='//integer_text(level), 'DROP HEIGHT=0.0254', 'GRAVITY G=9.8', &
           'TIME DT=5e-6 TEND=8e-3', 'PLATE Z=0 STICK', 'STOP AT=MAXDEFORMATION', &
           'PROBE accelerometer R=0 Z=0.035 RADIUS=0.005', 'PROBE whole R=0 Z=0.035 RADIUS=1'], record)) return
-      call check_text_contains('impact level '//itoa(level)//': the summary says the sensor is not F/M', &
+      call check_text_contains('impact level '//integer_text(level)//': the summary says the sensor is not F/M', &
                                summary_value(record, 'probe_accelerometer_sensor_reads'), 'not the body''s F/M')
-      call check_text_contains('impact level '//itoa(level)//': the sensor note names accel_cm_max_g', &
+      call check_text_contains('impact level '//integer_text(level)//': the sensor note names accel_cm_max_g', &
                                summary_value(record, 'probe_accelerometer_sensor_reads'), 'accel_cm_max_g')
       node(level) = summary_real(record, 'accel_center_max_g')
       sensor(level) = summary_real(record, 'probe_accelerometer_sensor_accel_max_g')
@@ -128,22 +128,22 @@ contains
       whole = history_column(record, 'whole_sensor_az_m_s2')
       az_cm = history_column(record, 'az_cm_m_s2')
       if (size(whole) /= size(az_cm) .or. size(whole) == 0) cycle
-      call check('impact level '//itoa(level)//': whole-body sensor = centre of mass at every row (1e-9 of its peak)', &
+      call check('impact level '//integer_text(level)//': whole-body sensor = centre of mass at every row (1e-9 of its peak)', &
                  all(abs(whole - az_cm) <= 1.0e-9_dp*maxval(abs(az_cm))), &
                  'worst '//real_text(maxval(abs(whole - az_cm))))
       nodes(level) = nint(summary_real(record, 'probe_accelerometer_sensor_nodes'))
       if (nodes(level) == 1) then
-        call check_close('impact level '//itoa(level)//': a sensor of one node reads that node', &
+        call check_close('impact level '//integer_text(level)//': a sensor of one node reads that node', &
                          sensor(level), node(level), 1.0e-12_dp)
       else
-        call check('impact level '//itoa(level)//': the sensor is nearer the centre of mass than the node', &
+        call check('impact level '//integer_text(level)//': the sensor is nearer the centre of mass than the node', &
                    abs(sensor(level) - cm(level)) < abs(node(level) - cm(level)), 'sensor '// &
                    real_text(sensor(level))//' g, node '//real_text(node(level))//' g, centre of mass '// &
                    real_text(cm(level))//' g')
       end if
     end do
     call check('impact level 2: the 10 mm sensor holds more than its node', nodes(2) > 1, &
-               itoa(nodes(2))//' node(s)')
+               integer_text(nodes(2))//' node(s)')
     ! The sensor's peak falls as the mesh is refined (measured on levels 1-5:
     ! 75.0, 70.2, 69.6, 49.4, 45.6 g on the legacy grid, doc/verification.md),
     ! toward a limit above the centre of mass's 41.1 g (about 1.11-1.13 x it
@@ -186,8 +186,8 @@ contains
     end if
     text = error_text(error)
     call check_text_contains(name//': message', text, fragment)
-    call check_text_contains(name//': located at RADIUS=', text, ':'//itoa(size(lines) - 1)//':'// &
-                             itoa(index(probe, 'RADIUS'))//': PROBE:')
+    call check_text_contains(name//': located at RADIUS=', text, ':'//integer_text(size(lines) - 1)//':'// &
+                             integer_text(index(probe, 'RADIUS'))//': PROBE:')
   end subroutine expect_refused
 
   function real_text(x) result(text)

@@ -24,7 +24,7 @@ program test_solver_guards
   use visco2d_hertz, only: hertz_impact, hertz_t
   use visco2d_kinds, only: pi
   use visco2d_testing, only: check, check_text_contains, test_summary, write_deck
-  use visco2d_strings, only: rtoa
+  use visco2d_strings, only: message_real
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_solver_guards'
@@ -189,7 +189,7 @@ contains
     hertz = hertz_impact(18.11e6_dp, 0.219_dp, radius, density*4.0_dp/3.0_dp*pi*radius**3, 0.9982_dp)
     call check('Table 1: the Hertz contact duration of the warnings is eqs. [43]-[44] (pole curvature, within 0.01 %)', &
                abs(scales%contact_duration/hertz%duration - 1.0_dp) < 1.0e-4_dp, &
-               'warnings '//rtoa(scales%contact_duration)//' s, exact sphere '//rtoa(hertz%duration)//' s')
+               'warnings '//message_real(scales%contact_duration)//' s, exact sphere '//message_real(hertz%duration)//' s')
     call run_deck(folder//'/paper_dt.inp', out_root, record, error)
     call check('Table 1 at DT = 0.01 ms runs', .not. allocated(error))
     if (allocated(error)) deallocate(error)
@@ -274,7 +274,8 @@ contains
       end if
       radius = pole_curvature_radius(deck%mesh, deck%mesh%nelem)
       call check(trim(meshes(k))//': radius of curvature at the contact pole within 0.1 %', &
-                 abs(radius/expected(k) - 1.0_dp) < 1.0e-3_dp, rtoa(radius)//' m, expected '//rtoa(expected(k))//' m')
+                 abs(radius/expected(k) - 1.0_dp) < 1.0e-3_dp, message_real(radius)//' m, expected '//message_real(expected(k)) &
+                   //' m')
     end do
   end subroutine pole_radius_of_generated_bodies
 end program test_solver_guards

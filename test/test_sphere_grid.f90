@@ -27,7 +27,7 @@ program test_sphere_grid
   use visco2d_budget, only: sphere_mesh_counts
   use visco2d_mesh_measures, only: shape_measures
   use visco2d_testing, only: check, check_close, test_summary
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_test_decks, only: try_read_deck, check_error_location
   use, intrinsic :: iso_fortran_env, only: int64
   implicit none
@@ -79,9 +79,9 @@ contains
     integer, allocatable :: connectivity(:, :)
     logical, allocatable :: surface(:)
     call make(grid, 1, xy, connectivity, surface)
-    call check(name//'_level1_88_elements', size(connectivity, 2) == 88, 'got '//itoa(size(connectivity, 2)))
-    call check(name//'_level1_106_nodes', size(xy, 2) == 106, 'got '//itoa(size(xy, 2)))
-    call check(name//'_level1_11_surface_nodes', count(surface) == 11, 'got '//itoa(count(surface)))
+    call check(name//'_level1_88_elements', size(connectivity, 2) == 88, 'got '//integer_text(size(connectivity, 2)))
+    call check(name//'_level1_106_nodes', size(xy, 2) == 106, 'got '//integer_text(size(xy, 2)))
+    call check(name//'_level1_11_surface_nodes', count(surface) == 11, 'got '//integer_text(count(surface)))
   end subroutine check_level_one
 
   !> Counts, angles, Jacobians, volume and the pole's nodes of one level of the contact grid.
@@ -94,14 +94,14 @@ contains
     real(dp) :: smallest, largest, least_jacobian, volume, pole_error
     character(:), allocatable :: tag
     integer :: i
-    tag = 'contact_level'//itoa(level)
+    tag = 'contact_level'//integer_text(level)
     call make(sphere_grid_contact, level, xy, connectivity, surface)
     call sphere_mesh_counts(level, nodes, elements, width)
     call check(tag//'_counts_as_estimated', size(xy, 2) == nodes .and. size(connectivity, 2) == elements)
     call shape_measures(xy, connectivity, smallest, largest, least_jacobian, volume)
     call check(tag//'_angles_in_50_130', smallest >= 50.0_dp .and. largest <= 130.0_dp, &
-               'angles '//rtoa(smallest)//' .. '//rtoa(largest)//' deg')
-    call check(tag//'_jacobians_positive', least_jacobian > 0.0_dp, 'least corner Jacobian '//rtoa(least_jacobian))
+               'angles '//message_real(smallest)//' .. '//message_real(largest)//' deg')
+    call check(tag//'_jacobians_positive', least_jacobian > 0.0_dp, 'least corner Jacobian '//message_real(least_jacobian))
     call check_close(tag//'_volume_is_the_spheres', volume, 4.0_dp*pi*radius**3/3.0_dp, 1.0e-12_dp)
     pole_error = 0.0_dp
     do i = 1, size(xy, 2)
@@ -109,7 +109,7 @@ contains
       if (atan2(xy(1, i), radius - xy(2, i)) > 11.5_dp*pi/180.0_dp) cycle
       pole_error = max(pole_error, abs(norm2(xy(:, i) - [0.0_dp, radius]) - radius))
     end do
-    call check(tag//'_pole_nodes_on_sphere', pole_error <= 1.0e-4_dp*radius, 'off by '//rtoa(pole_error/radius)//' R')
+    call check(tag//'_pole_nodes_on_sphere', pole_error <= 1.0e-4_dp*radius, 'off by '//message_real(pole_error/radius)//' R')
     print '(a, i0, a, f6.1, a, f6.1, a)', '  level ', level, ': angles ', smallest, ' .. ', largest, ' deg'
   end subroutine check_level
 
@@ -123,7 +123,7 @@ contains
     integer :: i, j, match
     logical :: inward_only
     character(:), allocatable :: tag
-    tag = 'contact_level'//itoa(level)//'_in_level'//itoa(level + 1)
+    tag = 'contact_level'//integer_text(level)//'_in_level'//integer_text(level + 1)
     call make(sphere_grid_contact, level, coarse, connectivity, coarse_surface)
     call make(sphere_grid_contact, level + 1, fine, connectivity, fine_surface)
     offset = 0.0_dp                           ! level L's largest outward volume offset
@@ -152,10 +152,10 @@ contains
         interior_gap = max(interior_gap, nearest)
       end if
     end do
-    call check(tag//'_interior_nodes', interior_gap <= 1.0e-12_dp*radius, 'farthest '//rtoa(interior_gap/radius)//' R')
-    call check(tag//'_surface_angles', angle_gap <= 1.0e-12_dp, 'angles differ by '//rtoa(angle_gap))
+    call check(tag//'_interior_nodes', interior_gap <= 1.0e-12_dp*radius, 'farthest '//message_real(interior_gap/radius)//' R')
+    call check(tag//'_surface_angles', angle_gap <= 1.0e-12_dp, 'angles differ by '//message_real(angle_gap))
     call check(tag//'_surface_offsets', inward_only, 'a surface node moved outward or by more than '// &
-               rtoa(offset/radius)//' R')
+               message_real(offset/radius)//' R')
   end subroutine check_nested
 
   !> The legacy grid's nodes are on the sphere: its polygon is short of the
@@ -175,7 +175,7 @@ contains
     end do
     call check('legacy_volume_short', all(deficit(1:4) > 0.0_dp))
     do level = 1, 3
-      call check_close('legacy_deficit_second_order_'//itoa(level), deficit(level)/deficit(level + 1), 4.0_dp, &
+      call check_close('legacy_deficit_second_order_'//integer_text(level), deficit(level)/deficit(level + 1), 4.0_dp, &
                        0.0_dp, atol=0.3_dp)
     end do
   end subroutine check_legacy_deficit

@@ -31,7 +31,7 @@ program test_sphere_pressure
   use visco2d_static, only: static_solution_t, solve_static
   use visco2d_element, only: gauss_count
   use visco2d_testing, only: check, test_summary
-  use visco2d_strings, only: rtoa
+  use visco2d_strings, only: message_real
   implicit none
 
   character(*), parameter :: folder = 'build/test_decks'
@@ -141,8 +141,8 @@ contains
       ' deg, (z_top - 2R)/R = ', outward/radius, ', over its chord''s sagitta ', outward/sagitta
     call check(tag//': the top pole is on the axis, outside (0, 2R) by at most 1.5 sagittas, and has u_z = 0', &
                mesh%xy(1, top) == 0.0_dp .and. outward >= 0.0_dp .and. outward <= 1.5_dp*sagitta .and. &
-               top_uz == 0.0_dp, '(z_top - 2R)/R = '//rtoa(outward/radius)//', sagitta/R = '// &
-               rtoa(sagitta/radius)//', u_z = '//rtoa(top_uz))
+               top_uz == 0.0_dp, '(z_top - 2R)/R = '//message_real(outward/radius)//', sagitta/R = '// &
+               message_real(sagitta/radius)//', u_z = '//message_real(top_uz))
     ! Global equilibrium: the pressure on a closed surface has zero resultant,
     ! so the one support carries nothing (round-off: 1e-8 of p R^2, the scale of
     ! the nodal forces per radian).

@@ -45,7 +45,7 @@ program test_spheroid
   use visco2d_mesh_measures, only: shape_measures
   use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real
   use visco2d_test_decks, only: try_read_deck, check_error_location
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_spheroid'
@@ -91,13 +91,13 @@ contains
     integer, allocatable :: connectivity(:, :), edge_element(:), edge_side(:), edge_set(:)
     integer, allocatable :: sphere_connectivity(:, :), sphere_element(:), sphere_side(:), sphere_set(:)
     character(:), allocatable :: tag
-    tag = name//'_level'//itoa(level)//'_equal_axes_is_the_sphere'
+    tag = name//'_level'//integer_text(level)//'_equal_axes_is_the_sphere'
     call sphere_grid(equatorial, level, sphere_default_grade(grid), sphere_default_core(grid), grid, sphere_xy, &
                      sphere_connectivity, sphere_element, sphere_side, sphere_set)
     call spheroid_grid(equatorial, equatorial, level, sphere_default_grade(grid), sphere_default_core(grid), grid, xy, &
                        connectivity, edge_element, edge_side, edge_set)
     call check(tag//'_nodes', maxval(abs(xy - sphere_xy)) <= epsilon(1.0_dp)*equatorial, &
-               'differ by '//rtoa(maxval(abs(xy - sphere_xy))/equatorial)//' R')
+               'differ by '//message_real(maxval(abs(xy - sphere_xy))/equatorial)//' R')
     call check(tag//'_topology', all(connectivity == sphere_connectivity) .and. all(edge_element == sphere_element) &
                .and. all(edge_side == sphere_side) .and. all(edge_set == sphere_set))
   end subroutine check_sphere_identity
@@ -111,17 +111,17 @@ contains
     real(dp) :: polar, smallest, largest, least_jacobian, volume, least_allowed
     character(:), allocatable :: tag
     polar = ratio*equatorial
-    tag = 'ratio'//trim(rtoa(ratio))//'_level'//itoa(level)
+    tag = 'ratio'//trim(message_real(ratio))//'_level'//integer_text(level)
     ! The sphere grid's 50 deg, symmetric about the axis the stretch shortens, in degrees.
     least_allowed = 2.0_dp*atan(min(ratio, 1.0_dp/ratio)*tan(25.0_dp*pi/180.0_dp))*180.0_dp/pi
     call spheroid_grid(equatorial, polar, level, sphere_default_grade(sphere_grid_contact), &
                        sphere_default_core(sphere_grid_contact), sphere_grid_contact, xy, connectivity, &
                        edge_element, edge_side, edge_set)
     call shape_measures(xy, connectivity, smallest, largest, least_jacobian, volume)
-    call check(tag//'_jacobians_positive', least_jacobian > 0.0_dp, 'least corner Jacobian '//rtoa(least_jacobian))
+    call check(tag//'_jacobians_positive', least_jacobian > 0.0_dp, 'least corner Jacobian '//message_real(least_jacobian))
     call check(tag//'_angles_within_the_stretched_50_130', smallest >= least_allowed .and. &
-               largest <= 180.0_dp - least_allowed, 'angles '//rtoa(smallest)//' .. '//rtoa(largest)// &
-               ' deg, allowed '//rtoa(least_allowed)//' .. '//rtoa(180.0_dp - least_allowed))
+               largest <= 180.0_dp - least_allowed, 'angles '//message_real(smallest)//' .. '//message_real(largest)// &
+               ' deg, allowed '//message_real(least_allowed)//' .. '//message_real(180.0_dp - least_allowed))
     call check_close(tag//'_volume_4/3_pi_A^2_C', volume, 4.0_dp*pi*equatorial**2*polar/3.0_dp, 1.0e-12_dp)
     print '(a, f5.2, a, i0, a, f6.1, a, f6.1, a)', '  C/A = ', ratio, ', level ', level, ': angles ', smallest, &
       ' .. ', largest, ' deg'
@@ -160,21 +160,21 @@ contains
     polar = ratio*equatorial
     curvature_radius = equatorial**2/polar
     mass = density*4.0_dp*pi*equatorial**2*polar/3.0_dp
-    print '(a)', '  '//name//' C/A = '//rtoa(ratio)//', rho = A^2/C = '//rtoa(curvature_radius)//' m (level '// &
-      itoa(hertz_level)//'):'
+    print '(a)', '  '//name//' C/A = '//message_real(ratio)//', rho = A^2/C = '//message_real(curvature_radius)//' m (level '// &
+      integer_text(hertz_level)//'):'
     print '(a)', '  | a_H/A | a_H/C | F (N) | alpha (mm) | alpha/alpha_H - 1 | sphere line at a/R = a_H/C |'
     do i = 1, size(contact_ratios)
       target_force = 4.0_dp/3.0_dp*modulus*(contact_ratios(i)*equatorial)**3/curvature_radius  ! a_H = x A
-      call press(polar, target_force/mass, name//'_'//itoa(i), force, alpha)
+      call press(polar, target_force/mass, name//'_'//integer_text(i), force, alpha)
       alpha_hertz = (0.75_dp*force/(modulus*sqrt(curvature_radius)))**(2.0_dp/3.0_dp)
       deviation(i) = alpha/alpha_hertz - 1.0_dp
       expected = sphere_slope*contact_ratios(i)*equatorial/polar + sphere_intercept
-      call check_close(name//'_force_is_the_weight_'//itoa(i), force, target_force, 1.0e-9_dp)
+      call check_close(name//'_force_is_the_weight_'//integer_text(i), force, target_force, 1.0e-9_dp)
       print '(a, f5.3, a, f5.3, a, f9.3, a, f8.5, a, f7.2, a, f7.2, a)', '  | ', contact_ratios(i), ' | ', &
         contact_ratios(i)*equatorial/polar, ' | ', force, ' | ', 1.0e3_dp*alpha, ' | ', 100*deviation(i), &
         ' % | ', 100*expected, ' % |'
-      if (ratio /= 1.0_dp) call check(name//'_follows_the_sphere_within_1%_at_'//itoa(i), &
-        abs(deviation(i) - expected) <= 0.01_dp, 'deviation '//rtoa(deviation(i))//', sphere '//rtoa(expected))
+      if (ratio /= 1.0_dp) call check(name//'_follows_the_sphere_within_1%_at_'//integer_text(i), &
+        abs(deviation(i) - expected) <= 0.01_dp, 'deviation '//message_real(deviation(i))//', sphere '//message_real(expected))
     end do
     call fit_line(contact_ratios, deviation, slope, intercept)
     if (ratio == 1.0_dp) then
@@ -182,7 +182,7 @@ contains
       sphere_intercept = intercept
     end if
     print '(a, f7.3, a, f7.3, a)', '  fit: alpha/alpha_H - 1 = ', slope, ' a/A + ', 100*intercept, ' %'
-    call check(name//'_hertz_at_a_to_0_within_1%', abs(intercept) <= 0.01_dp, 'intercept '//rtoa(intercept))
+    call check(name//'_hertz_at_a_to_0_within_1%', abs(intercept) <= 0.01_dp, 'intercept '//message_real(intercept))
   end subroutine check_hertz
 
   !> The spheroid (A = equatorial, C = polar; level 3) pressed on PLATE Z=0 SLIP by GRAVITY g.
@@ -201,7 +201,7 @@ contains
     path = folder//'/'//tag//'.inp'
     call write_deck(path, [character(len=160) :: 'TITLE pressed spheroid', 'ANALYSIS STATIC', &
       'GEOMETRY AXISYMMETRIC', 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &
-      'MESH SPHEROID A='//trim(adjustl(text(1)))//' C='//trim(adjustl(text(2)))//' LEVEL='//itoa(hertz_level), &
+      'MESH SPHEROID A='//trim(adjustl(text(1)))//' C='//trim(adjustl(text(2)))//' LEVEL='//integer_text(hertz_level), &
       'PLATE Z=0 SLIP', 'GRAVITY G='//trim(adjustl(text(3))), 'END'])
     force = 0.0_dp
     alpha = 0.0_dp

@@ -67,7 +67,7 @@ program test_stability
   use visco2d_system, only: directory_exists
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, &
                              history_column, history_last, history_index, exact_text
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   implicit none
 
   character(*), parameter :: folder = 'build/test-tmp/test_stability'
@@ -338,7 +338,7 @@ contains
     call run_static('case2_cantilever_'//formulation//'_'//nu_tag(nu)//'_'//trim(tag), [character(len=100) :: &
       'TITLE cantilever block, uniform lateral load', 'ANALYSIS STATIC', 'GEOMETRY PLANESTRAIN', &
       card('FORMULATION '//formulation), elastic_line(2.0_dp*ring_shear*(1.0_dp + nu), nu, 1000.0_dp), &
-      card('MESH RECT R0=0.01 R1=0.02 Z0=0 Z1=0.1 NR='//trim(tag)//' NZ='//itoa(10*nr)), 'FIX BOTTOM RZ', &
+      card('MESH RECT R0=0.01 R1=0.02 Z0=0 Z1=0.1 NR='//trim(tag)//' NZ='//integer_text(10*nr)), 'FIX BOTTOM RZ', &
       'PRESSURE OUTER P=1e3', 'END'], deck, solution, ok)
     if (.not. ok) return
     tip = sum(solution%displacement(1, :), mask=deck%mesh%xy(2, :) > 0.1_dp - 1.0e-9_dp)/ &
@@ -448,7 +448,7 @@ contains
     worst_ratio = 0.0_dp
     min_dissipated = huge(1.0_dp)
     do k = 1, nx
-      call run_dynamic('case3_x'//itoa(k), column_deck('DYNAMIC', [character(len=100) :: &
+      call run_dynamic('case3_x'//integer_text(k), column_deck('DYNAMIC', [character(len=100) :: &
         card('MATERIAL m VISCOELASTIC K='//exact_text(bulk)//' RHO='//exact_text(density1)), &
         card('PRONY G='//exact_text(g_inf)//' BETA=0'), &
         card('PRONY G='//exact_text(g1)//' BETA='//exact_text(x(k)/dt))], &
@@ -685,7 +685,7 @@ contains
     if (allocated(error)) then
       text = error_text(error)
       call check_text_contains('case 6: the THETA=0.9 error names the line', text, 'case6_theta09.inp:'// &
-                               itoa(wilson_line)//':')
+                               integer_text(wilson_line)//':')
       call check_text_contains('case 6: the THETA=0.9 error names THETA', text, 'THETA')
     end if
     call add_row('6 THETA=1.0 DT=1000 dt_crit', 'error "unstable ... THETA", no case folder; '// &
@@ -733,7 +733,7 @@ contains
         text = error_text(error)
         if (k == 1) print '(a)', '  case 7 error: '//text
         call check_text_contains('case 7 ('//trim(stops(k))//'): the error is located at the TIME card', text, &
-                                 name//'.inp:'//itoa(time_line)//': TIME: ')
+                                 name//'.inp:'//integer_text(time_line)//': TIME: ')
         call check_text_contains('case 7 ('//trim(stops(k))//'): the error says "unstable"', text, 'unstable')
         deallocate(error)
       end if
@@ -848,12 +848,12 @@ contains
     logical, intent(in), optional :: from_rest
     character(len=100), allocatable :: lines(:)
     lines = [character(len=100) :: 'TITLE column under a suddenly applied pressure', card('ANALYSIS '//analysis), &
-             'GEOMETRY PLANESTRAIN', material, card('MESH RECT R0=0.01 R1=0.0125 Z0=0 Z1=0.2 NR=1 NZ='//itoa(nz)), &
+             'GEOMETRY PLANESTRAIN', material, card('MESH RECT R0=0.01 R1=0.0125 Z0=0 Z1=0.2 NR=1 NZ='//integer_text(nz)), &
              'FIX INNER R', 'FIX OUTER R', 'FIX BOTTOM Z', card('PRESSURE TOP P='//exact_text(pressure)), &
              'PROBE top R=0.01 Z=0.2']
     if (analysis == 'DYNAMIC') then
       lines = [character(len=100) :: lines, card('WILSON THETA='//exact_text(theta)), &
-               card('TIME DT='//exact_text(dt)//' TEND='//exact_text(tend)), card('OUTPUT EVERY='//itoa(every))]
+               card('TIME DT='//exact_text(dt)//' TEND='//exact_text(tend)), card('OUTPUT EVERY='//integer_text(every))]
     end if
     if (analysis == 'DYNAMIC') then
       if (.not. present(from_rest)) then

@@ -16,7 +16,7 @@
 program test_viscoelastic
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, read_deck, analysis_quasistatic, total_steps
   use visco2d_material, only: material_t, has_memory, shear_relaxation_modulus
   use visco2d_viscoelastic, only: relaxation_integral, exp_minus_one, step_coefficients, step_coefficients_t, &
@@ -81,8 +81,8 @@ contains
     end do
     print '(a, es9.2, a, es9.2)', '# J(x) worst relative error ', worst_j, ';  expm1 ', worst_e
     ! A naive (1 - exp(-x))/x is wrong by ~1e-8 at x = 3.5e-9 (Table 3, dt = 1e-5 s); these stay at a few ulps.
-    call check('relaxation_integral_ulps', worst_j < 1.0e-15_dp, 'worst relative error '//gtoa(worst_j))
-    call check('exp_minus_one_ulps', worst_e < 1.0e-15_dp, 'worst relative error '//gtoa(worst_e))
+    call check('relaxation_integral_ulps', worst_j < 1.0e-15_dp, 'worst relative error '//table_real(worst_j))
+    call check('exp_minus_one_ulps', worst_e < 1.0e-15_dp, 'worst relative error '//table_real(worst_e))
     call check('relaxation_integral_zero', relaxation_integral(0.0_dp) == 1.0_dp)
     call check_close('relaxation_integral_huge', relaxation_integral(1.0e300_dp), 1.0e-300_dp, 1.0e-15_dp)
     call check('exp_minus_one_underflow', exp_minus_one(-1.0e6_dp) == -1.0_dp)
@@ -101,9 +101,9 @@ contains
     integer :: m, row
     strain = -0.01_dp
     lines = [character(len=100) :: 'TITLE '//name, 'ANALYSIS QUASISTATIC', 'GEOMETRY AXISYMMETRIC', &
-             'MATERIAL flesh VISCOELASTIC K='//gtoa(bulk)]
+             'MATERIAL flesh VISCOELASTIC K='//table_real(bulk)]
     do m = 1, size(shear)
-      lines = [character(len=100) :: lines, 'PRONY G='//gtoa(shear(m))//' BETA='//gtoa(rate(m))]
+      lines = [character(len=100) :: lines, 'PRONY G='//table_real(shear(m))//' BETA='//table_real(rate(m))]
     end do
     lines = [character(len=100) :: lines, 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=2 NZ=2', 'FIX BOTTOM Z', &
              'FIX OUTER R', 'FIX TOP Z UZ=-1e-4', decades, 'PROBE c R=0.005 Z=0.005', 'END']
@@ -112,7 +112,7 @@ contains
     sr = history_column(record, 'c_sr_Pa')
     sz = history_column(record, 'c_sz_Pa')
     st = history_column(record, 'c_st_Pa')
-    call check(name//'_rows', size(t) == 101, 'rows '//itoa(size(t)))   ! step 0, 10 + 10 x 9 steps
+    call check(name//'_rows', size(t) == 101, 'rows '//integer_text(size(t)))   ! step 0, 10 + 10 x 9 steps
     call check(name//'_time_span', t(2) == 1.0e-7_dp .and. t(size(t)) == 1.0e4_dp)
     worst_deviatoric = 0.0_dp
     worst_mean = 0.0_dp
@@ -123,8 +123,8 @@ contains
     end do
     print '(a, es9.2, a, es9.2)', '# '//name//': worst relative error, deviatoric ', worst_deviatoric, &
       ', mean ', worst_mean
-    call check(name//'_follows_phi1', worst_deviatoric < 1.0e-9_dp, 'worst relative error '//gtoa(worst_deviatoric))
-    call check(name//'_mean_stress_elastic', worst_mean < 1.0e-12_dp, 'worst relative error '//gtoa(worst_mean))
+    call check(name//'_follows_phi1', worst_deviatoric < 1.0e-9_dp, 'worst relative error '//table_real(worst_deviatoric))
+    call check(name//'_mean_stress_elastic', worst_mean < 1.0e-12_dp, 'worst relative error '//table_real(worst_mean))
     ! Eleven stages of different dt after the dt = 0 step: 12 factorizations, no more.
     call check(name//'_factorizations', summary_value(record, 'factorizations') == '12', &
                'factorizations = '//summary_value(record, 'factorizations'))
@@ -170,7 +170,7 @@ contains
       worst = max(worst, abs((sz(row) - sr(row))/exact - 1.0_dp))
     end do
     print '(a, es9.2)', '# constant strain rate: worst relative error ', worst
-    call check('constant_strain_rate_hereditary_integral', worst < 1.0e-9_dp, 'worst relative error '//gtoa(worst))
+    call check('constant_strain_rate_hereditary_integral', worst < 1.0e-9_dp, 'worst relative error '//table_real(worst))
     call check('constant_strain_rate_starts_at_zero', abs(sz(1)) + abs(sr(1)) == 0.0_dp)
   end subroutine test_constant_strain_rate
 
@@ -202,8 +202,8 @@ contains
                                                                       1.0_dp/(9.0_dp*bulk))) - 1.0_dp))
     end do
     print '(a, es9.2, a, es9.2)', '# creep: worst relative error, axial ', worst_axial, ', radial ', worst_radial
-    call check('creep_axial_compliance', worst_axial < 1.0e-9_dp, 'worst relative error '//gtoa(worst_axial))
-    call check('creep_radial_compliance', worst_radial < 1.0e-9_dp, 'worst relative error '//gtoa(worst_radial))
+    call check('creep_axial_compliance', worst_axial < 1.0e-9_dp, 'worst relative error '//table_real(worst_axial))
+    call check('creep_radial_compliance', worst_radial < 1.0e-9_dp, 'worst relative error '//table_real(worst_radial))
     call check_close('creep_final_strain', uz(size(uz))/(-height), &
                      pressure*((1.0_dp + rate*50.0_dp)/(3.0_dp*shear) + 1.0_dp/(9.0_dp*bulk)), 1.0e-9_dp)
   end subroutine test_creep
@@ -259,7 +259,7 @@ contains
       worst = max(worst, abs(sz(row) - factor*solution%nodal_stress(2, node))/maxval(abs(solution%nodal_stress)))
     end do
     print '(a, es9.2)', '# elastic QUASISTATIC vs STATIC: worst relative difference ', worst
-    call check('elastic_quasistatic_equals_static', worst < 1.0e-12_dp, 'worst relative difference '//gtoa(worst))
+    call check('elastic_quasistatic_equals_static', worst < 1.0e-12_dp, 'worst relative difference '//table_real(worst))
     ! The final snapshot (t = 4 s, curve 0.25) against the whole static field.
     reference = reshape(0.25_dp*solution%displacement, [size(solution%displacement)])
     associate (final => record%snapshots(size(record%snapshots)))
@@ -291,7 +291,7 @@ contains
     worst = maxval(abs(bore/exact - 1.0_dp))
     print '(a, es9.2, a, i0, a)', '# viscoelastic cylinder: worst relative error of u(a, t) ', worst, ' over ', &
       size(t), ' steps'
-    call check('cylinder_bore_within_1_percent', worst < 1.0e-2_dp, 'worst relative error '//gtoa(worst))
+    call check('cylinder_bore_within_1_percent', worst < 1.0e-2_dp, 'worst relative error '//table_real(worst))
     call check('cylinder_bore_creeps', bore(size(bore)) > 7.0_dp*bore(1))
   end subroutine test_cylinder
 
@@ -378,9 +378,9 @@ contains
     order = log(error_coarse/error_fine)/log(4.0_dp)
     print '(a, es9.2, a, es9.2, a, f5.2)', '# uniaxial relaxation vs eps E(t): 10 steps/decade ', error_coarse, &
       ', 40 steps/decade ', error_fine, ', observed order ', order
-    call check('uniaxial_relaxation_10_per_decade', error_coarse < 3.0e-3_dp, gtoa(error_coarse))
-    call check('uniaxial_relaxation_40_per_decade', error_fine < 2.0e-4_dp, gtoa(error_fine))
-    call check('uniaxial_relaxation_second_order', abs(order - 2.0_dp) < 0.2_dp, 'order '//gtoa(order))
+    call check('uniaxial_relaxation_10_per_decade', error_coarse < 3.0e-3_dp, table_real(error_coarse))
+    call check('uniaxial_relaxation_40_per_decade', error_fine < 2.0e-4_dp, table_real(error_fine))
+    call check('uniaxial_relaxation_second_order', abs(order - 2.0_dp) < 0.2_dp, 'order '//table_real(order))
   end subroutine test_uniaxial_relaxation
 
   real(dp) function uniaxial_relaxation_error(per_decade) result(worst)
@@ -399,12 +399,12 @@ contains
              'PROBE c R=0.005 Z=0.005']
     do k = 0, 9                                     ! decades 1e-5 .. 1e4 s
       stage_end = 10.0_dp**(k - 5)
-      lines = [character(len=100) :: lines, 'TIME DT='//gtoa(stage_end*merge(1.0_dp, 0.9_dp, k == 0)/per_decade)// &
-               ' TEND='//gtoa(stage_end)]
+      lines = [character(len=100) :: lines, 'TIME DT='//table_real(stage_end*merge(1.0_dp, 0.9_dp, k == 0)/per_decade)// &
+               ' TEND='//table_real(stage_end)]
     end do
     lines = [character(len=100) :: lines, 'END']
     worst = huge(1.0_dp)
-    if (.not. run('uniaxial_relaxation_'//itoa(per_decade), lines, record)) return
+    if (.not. run('uniaxial_relaxation_'//integer_text(per_decade), lines, record)) return
     t = history_column(record, 't_s')
     sz = history_column(record, 'c_sz_Pa')
     worst = 0.0_dp

@@ -16,7 +16,7 @@
 program test_wave
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
-  use visco2d_strings, only: gtoa, short_real
+  use visco2d_strings, only: table_real, short_real
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_record, only: record_t
@@ -133,12 +133,12 @@ contains
       ! adds less than one step (test_time_steps). Tolerance 2 dz/c + 2 dt.
       tolerance = 2.0_dp*dz/speed + 2.0_dp*dt
       call check('wave_arrival_'//trim(name), abs(run%front(p)%arrival - depth/speed) <= tolerance, &
-                 'arrival '//gtoa(run%front(p)%arrival)//' s, d/c = '//gtoa(depth/speed)//' s, tolerance '// &
-                 gtoa(tolerance))
+                 'arrival '//table_real(run%front(p)%arrival)//' s, d/c = '//table_real(depth/speed)//' s, tolerance '// &
+                 table_real(tolerance))
       call check('wave_plateau_stress_'//trim(name), abs(run%stress_error(p)) <= 1.0e-2_dp, &
-                 'relative error '//gtoa(run%stress_error(p)))
+                 'relative error '//table_real(run%stress_error(p)))
       call check('wave_plateau_velocity_'//trim(name), abs(run%velocity_error(p)) <= 1.0e-2_dp, &
-                 'relative error '//gtoa(run%velocity_error(p)))
+                 'relative error '//table_real(run%velocity_error(p)))
     end do
     ! The 1-D state: sigma_r = nu/(1 - nu) sigma_z = -p0/3 behind the front (same window, same 1 %).
     t = history_column(record, 't_s')
@@ -155,7 +155,7 @@ contains
     worst = maxval(abs(top + velocity*t))
     tolerance = velocity*(dz/(4.0_dp*speed) + dt)
     print '(a, es10.3, a, es10.3, a)', '# top displacement: worst |u + v t| = ', worst, ' m (bound ', tolerance, ' m)'
-    call check('wave_top_displacement_history', worst <= tolerance, 'worst '//gtoa(worst)//' m')
+    call check('wave_top_displacement_history', worst <= tolerance, 'worst '//table_real(worst)//' m')
     last = size(t)
     call check_close('wave_top_displacement_end', top(last), -velocity*t_end, dt/t_end)
 
@@ -166,9 +166,9 @@ contains
     vcm = history_column(record, 'vz_cm_m_s')
     ucm = history_column(record, 'uz_cm_m')
     worst = maxval(abs(vcm + p0*t/(rho*height)))/(p0*t_end/(rho*height))
-    call check('wave_momentum_velocity', worst <= 1.0e-9_dp, 'worst relative error '//gtoa(worst))
+    call check('wave_momentum_velocity', worst <= 1.0e-9_dp, 'worst relative error '//table_real(worst))
     worst = maxval(abs(ucm + 0.5_dp*p0*t**2/(rho*height)))/(0.5_dp*p0*t_end**2/(rho*height))
-    call check('wave_momentum_displacement', worst <= 1.0e-9_dp, 'worst relative error '//gtoa(worst))
+    call check('wave_momentum_displacement', worst <= 1.0e-9_dp, 'worst relative error '//table_real(worst))
 
     ! Energy per m of thickness: W = p0 b |u_top| (error < dt/t_end as the
     ! top's), kinetic = strain = W/2 less half of the numerical dissipation.
@@ -182,7 +182,7 @@ contains
     ! grows with the step (the sweep: 0.095 % of the work at C = 0.25,
     ! 0.8 % at C = 4), so at C = 0.2 it is below 0.1 %: bound 0.2 %.
     call check('wave_balance_is_dissipation', run%balance < 0.0_dp .and. -run%balance < 2.0e-3_dp*exact_work, &
-               'balance error '//gtoa(run%balance)//' J')
+               'balance error '//table_real(run%balance)//' J')
     ! Equipartition: each gets half of what is left (rho v^2/2 = sigma^2/(2 M_c)
     ! behind the front); 3e-3 covers the < 1e-3 dissipated plus the front's unequal share.
     call check_close('wave_kinetic_is_half_the_work', kinetic, 0.5_dp*exact_work, 3.0e-3_dp)
@@ -270,7 +270,7 @@ contains
     ! No numerical damping at theta = 1: the balance error is only the
     ! bookkeeping's O(dt^2); at least ten times below theta = 1.4's dissipation at the same C.
     call check('linear_acceleration_conserves_energy', abs(linear%balance) < 0.1_dp*abs(runs(1)%balance), &
-               'balance '//gtoa(linear%balance)//' J vs '//gtoa(runs(1)%balance)//' J at theta = 1.4')
+               'balance '//table_real(linear%balance)//' J vs '//table_real(runs(1)%balance)//' J at theta = 1.4')
     ! theta = 1.4 elongates the period more and damps: at the same C a wider front, a smaller overshoot.
     do p = 1, 3
       call check('theta_1_4_smooths_more_'//probe_names(p), runs(1)%front(p)%rise > linear%front(p)%rise .and. &
@@ -285,18 +285,18 @@ contains
         ! lowers the peak: never sharper, never a larger overshoot than the
         ! semi-discrete (exact-in-time) front.
         call check('wilson_smooths_'//name, front%rise >= reference(p)%rise .and. &
-                   front%overshoot <= reference(p)%overshoot, 'rise '//gtoa(front%rise*speed/dz)// &
-                   ' elements, overshoot '//gtoa(front%overshoot))
+                   front%overshoot <= reference(p)%overshoot, 'rise '//table_real(front%rise*speed/dz)// &
+                   ' elements, overshoot '//table_real(front%overshoot))
         ! The arrival stays right within the front: d/c lies within half a
         ! rise time of the half level, for every step ...
         call check('wilson_arrival_within_front_'//name, abs(front%arrival - depths(p)/speed) <= 0.5_dp*front%rise, &
-                   'lag '//gtoa(front%arrival - depths(p)/speed)//' s, rise '//gtoa(front%rise)//' s')
+                   'lag '//table_real(front%arrival - depths(p)/speed)//' s, rise '//table_real(front%rise)//' s')
         ! ... and within the a-priori bound of test_deck: the lattice's
         ! Airy lag (<= 1.4 dz/c here) plus the period elongation's, which
         ! saturates near one step at large C (0.9 .. 1.0 dt at d = 0.75 m for C = 1 .. 4).
         tolerance = 2.0_dp*dz/speed + 2.0_dp*run%dt
         call check('wilson_arrival_'//name, abs(front%arrival - depths(p)/speed) <= tolerance, &
-                   'lag '//gtoa(front%arrival - depths(p)/speed)//' s, tolerance '//gtoa(tolerance)//' s')
+                   'lag '//table_real(front%arrival - depths(p)/speed)//' s, tolerance '//table_real(tolerance)//' s')
         end associate
       end do
       ! The plateau is right for every step: means from 2 ms behind the
@@ -305,11 +305,11 @@ contains
       ! left there is < 3 % and averages out over >= 2 ms: 1 %.
       do p = 1, 2
         call check('wilson_plateau_stress_'//tag//'_'//probe_names(p), abs(run%stress_error(p)) <= 1.0e-2_dp, &
-                   'relative error '//gtoa(run%stress_error(p)))
+                   'relative error '//table_real(run%stress_error(p)))
         call check('wilson_plateau_velocity_'//tag//'_'//probe_names(p), abs(run%velocity_error(p)) <= 1.0e-2_dp, &
-                   'relative error '//gtoa(run%velocity_error(p)))
+                   'relative error '//table_real(run%velocity_error(p)))
       end do
-      call check('wilson_dissipates_'//tag, run%balance < 0.0_dp, 'balance '//gtoa(run%balance)//' J')
+      call check('wilson_dissipates_'//tag, run%balance < 0.0_dp, 'balance '//table_real(run%balance)//' J')
       end associate
     end do
     ! A larger step: a wider, smoother front, a smaller overshoot, more dissipation.

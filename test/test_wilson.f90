@@ -30,7 +30,7 @@ program test_wilson
   use visco2d_record, only: record_t
   use visco2d_driver, only: run_deck
   use visco2d_expect, only: summary_value
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_close, test_summary, write_deck, history_index
   use visco2d_spectrum, only: qp, pi_qp, spectrum_t, spectrum_of, cubic
   implicit none
@@ -333,7 +333,7 @@ contains
     if (allocated(error)) then
       call check(name//': deck reads', .false., error_text(error)); return
     end if
-    call check(name//': '//itoa(steps)//' steps of one stage', deck%stages(1)%steps == steps .and. &
+    call check(name//': '//integer_text(steps)//' steps of one stage', deck%stages(1)%steps == steps .and. &
                size(deck%stages) == 1)
     ! The analytic model uses the program's own dt and v0.
     h = real(deck%stages(1)%dt, qp)
@@ -865,7 +865,7 @@ contains
       end associate
     end do
     call check(name//': every node: u, v, a = the centre of mass motion (u_r = 0) at '// &
-               itoa(size(record%snapshots))//' snapshots', all(worst_node <= 1.0_dp), &
+               integer_text(size(record%snapshots))//' snapshots', all(worst_node <= 1.0_dp), &
                'worst error / tolerance (uz, ur, vz, vr, az, ar) '//trim(qtoa(real(worst_node(1), qp)))// &
                trim(qtoa(real(worst_node(2), qp)))//trim(qtoa(real(worst_node(3), qp)))// &
                trim(qtoa(real(worst_node(4), qp)))//trim(qtoa(real(worst_node(5), qp)))// &

@@ -7,7 +7,7 @@ module visco2d_test_decks
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
   use visco2d_deck, only: deck_t, read_deck
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_testing, only: check, check_text_contains, write_deck, exact_text
   implicit none
   private
@@ -124,7 +124,7 @@ contains
       'ANALYSIS STATIC', &                                                   ! 2
       'GEOMETRY AXISYMMETRIC', &                                             ! 3
       'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85', &              ! 4
-      'MESH SPHERE R=0.0366 LEVEL='//itoa(level), &   ! 5
+      'MESH SPHERE R=0.0366 LEVEL='//integer_text(level), &   ! 5
       'PLATE Z=0 '//mode, &                                                  ! 6
       'GRAVITY G='//exact_text(g), &                                         ! 7
       'END']                                                                 ! 8
@@ -155,10 +155,10 @@ contains
     integer, intent(in) :: line, column
     character(*), intent(in) :: card, fragment
     call check(name//'_file', index(text, path//':') == 1, 'expected "'//path//':" at the start of "'//text//'"')
-    if (line > 0) call check_text_contains(name//'_line', text, path//':'//itoa(line)//':')
+    if (line > 0) call check_text_contains(name//'_line', text, path//':'//integer_text(line)//':')
     if (line > 0 .and. column > 0) call check_text_contains(name//'_column', text, &
-                                                           path//':'//itoa(line)//':'//itoa(column)//': ')
-    if (line == 0 .and. column > 0) call check_text_contains(name//'_column', text, ':'//itoa(column)//': ')
+                                                           path//':'//integer_text(line)//':'//integer_text(column)//': ')
+    if (line == 0 .and. column > 0) call check_text_contains(name//'_column', text, ':'//integer_text(column)//': ')
     if (len(card) > 0) call check_text_contains(name//'_card', text, ': '//card//': ')
     call check_text_contains(name//'_message', text, fragment)
   end subroutine check_error_location

@@ -13,7 +13,7 @@ module visco2d_quasistatic
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, whole_body_factor, energy_basis
   use visco2d_error, only: error_t
-  use visco2d_strings, only: rtoa
+  use visco2d_strings, only: message_real
   use visco2d_mesh, only: mesh_t
   use visco2d_model, only: settings_t, loads_t, probe_t, time_stage_t, source_t, stage_total_steps
   use visco2d_progress, only: progress_step
@@ -211,7 +211,7 @@ contains
     if (q%memory) call commit_history(mesh%element_material, q%history, q%coefficients, q%increments)   ! eq. [24]
     q%internal = internal_force(mesh, settings, q%stress)
     if (.not. all(ieee_is_finite(q%u)) .or. .not. all(ieee_is_finite(q%stress))) then
-      call not_finite_error(source, 'the displacement or stress at t = '//rtoa(t)//' s', error)
+      call not_finite_error(source, 'the displacement or stress at t = '//message_real(t)//' s', error)
       return
     end if
     q%equilibrium_error = max(q%equilibrium_error, maxval(abs(merge(0.0_dp, q%internal - q%load, q%fixed)))/ &

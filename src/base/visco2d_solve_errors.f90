@@ -7,7 +7,7 @@
 module visco2d_solve_errors
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_mesh, only: mesh_t
   use visco2d_model, only: source_t
   implicit none
@@ -67,7 +67,7 @@ contains
     integer :: node
     text = ''
     node = equation_node(mesh, equation)
-    if (node > 0) text = ' at node '//itoa(mesh%node_id(node))//' ('// &
+    if (node > 0) text = ' at node '//integer_text(mesh%node_id(node))//' ('// &
                          trim(merge('u_r', 'u_z', mod(equation, 2) == 1))//')'
   end function node_text
 

@@ -33,7 +33,7 @@ module visco2d_bruise
   use visco2d_material, only: von_mises, max_shear
   use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, stored_energy_density
   use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_pad_mesh, only: is_pad_element, body_nodes, body_elements
   implicit none
   private
@@ -221,9 +221,9 @@ contains
         count_extra = max(count_extra, size(deck%bruises(k)%extra))
       end do
       do i = 1, count_extra
-        if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//itoa(i)//'_'// &
+        if (size(deck%bruises) == 1) call record_put_real(record, 'bruise_threshold_'//integer_text(i)//'_'// &
           unit_key(deck%bruises(1)%criterion), deck%bruises(1)%extra(i))
-        call record_put_real(record, 'bruise_volume_threshold_'//itoa(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
+        call record_put_real(record, 'bruise_volume_threshold_'//integer_text(i)//'_'//basis, 1.0e6_dp*extra_volume(i))
       end do
       if (deck%settings%geometry == geometry_axisymmetric .and. deck%stop_at == stop_at_separation .and. &
           summary_value(record, 'energy_absorbed_J', absorbed)) then

@@ -10,7 +10,7 @@ module visco2d_bruise_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
   use visco2d_material, only: material_t
-  use visco2d_strings, only: short_real, itoa
+  use visco2d_strings, only: short_real, integer_text
   use visco2d_ranges, only: range_t, in_range, range_text, failure_stress_range, failure_energy_range
   use visco2d_card_lists, only: read_increasing_list
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, has_field, &
@@ -153,11 +153,11 @@ contains
         if (bruises(j)%material == b%material) then
           if (len(b%material) > 0) then
             call set_error(error, 'a second BRUISE card for material '//b%material//' (the first is on line '// &
-                           itoa(bruises(j)%line)//')', file=cards%file, line=b%line, column=b%material_column, &
+                           integer_text(bruises(j)%line)//')', file=cards%file, line=b%line, column=b%material_column, &
                            card='BRUISE')
           else
             call set_error(error, 'a second BRUISE card without MAT= (the first is on line '// &
-                           itoa(bruises(j)%line)//'); give MAT=<id> to set a criterion per material', &
+                           integer_text(bruises(j)%line)//'); give MAT=<id> to set a criterion per material', &
                            file=cards%file, line=b%line, column=b%column, card='BRUISE')
           end if
           return

@@ -7,7 +7,7 @@
 module visco2d_card_reader
   use visco2d_error, only: error_t, set_error
   use, intrinsic :: iso_fortran_env, only: iostat_end, iostat_eor
-  use visco2d_strings, only: to_upper, itoa
+  use visco2d_strings, only: to_upper, integer_text
   implicit none
   private
 
@@ -77,7 +77,7 @@ contains
       if (ios == iostat_end) exit
       line_number = line_number + 1
       if (ios == line_too_long) then
-        call set_error(error, 'line longer than '//itoa(max_line_length)//' characters (is this a deck?)', &
+        call set_error(error, 'line longer than '//integer_text(max_line_length)//' characters (is this a deck?)', &
                        file=file, line=line_number, column=max_line_length + 1)
       else if (ios /= 0) then
         call set_error(error, 'cannot read the deck: '//trim(message), file=file, line=line_number)
@@ -129,7 +129,7 @@ contains
       if (allocated(ignored)) deallocate(ignored)
       if (.not. allocated(card%keyword)) cycle
       if (.not. any(known == card%keyword) .or. card%keyword == 'END') cycle
-      call set_error(error, 'this card comes after END (line '//itoa(deck%cards(deck%count)%line)// &
+      call set_error(error, 'this card comes after END (line '//integer_text(deck%cards(deck%count)%line)// &
                      ') and would be ignored: END must be the last card', file=deck%file, line=number, &
                      column=card%column, card=card%keyword)
       return
@@ -226,7 +226,7 @@ contains
       code = iachar(line(i:i))
       if (code >= 32 .and. code /= 127) cycle
       if (code == 9) cycle
-      call set_error(error, 'a control byte ('//itoa(code)//') where text was expected: '// &
+      call set_error(error, 'a control byte ('//integer_text(code)//') where text was expected: '// &
                      'a deck is a plain text file (is this a binary file?)', line=line_number, column=i)
       return
     end do
@@ -353,14 +353,14 @@ contains
         if (len(token%name) > 0) then
           named = named + 1
           if (named > max_named_fields) then
-            call set_error(error, 'more than '//itoa(max_named_fields)//' NAME=value fields on one card', &
+            call set_error(error, 'more than '//integer_text(max_named_fields)//' NAME=value fields on one card', &
                            line=line_number, column=token%column, card=card%keyword)
             return
           end if
           do equals = 1, ntoken
             if (card%tokens(equals)%name /= token%name) cycle
             call set_error(error, 'field '//token%name//' given twice (first at column '// &
-                           itoa(card%tokens(equals)%column)//')', &
+                           integer_text(card%tokens(equals)%column)//')', &
                            line=line_number, column=token%column, card=card%keyword)
             return
           end do

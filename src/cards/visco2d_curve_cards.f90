@@ -4,7 +4,7 @@ module visco2d_curve_cards
   use visco2d_kinds, only: dp
   use visco2d_ranges, only: time_range, curve_factor_range
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, short_real
+  use visco2d_strings, only: integer_text, short_real
   use visco2d_cards, only: card_t, card_deck_t, card_error, positional_word, positional_real, positional_count, &
                            check_fields_used, field_column
   use visco2d_curve, only: curve_t
@@ -32,7 +32,7 @@ contains
     do k = 1, size(curves)
       if (curves(k)%name == curve%name) then
         call card_error(error, cards, card, 'curve '//curve%name//' defined twice (first on line '// &
-                        itoa(curves(k)%line)//')', field_column(card, '1')); return
+                        integer_text(curves(k)%line)//')', field_column(card, '1')); return
       end if
     end do
     curve%line = card%line
@@ -44,21 +44,21 @@ contains
     else
       npoint = positional_count(card) - 1
       if (mod(npoint, 2) /= 0) then
-        call card_error(error, cards, card, 'CURVE points come in pairs (time value); got '//itoa(npoint)// &
-                        ' numbers (this one has no value)', field_column(card, itoa(npoint + 1))); return
+        call card_error(error, cards, card, 'CURVE points come in pairs (time value); got '//integer_text(npoint)// &
+                        ' numbers (this one has no value)', field_column(card, integer_text(npoint + 1))); return
       end if
       npoint = npoint/2
       allocate(curve%time(npoint), curve%value(npoint))
       do k = 1, npoint
-        call positional_real(cards, card, 2*k, 'time of point '//itoa(k), curve%time(k), error, range=time_range)
+        call positional_real(cards, card, 2*k, 'time of point '//integer_text(k), curve%time(k), error, range=time_range)
         if (allocated(error)) return
-        call positional_real(cards, card, 2*k + 1, 'value of point '//itoa(k), curve%value(k), error, &
+        call positional_real(cards, card, 2*k + 1, 'value of point '//integer_text(k), curve%value(k), error, &
                              range=curve_factor_range)
         if (allocated(error)) return
         if (k > 1) then
           if (curve%time(k) <= curve%time(k - 1)) then
-            call card_error(error, cards, card, 'curve times must increase strictly (point '//itoa(k)// &
-              ' at t = '//short_real(curve%time(k))//' s)', field_column(card, itoa(2*k))); return
+            call card_error(error, cards, card, 'curve times must increase strictly (point '//integer_text(k)// &
+              ' at t = '//short_real(curve%time(k))//' s)', field_column(card, integer_text(2*k))); return
           end if
         end if
       end do

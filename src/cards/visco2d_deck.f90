@@ -10,13 +10,13 @@
 module visco2d_deck
   use visco2d_kinds, only: geometry_axisymmetric, geometry_plane_strain
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, short_real, nearest_word
+  use visco2d_strings, only: integer_text, short_real, nearest_word
   use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column, &
                            named_integer, has_field
   use visco2d_material_cards, only: read_material, read_prony, finish_material, read_plastic, read_hardening
   use visco2d_curve_cards, only: read_curve
   use visco2d_time, only: time_stage_t, read_time
-  use visco2d_dynamic_cards, only: dynamics_t, output_request_t, read_wilson, read_initial, read_drop, &
+  use visco2d_dynamic_cards, only: dynamic_settings_t, output_request_t, read_wilson, read_initial, read_drop, &
                                    read_gravity, read_output, read_formulation, theta_unconditional, &
                                    read_integrator
   use visco2d_contact_cards, only: plate_t, pad_t, read_plate, read_pad, read_stop, stop_name, stop_at_tend, &
@@ -41,7 +41,7 @@ module visco2d_deck
 
   public :: deck_t, settings_t, loads_t, source_t, fix_t, pressure_t, force_t, probe_t, expect_t, time_stage_t, &
             warning_t, read_deck
-  public :: dynamics_t, output_request_t
+  public :: dynamic_settings_t, output_request_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
   public :: plate_t, pad_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
@@ -208,15 +208,15 @@ contains
         call named_integer(cards, card, 'INCREMENTS', deck%settings%increments, error, default=10)
         if (allocated(error)) return
         if (deck%settings%increments < 1 .or. deck%settings%increments > max_increments) then
-          call card_error(error, cards, card, 'INCREMENTS must be in [1, '//itoa(max_increments)//'], got '// &
-                          itoa(deck%settings%increments), field_column(card, 'INCREMENTS')); return
+          call card_error(error, cards, card, 'INCREMENTS must be in [1, '//integer_text(max_increments)//'], got '// &
+                          integer_text(deck%settings%increments), field_column(card, 'INCREMENTS')); return
         end if
         reading%increments_given = reading%increments_given .or. has_field(card, 'ITERATIONS')
         call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, default=30)
         if (allocated(error)) return
         if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
-          call card_error(error, cards, card, 'ITERATIONS must be in [1, '//itoa(max_iterations)//'], got '// &
-                          itoa(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
+          call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
+                          integer_text(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
         end if
       end if
       call check_fields_used(cards, card, error, 'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC')
@@ -322,7 +322,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     if (first_line == 0) return
     call card_error(error, deck%cards, deck%cards%cards(i), 'only one '//deck%cards%cards(i)%keyword// &
-      ' card is allowed (first on line '//itoa(first_line)//')')
+      ' card is allowed (first on line '//integer_text(first_line)//')')
   end subroutine once
 
   !> The same pressure twice (same set, value and curve) is a duplicated
@@ -339,7 +339,7 @@ contains
       if (deck%loads%pressures(k)%value /= deck%loads%pressures(n)%value .or. &
           reading%pressure_curves(k) /= reading%pressure_curves(n)) cycle
       call card_error(error, deck%cards, deck%cards%cards(i), 'the same pressure as on line '// &
-        itoa(deck%loads%pressures(k)%line)//' (a duplicated line?): give the total on one card', &
+        integer_text(deck%loads%pressures(k)%line)//' (a duplicated line?): give the total on one card', &
         field_column(deck%cards%cards(i), 'P'))
       return
     end do
@@ -359,7 +359,7 @@ contains
       if (forces(k)%target /= forces(n)%target .or. forces(k)%curve /= forces(n)%curve) cycle
       if (any(forces(k)%values /= forces(n)%values)) cycle
       call card_error(error, deck%cards, deck%cards%cards(i), 'the same force as on line '// &
-        itoa(deck%cards%cards(forces(k)%card)%line)//' (a duplicated line?): give the total on one card', &
+        integer_text(deck%cards%cards(forces(k)%card)%line)//' (a duplicated line?): give the total on one card', &
         forces(n)%column)
       return
     end do
@@ -401,12 +401,12 @@ contains
     if (deck%analysis /= analysis_static) then
       call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
         deck%materials(m)%id//') is available for ANALYSIS STATIC only so far; this deck is ANALYSIS '// &
-        analysis_name(deck%analysis)//' (line '//itoa(reading%analysis_line)//')'); return
+        analysis_name(deck%analysis)//' (line '//integer_text(reading%analysis_line)//')'); return
     end if
     if (deck%plate%line > 0 .or. deck%pad%line > 0) then
       call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
         deck%materials(m)%id//') is not available with PLATE or PAD contact yet (line '// &
-        itoa(max(deck%plate%line, deck%pad%line))//')'); return
+        integer_text(max(deck%plate%line, deck%pad%line))//')'); return
     end if
   end subroutine check_plastic_analysis
 
@@ -431,7 +431,7 @@ contains
       if (cards%lines == 0) then
         call set_error(error, 'the deck has no cards: it is an empty file', file=file, line=1)
       else
-        call set_error(error, 'the deck has no cards: its '//itoa(cards%lines)//' lines are blank or comments', &
+        call set_error(error, 'the deck has no cards: its '//integer_text(cards%lines)//' lines are blank or comments', &
                        file=file, line=cards%lines)
       end if
       return

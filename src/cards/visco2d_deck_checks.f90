@@ -5,7 +5,7 @@
 module visco2d_deck_checks
   use visco2d_kinds, only: dp, formulation_standard
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, rtoa, short_real
+  use visco2d_strings, only: integer_text, message_real, short_real
   use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, range_t, in_range, range_text
   use visco2d_material, only: has_memory
   use visco2d_dynamic_cards, only: standard_gravity
@@ -67,7 +67,7 @@ contains
     if (d%drop_line > 0 .and. d%initial_line > 0) then
       if (d%velocity(2) /= 0.0_dp) then
         call line_error(error, deck, d%drop_line, 'DROP sets the initial VZ = -sqrt(2 g h); the INITIAL card '// &
-                        'on line '//itoa(d%initial_line)//' sets VZ too: give one of them', 'HEIGHT')
+                        'on line '//integer_text(d%initial_line)//' sets VZ too: give one of them', 'HEIGHT')
         return
       end if
     end if
@@ -123,7 +123,7 @@ contains
     end if
     if (deck%stop_at == stop_at_separation .and. .not. deck%plate%release) then
       call line_error(error, deck, deck%stop_line, 'STOP AT=SEPARATION needs PLATE ... RELEASE=YES (line '// &
-                      itoa(deck%plate%line)//'): without it contact nodes are held for good and the body never '// &
+                      integer_text(deck%plate%line)//'): without it contact nodes are held for good and the body never '// &
                       'leaves the plate', 'AT'); return
     end if
   end subroutine check_contact_cards
@@ -136,9 +136,9 @@ contains
     if (deck%plate%line == 0) return
     lowest = minloc(deck%mesh%xy(2, :), dim=1)
     if (deck%mesh%xy(2, lowest) < deck%plate%z - 1.0e-9_dp*deck%mesh%size) then
-      call line_error(error, deck, deck%plate%line, 'node '//itoa(deck%mesh%node_id(lowest))//' (r = '// &
-        rtoa(deck%mesh%xy(1, lowest))//', z = '//rtoa(deck%mesh%xy(2, lowest))//') lies below the plate z = '// &
-        rtoa(deck%plate%z)//': the body must start on or above the plate', 'Z')
+      call line_error(error, deck, deck%plate%line, 'node '//integer_text(deck%mesh%node_id(lowest))//' (r = '// &
+        message_real(deck%mesh%xy(1, lowest))//', z = '//message_real(deck%mesh%xy(2, lowest))//') lies below the plate z = '// &
+        message_real(deck%plate%z)//': the body must start on or above the plate', 'Z')
     end if
   end subroutine check_plate_position
 
@@ -156,9 +156,9 @@ contains
       do i = 1, size(deck%loads%fixes(k)%nodes)
         node = deck%loads%fixes(k)%nodes(i)
         if (deck%mesh%xy(2, node) > deck%plate%z + 1.0e-9_dp*deck%mesh%size) cycle
-        call line_error(error, deck, deck%loads%fixes(k)%line, 'node '//itoa(deck%mesh%node_id(node))//' (r = '// &
-          rtoa(deck%mesh%xy(1, node))//', z = '//rtoa(deck%mesh%xy(2, node))//') lies on the plate (PLATE Z = '// &
-          rtoa(deck%plate%z)//', line '//itoa(deck%plate%line)//'): a FIX of its u_z would take the contact '// &
+        call line_error(error, deck, deck%loads%fixes(k)%line, 'node '//integer_text(deck%mesh%node_id(node))//' (r = '// &
+          message_real(deck%mesh%xy(1, node))//', z = '//message_real(deck%mesh%xy(2, node))//') lies on the plate (PLATE Z = '// &
+          message_real(deck%plate%z)//', line '//integer_text(deck%plate%line)//'): a FIX of its u_z would take the contact '// &
           'force there instead of the plate (the pressure q would read 0); the plate already holds the body '// &
           'in z: fix R only, or fix a node off the plate')
         return
@@ -193,7 +193,7 @@ contains
       if (.not. any(deck%mesh%element_material == k)) cycle
       ratio = deck%materials(k)%bulk/max(deck%materials(k)%shear, tiny(1.0_dp))   ! instantaneous G(0)
       if (ratio > 1000.0_dp) call add_warning(deck, deck%materials(k)%line, 'MATERIAL', 'material '// &
-        deck%materials(k)%id//' is nearly incompressible (K/G = '//rtoa(ratio)//'): the standard '// &
+        deck%materials(k)%id//' is nearly incompressible (K/G = '//message_real(ratio)//'): the standard '// &
         'element locks (too stiff); FORMULATION BBAR avoids that')
     end do
   end subroutine check_locking
@@ -247,7 +247,8 @@ contains
       largest = maxval(abs(values))*maxval(abs(deck%loads%curves(curve)%value))
       if (largest <= range%upper) return
       call line_error(error, deck, line, names//' times curve '//deck%loads%curves(curve)%name//' (line '// &
-        itoa(deck%loads%curves(curve)%line)//') reaches '//rtoa(largest)//': it must stay '//range_text(range), 'CURVE')
+        integer_text(deck%loads%curves(curve)%line)//') reaches '//message_real(largest)//': it must stay ' &
+          //range_text(range), 'CURVE')
     end subroutine check_product
   end subroutine check_load_sizes
 

@@ -11,7 +11,7 @@
 !> - a material no element uses.
 module visco2d_deck_meaning
   use visco2d_kinds, only: dp, geometry_axisymmetric, geometry_plane_strain
-  use visco2d_strings, only: rtoa, short_real
+  use visco2d_strings, only: message_real, short_real
   use visco2d_mesh, only: generated_round_body
   use visco2d_deck_types, only: deck_t, analysis_dynamic, analysis_name, add_warning
   use visco2d_pad_mesh, only: body_nodes
@@ -56,11 +56,11 @@ contains
     if (deck%dynamics%drop_line == 0 .or. deck%plate%line == 0 .or. deck%loads%gravity <= 0.0_dp) return
     gap = minval(deck%mesh%xy(2, :body_nodes(deck))) - deck%plate%z
     if (gap <= gap_fraction*deck%dynamics%drop_height .or. gap <= 1.0e-9_dp*deck%mesh%size) return
-    call add_warning(deck, deck%dynamics%drop_line, 'DROP', 'the body starts '//rtoa(gap)//' m above the plate '// &
+    call add_warning(deck, deck%dynamics%drop_line, 'DROP', 'the body starts '//message_real(gap)//' m above the plate '// &
       '(PLATE Z = '//short_real(deck%plate%z)//' m): in gravity it falls HEIGHT + gap = '// &
-      rtoa(deck%dynamics%drop_height + gap)//' m and strikes at '// &
-      rtoa(sqrt(2.0_dp*g*(deck%dynamics%drop_height + gap)))//' m/s, not the '// &
-      rtoa(sqrt(2.0_dp*g*deck%dynamics%drop_height))//' m/s of HEIGHT = '//short_real(deck%dynamics%drop_height)// &
+      message_real(deck%dynamics%drop_height + gap)//' m and strikes at '// &
+      message_real(sqrt(2.0_dp*g*(deck%dynamics%drop_height + gap)))//' m/s, not the '// &
+      message_real(sqrt(2.0_dp*g*deck%dynamics%drop_height))//' m/s of HEIGHT = '//short_real(deck%dynamics%drop_height)// &
       ' m; put the body''s lowest point on the plate, or give the height less the gap')
   end subroutine check_drop_gap
 
@@ -94,13 +94,13 @@ contains
       if (.not. any(deck%mesh%element_material == k)) cycle
       call add_warning(deck, material%line, 'MATERIAL', 'material '//material%id//' has RHO = '// &
         short_real(material%density)//' kg/m^3, lighter than any foam: in g/cm^3 that would be '// &
-        rtoa(1000.0_dp*material%density)//' kg/m^3 (RHO is in kg/m^3; fruit are 700-1100)')
+        message_real(1000.0_dp*material%density)//' kg/m^3 (RHO is in kg/m^3; fruit are 700-1100)')
       end associate
     end do
     if (generated_round_body(deck%mesh)) then
       radius = maxval(abs(deck%mesh%xy(1, :body_nodes(deck))))
       if (radius > fruit_radius_ceiling) call add_warning(deck, deck%mesh%line, 'MESH', 'the body is '// &
-        rtoa(radius)//' m in radius, larger than any fruit: lengths are in m (a radius of 37 mm is R=0.037)')
+        message_real(radius)//' m in radius, larger than any fruit: lengths are in m (a radius of 37 mm is R=0.037)')
     end if
     if (deck%pad%line > 0 .and. deck%pad%thickness > pad_thickness_ceiling) call add_warning(deck, deck%pad%line, &
       'PAD', 'THICKNESS = '//short_real(deck%pad%thickness)//' m is thicker than any handling pad (1-50 mm): '// &

@@ -5,7 +5,7 @@
 module visco2d_deck_targets
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, rtoa, short_real, to_lower, to_upper
+  use visco2d_strings, only: integer_text, message_real, short_real, to_lower, to_upper
   use visco2d_ranges, only: length_range, pressure_range, force_range, expected_value_range, tolerance_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, &
                            named_word, positional_word, positional_real, &
@@ -136,12 +136,12 @@ contains
     do k = 1, size(probes)
       if (probes(k)%components == probe%components) then
         call card_error(error, cards, card, 'probe '//probe%components//' defined twice (first on line '// &
-                        itoa(cards%cards(probes(k)%card)%line)//')', field_column(card, '1')); return
+                        integer_text(cards%cards(probes(k)%card)%line)//')', field_column(card, '1')); return
       end if
     end do
     if (has_field(card, 'NODE')) then
       call named_integer(cards, card, 'NODE', node, error); if (allocated(error)) return
-      probe%target = itoa(node)
+      probe%target = integer_text(node)
       probe%column = field_column(card, 'NODE')
     else
       call named_real(cards, card, 'R', probe%values(1), error, range=length_range); if (allocated(error)) return
@@ -178,7 +178,7 @@ contains
     do k = 1, size(expects)
       if (expects(k)%key == expect%key) then
         call card_error(error, cards, card, 'key '//to_lower(expect%key)//' is already expected on line '// &
-                        itoa(expects(k)%line), field_column(card, '1')); return
+                        integer_text(expects(k)%line), field_column(card, '1')); return
       end if
     end do
     expect%line = card%line
@@ -198,7 +198,7 @@ contains
           deck%mesh%element_material(e) = 1
           cycle
         end if
-        call line_error(error, deck, deck%mesh%element_line(e), 'element '//itoa(deck%mesh%element_id(e))// &
+        call line_error(error, deck, deck%mesh%element_line(e), 'element '//integer_text(deck%mesh%element_id(e))// &
           ' needs MAT=<id>: the deck defines several materials')
         return
       end if
@@ -206,7 +206,7 @@ contains
         if (deck%materials(k)%id == trim(name)) deck%mesh%element_material(e) = k
       end do
       if (deck%mesh%element_material(e) == 0) then
-        call line_error(error, deck, deck%mesh%element_line(e), 'element '//itoa(deck%mesh%element_id(e))// &
+        call line_error(error, deck, deck%mesh%element_line(e), 'element '//integer_text(deck%mesh%element_id(e))// &
           ' uses material '//trim(name)//', which is not defined by a MATERIAL card', &
           material_field(deck, deck%mesh%element_line(e), name))
         return
@@ -288,7 +288,7 @@ contains
         node = fix%nodes(i)
         if (deck%settings%geometry == geometry_axisymmetric .and. deck%mesh%xy(1, node) == 0.0_dp .and. &
             fix%fix_r .and. fix%value(1) /= 0.0_dp) then
-          call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))// &
+          call card_error(error, deck%cards, card, 'node '//integer_text(deck%mesh%node_id(node))// &
             ' is on the axis, where u_r = 0 always; it cannot have UR='//short_real(fix%value(1)), &
             field_column(card, 'UR'))
           return
@@ -298,9 +298,9 @@ contains
           other = owner(c, node)
           if (other > 0) then
             if (deck%loads%fixes(other)%value(c) /= fix%value(c) .or. deck%loads%fixes(other)%curve /= fix%curve) then
-              call card_error(error, deck%cards, card, 'node '//itoa(deck%mesh%node_id(node))//' gets a '// &
+              call card_error(error, deck%cards, card, 'node '//integer_text(deck%mesh%node_id(node))//' gets a '// &
                 'different prescribed '//trim(merge('u_r', 'u_z', c == 1))//' from the FIX card on line '// &
-                itoa(deck%loads%fixes(other)%line)//' (a node may be prescribed twice only alike)', pending(k)%column)
+                integer_text(deck%loads%fixes(other)%line)//' (a node may be prescribed twice only alike)', pending(k)%column)
               return
             end if
           end if
@@ -382,9 +382,9 @@ contains
         size_there = element_size_at(deck, probe%node)
         if (distance(probe%node) > size_there) call add_warning(deck, card%line, 'PROBE', &
           'the point (r = '//short_real(point(1))//', z = '//short_real(point(2))//') m is '// &
-          rtoa(distance(probe%node))//' m from its nearest node '//itoa(deck%mesh%node_id(probe%node))// &
-          ' (r = '//rtoa(deck%mesh%xy(1, probe%node))//', z = '//rtoa(deck%mesh%xy(2, probe%node))// &
-          '), more than the size of the elements there ('//rtoa(size_there)//' m): it lies outside the body, '// &
+          message_real(distance(probe%node))//' m from its nearest node '//integer_text(deck%mesh%node_id(probe%node))// &
+          ' (r = '//message_real(deck%mesh%xy(1, probe%node))//', z = '//message_real(deck%mesh%xy(2, probe%node))// &
+          '), more than the size of the elements there ('//message_real(size_there)//' m): it lies outside the body, '// &
           'and probe '//probe%name//' reports that node (a unit slip? R= and Z= are in m)')
       end if
       probe%radius = pending(k)%radius

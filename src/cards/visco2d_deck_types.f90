@@ -7,12 +7,12 @@
 module visco2d_deck_types
   use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_bbar
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_cards, only: card_deck_t, card_error, field_column
   use visco2d_material, only: material_t
   use visco2d_model, only: settings_t, fix_t, pressure_t, force_t, loads_t, probe_t, time_stage_t, source_t, &
                            stage_total_steps
-  use visco2d_dynamic_cards, only: dynamics_t, output_request_t, standard_gravity
+  use visco2d_dynamic_cards, only: dynamic_settings_t, output_request_t, standard_gravity
   use visco2d_contact_cards, only: plate_t, pad_t, stop_at_tend
   use visco2d_bruise_cards, only: bruise_card_t
   use visco2d_mesh, only: mesh_t
@@ -64,7 +64,7 @@ module visco2d_deck_types
     type(probe_t), allocatable :: probes(:)
     type(expect_t), allocatable :: expects(:)
     type(time_stage_t), allocatable :: stages(:)  !< TIME cards, in order (QUASISTATIC, DYNAMIC)
-    type(dynamics_t) :: dynamics                  !< WILSON, INITIAL, DROP (DYNAMIC)
+    type(dynamic_settings_t) :: dynamics                  !< WILSON, INITIAL, DROP (DYNAMIC)
     integer :: gravity_line = 0                   !< the GRAVITY card (loads%gravity: its G=)
     type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
     integer :: solver_line = 0
@@ -190,7 +190,7 @@ contains
     integer, intent(in) :: line
     character(*), intent(in) :: card, message
     type(warning_t) :: warning
-    warning%text = deck%cards%file//':'//itoa(line)//': '//card//': '//message
+    warning%text = deck%cards%file//':'//integer_text(line)//': '//card//': '//message
     deck%warnings = [deck%warnings, warning]
   end subroutine add_warning
 end module visco2d_deck_types

@@ -5,7 +5,7 @@
 module visco2d_dynamic_cards
   use visco2d_kinds, only: dp, formulation_standard, formulation_bbar
   use visco2d_error, only: error_t
-  use visco2d_strings, only: short_real, itoa
+  use visco2d_strings, only: short_real, integer_text
   use visco2d_ranges, only: speed_range, acceleration_range, drop_height_range, gravity_range, time_range, &
                             in_range, range_text
   use visco2d_card_lists, only: read_increasing_list
@@ -14,7 +14,7 @@ module visco2d_dynamic_cards
   implicit none
   private
 
-  public :: dynamics_t, output_request_t, standard_gravity, theta_unconditional
+  public :: dynamic_settings_t, output_request_t, standard_gravity, theta_unconditional
   public :: integrator_wilson, integrator_newmark, integrator_hht, integrator_generalized_alpha, integrator_bathe
   public :: integrator_names
   public :: read_wilson, read_integrator, read_initial, read_drop, read_gravity, read_output, read_formulation
@@ -34,7 +34,7 @@ module visco2d_dynamic_cards
     'GENERALIZED_ALPHA', 'BATHE']
 
   !> Time integration and initial state of a DYNAMIC analysis.
-  type :: dynamics_t
+  type :: dynamic_settings_t
     integer :: integrator = integrator_wilson  !< INTEGRATOR (default: the paper's Wilson-theta)
     real(dp) :: theta = 1.4_dp             !< Wilson theta, eqs. [34]-[37]
     real(dp) :: beta = 0.25_dp             !< Newmark beta (NEWMARK; the average-acceleration rule by default)
@@ -48,7 +48,7 @@ module visco2d_dynamic_cards
     integer :: initial_line = 0
     real(dp) :: drop_height = -1.0_dp      !< m; < 0: no DROP card
     integer :: drop_line = 0
-  end type dynamics_t
+  end type dynamic_settings_t
 
   !> OUTPUT EVERY=k FIELDS=t1,t2,... ENVELOPES=YES|NO
   type :: output_request_t
@@ -66,7 +66,7 @@ contains
   subroutine read_wilson(cards, card, dynamics, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
-    type(dynamics_t), intent(inout) :: dynamics
+    type(dynamic_settings_t), intent(inout) :: dynamics
     type(error_t), allocatable, intent(inout) :: error
     call named_real(cards, card, 'THETA', dynamics%theta, error, default=1.4_dp); if (allocated(error)) return
     call check_fields_used(cards, card, error, 'WILSON THETA=1.4'); if (allocated(error)) return
@@ -80,7 +80,7 @@ contains
   subroutine read_integrator(cards, card, dynamics, error, warning)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
-    type(dynamics_t), intent(inout) :: dynamics
+    type(dynamic_settings_t), intent(inout) :: dynamics
     type(error_t), allocatable, intent(inout) :: error
     character(:), allocatable, intent(out) :: warning
     character(:), allocatable :: name
@@ -164,7 +164,7 @@ contains
   subroutine read_initial(cards, card, dynamics, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
-    type(dynamics_t), intent(inout) :: dynamics
+    type(dynamic_settings_t), intent(inout) :: dynamics
     type(error_t), allocatable, intent(inout) :: error
     call named_real(cards, card, 'VR', dynamics%velocity(1), error, default=0.0_dp, range=speed_range)
     if (allocated(error)) return
@@ -186,7 +186,7 @@ contains
   subroutine read_drop(cards, card, dynamics, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
-    type(dynamics_t), intent(inout) :: dynamics
+    type(dynamic_settings_t), intent(inout) :: dynamics
     type(error_t), allocatable, intent(inout) :: error
     call named_real(cards, card, 'HEIGHT', dynamics%drop_height, error, range=drop_height_range)
     if (allocated(error)) return
@@ -227,7 +227,8 @@ contains
                       field_column(card, 'ENVELOPES')); return
     end select
     if (output%every < 1) then
-      call card_error(error, cards, card, 'EVERY must be >= 1, got '//itoa(output%every), field_column(card, 'EVERY')); return
+      call card_error(error, cards, card, 'EVERY must be >= 1, got '//integer_text(output%every), field_column(card,&
+        'EVERY')); return
     end if
     if (allocated(output%field_times)) deallocate(output%field_times)
     call read_increasing_list(cards, card, 'FIELDS', list, 'times >= 0 s', 'times', time_range, output%field_times, &

@@ -14,7 +14,7 @@ module visco2d_generator_cards
   use visco2d_budget, only: run_size_t, mesh_run_size, sphere_mesh_counts, grid_mesh_counts, memory_limit, &
                             bytes_text, count_text, max_mesh_entities, raise_hint
   use visco2d_ranges, only: max_coordinate
-  use visco2d_strings, only: itoa, rtoa, to_upper
+  use visco2d_strings, only: integer_text, message_real, to_upper
   use visco2d_mesh, only: name_length
   implicit none
   private
@@ -78,27 +78,27 @@ contains
       call check_semi_axis(equatorial, 'A'); if (allocated(error)) return
       call check_semi_axis(polar, 'C'); if (allocated(error)) return
       if (.not. (polar/equatorial >= spheroid_least_ratio .and. polar/equatorial <= spheroid_largest_ratio)) then
-        call card_error(error, deck, card, 'C/A must be in ['//rtoa(spheroid_least_ratio)//', '// &
-          rtoa(spheroid_largest_ratio)//'] (the range on which the stretched sphere grid is validated), got C/A = '// &
-          rtoa(polar/equatorial), field_column(card, 'C')); return
+        call card_error(error, deck, card, 'C/A must be in ['//message_real(spheroid_least_ratio)//', '// &
+          message_real(spheroid_largest_ratio)//'] (the range on which the stretched sphere grid is validated), got C/A = '// &
+          message_real(polar/equatorial), field_column(card, 'C')); return
       end if
     else if (kind == 'SPHERE') then
       call check_semi_axis(equatorial, 'R'); if (allocated(error)) return
     end if
     if (level < 1 .or. level > 7) then
-      call card_error(error, deck, card, 'LEVEL must be in 1..7 (level 7 has 360,448 elements), got '//itoa(level), &
+      call card_error(error, deck, card, 'LEVEL must be in 1..7 (level 7 has 360,448 elements), got '//integer_text(level), &
                       field_column(card, 'LEVEL')); return
     end if
     if (grade < 0.0_dp .or. grade > 6.0_dp) then
-      call card_error(error, deck, card, 'GRADE must be in [0, 6], got '//rtoa(grade), field_column(card, 'GRADE'))
+      call card_error(error, deck, card, 'GRADE must be in [0, 6], got '//message_real(grade), field_column(card, 'GRADE'))
       return
     end if
     if (core <= 0.05_dp .or. core >= 0.95_dp) then
-      call card_error(error, deck, card, 'CORE must be in (0.05, 0.95), got '//rtoa(core), field_column(card, 'CORE'))
+      call card_error(error, deck, card, 'CORE must be in (0.05, 0.95), got '//message_real(core), field_column(card, 'CORE'))
       return
     end if
     if (grid == sphere_grid_contact .and. core > 0.5_dp) then   ! at 0.6 and GRADE=0 the map folds elements
-      call card_error(error, deck, card, 'CORE must be in (0.05, 0.5] on GRID=CONTACT, got '//rtoa(core), &
+      call card_error(error, deck, card, 'CORE must be in (0.05, 0.5] on GRID=CONTACT, got '//message_real(core), &
                       field_column(card, 'CORE')); return
     end if
     call sphere_mesh_counts(level, nodes, elements, least_width)
@@ -124,7 +124,7 @@ contains
                         field_column(card, 'SKIN_LAYERS'))
       else if (skin_layers < 1 .or. skin_layers > 7) then
         call card_error(error, deck, card, 'SKIN_LAYERS must be in 1..7 (of the 8 polar layers at level 1; '// &
-          'level L has 8*2^(L-1)), got '//itoa(skin_layers), field_column(card, 'SKIN_LAYERS'))
+          'level L has 8*2^(L-1)), got '//integer_text(skin_layers), field_column(card, 'SKIN_LAYERS'))
       end if
     end subroutine check_regions
 
@@ -133,9 +133,9 @@ contains
       real(dp), intent(in) :: value
       character(*), intent(in) :: field
       if (value <= 0.0_dp) then
-        call card_error(error, deck, card, field//' must be > 0 m, got '//rtoa(value), field_column(card, field))
+        call card_error(error, deck, card, field//' must be > 0 m, got '//message_real(value), field_column(card, field))
       else if (value > max_coordinate) then
-        call card_error(error, deck, card, field//' must be <= '//rtoa(max_coordinate)//' m, got '//rtoa(value), &
+        call card_error(error, deck, card, field//' must be <= '//message_real(max_coordinate)//' m, got '//message_real(value), &
                         field_column(card, field))
       end if
     end subroutine check_semi_axis
@@ -157,27 +157,27 @@ contains
       if (deck%cards(i)%keyword /= 'GEOMETRY' .or. positional_count(deck%cards(i)) < 1) cycle
       if (to_upper(deck%cards(i)%tokens(deck%cards(i)%positions(1))%value) /= 'PLANESTRAIN') cycle
       call card_error(error, deck, card, 'MESH OUTLINE is a body of revolution: it needs GEOMETRY AXISYMMETRIC '// &
-        '(the GEOMETRY card on line '//itoa(deck%cards(i)%line)//' says PLANESTRAIN)', field_column(card, '1'))
+        '(the GEOMETRY card on line '//integer_text(deck%cards(i)%line)//' says PLANESTRAIN)', field_column(card, '1'))
       return
     end do
     values = positional_count(card) - 1
     if (mod(values, 2) /= 0) then
-      call card_error(error, deck, card, 'the outline''s points come in pairs r z (m), got '//itoa(values)// &
-        ' values: the last point has no z', field_column(card, itoa(values + 1))); return
+      call card_error(error, deck, card, 'the outline''s points come in pairs r z (m), got '//integer_text(values)// &
+        ' values: the last point has no z', field_column(card, integer_text(values + 1))); return
     end if
     n = values/2
     if (n > outline_max_points) then
-      call card_error(error, deck, card, 'the outline has '//itoa(n)//' points, more than '// &
-        itoa(outline_max_points), field_column(card, '1')); return
+      call card_error(error, deck, card, 'the outline has '//integer_text(n)//' points, more than '// &
+        integer_text(outline_max_points), field_column(card, '1')); return
     end if
     allocate(r(n), z(n))
     do i = 1, n
-      call positional_real(deck, card, 2*i, 'r of point '//itoa(i)//' (m)', r(i), error); if (allocated(error)) return
-      call positional_real(deck, card, 2*i + 1, 'z of point '//itoa(i)//' (m)', z(i), error)
+      call positional_real(deck, card, 2*i, 'r of point '//integer_text(i)//' (m)', r(i), error); if (allocated(error)) return
+      call positional_real(deck, card, 2*i + 1, 'z of point '//integer_text(i)//' (m)', z(i), error)
       if (allocated(error)) return
       if (max(abs(r(i)), abs(z(i))) > max_coordinate) then
-        call card_error(error, deck, card, 'point '//itoa(i)//' is out of range: coordinates must be in [-'// &
-          rtoa(max_coordinate)//', '//rtoa(max_coordinate)//'] m', field_column(card, itoa(2*i))); return
+        call card_error(error, deck, card, 'point '//integer_text(i)//' is out of range: coordinates must be in [-'// &
+          message_real(max_coordinate)//', '//message_real(max_coordinate)//'] m', field_column(card, integer_text(2*i))); return
       end if
     end do
     call outline_problem(r, z, problem, point, at_z)
@@ -185,7 +185,7 @@ contains
     if (point == 0) then
       call card_error(error, deck, card, 'the outline '//problem, field_column(card, '1'))
     else
-      call card_error(error, deck, card, problem, field_column(card, itoa(2*point + merge(1, 0, at_z))))
+      call card_error(error, deck, card, problem, field_column(card, integer_text(2*point + merge(1, 0, at_z))))
     end if
   end subroutine read_outline_points
 
@@ -212,14 +212,14 @@ contains
       return
     end if
     if (max(abs(r0), abs(r1), abs(z0), abs(z1)) > max_coordinate) then
-      call card_error(error, deck, card, 'R0, R1, Z0 and Z1 must be in [-'//rtoa(max_coordinate)//', '// &
-                      rtoa(max_coordinate)//'] m'); return
+      call card_error(error, deck, card, 'R0, R1, Z0 and Z1 must be in [-'//message_real(max_coordinate)//', '// &
+                      message_real(max_coordinate)//'] m'); return
     end if
     if (nr < 1) then
-      call card_error(error, deck, card, 'NR must be >= 1, got '//itoa(nr), field_column(card, 'NR')); return
+      call card_error(error, deck, card, 'NR must be >= 1, got '//integer_text(nr), field_column(card, 'NR')); return
     end if
     if (nz < 1) then
-      call card_error(error, deck, card, 'NZ must be >= 1, got '//itoa(nz), field_column(card, 'NZ')); return
+      call card_error(error, deck, card, 'NZ must be >= 1, got '//integer_text(nz), field_column(card, 'NZ')); return
     end if
     call grid_mesh_counts(nr, nz, nodes, elements, least_width)
     call check_generated_size(deck, card, 'RECT', nodes, elements, least_width, trim(merge('NR', 'NZ', nr >= nz)), error)
@@ -252,14 +252,14 @@ contains
       call card_error(error, deck, card, 'ANGLE must be in (0, 90] degrees', field_column(card, 'ANGLE')); return
     end if
     if (r1 > max_coordinate) then
-      call card_error(error, deck, card, 'R1 must be <= '//rtoa(max_coordinate)//' m, got '//rtoa(r1), &
+      call card_error(error, deck, card, 'R1 must be <= '//message_real(max_coordinate)//' m, got '//message_real(r1), &
                       field_column(card, 'R1')); return
     end if
     if (nr < 1) then
-      call card_error(error, deck, card, 'NR must be >= 1, got '//itoa(nr), field_column(card, 'NR')); return
+      call card_error(error, deck, card, 'NR must be >= 1, got '//integer_text(nr), field_column(card, 'NR')); return
     end if
     if (nt < 1) then
-      call card_error(error, deck, card, 'NT must be >= 1, got '//itoa(nt), field_column(card, 'NT')); return
+      call card_error(error, deck, card, 'NT must be >= 1, got '//integer_text(nt), field_column(card, 'NT')); return
     end if
     call grid_mesh_counts(nr, nt, nodes, elements, least_width)
     call check_generated_size(deck, card, 'RING', nodes, elements, least_width, trim(merge('NR', 'NT', nr >= nt)), error)

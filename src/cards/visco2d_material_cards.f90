@@ -7,7 +7,7 @@
 module visco2d_material_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
-  use visco2d_strings, only: short_real, rtoa, itoa, compact_real
+  use visco2d_strings, only: short_real, message_real, integer_text, compact_real
   use visco2d_ranges, only: modulus_range, density_range, rate_range, bulk_shear_ratio_limit, &
                             failure_stress_range, plastic_strain_range, hardening_slope_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, positional_word, check_fields_used, &
@@ -40,7 +40,7 @@ contains
     material%line = card%line
     do k = 1, size(materials)
       if (materials(k)%id == material%id) then
-        call field_error('material '//material%id//' defined twice (first on line '//itoa(materials(k)%line)//')', &
+        call field_error('material '//material%id//' defined twice (first on line '//integer_text(materials(k)%line)//')', &
                          '1'); return
       end if
     end do
@@ -148,7 +148,7 @@ contains
       do k = 1, size(rates)
         if (rates(k) /= rate) cycle
         call card_error(error, cards, card, 'material '//material%id//' already has a term with '//rate_name//' = '// &
-          short_real(rate)//' 1/s (line '//itoa(material%prony_lines(k))//'): give one term per rate, with the '// &
+          short_real(rate)//' 1/s (line '//integer_text(material%prony_lines(k))//'): give one term per rate, with the '// &
           'sum of their '//modulus_name, field_column(card, rate_name))
         return
       end do
@@ -167,7 +167,7 @@ contains
     character(:), allocatable :: word
     if (material%plastic) then
       call card_error(error, cards, card, 'material '//material%id//' already has a PLASTIC card (line '// &
-                      itoa(material%plastic_line)//'): give one per material'); return
+                      integer_text(material%plastic_line)//'): give one per material'); return
     end if
     material%plastic = .true.
     material%plastic_line = card%line
@@ -207,7 +207,7 @@ contains
     integer :: n
     if (.not. material%plastic_table) then
       call card_error(error, cards, card, 'HARDENING points belong to a PLASTIC TABLE card; the PLASTIC card of '// &
-                      'material '//material%id//' (line '//itoa(material%plastic_line)//') gives YIELD= TANGENT='); return
+                      'material '//material%id//' (line '//integer_text(material%plastic_line)//') gives YIELD= TANGENT='); return
     end if
     call named_real(cards, card, 'STRAIN', strain, error, range=plastic_strain_range); if (allocated(error)) return
     call named_real(cards, card, 'STRESS', stress, error, range=failure_stress_range); if (allocated(error)) return
@@ -334,7 +334,7 @@ contains
   function ratio_message(material) result(message)
     type(material_t), intent(in) :: material
     character(:), allocatable :: message
-    message = 'material '//material%id//': K/G = '//rtoa(material%bulk/material%shear)//' (nu = '// &
+    message = 'material '//material%id//': K/G = '//message_real(material%bulk/material%shear)//' (nu = '// &
       short_real(material%poisson)//') is outside ['//compact_real(1.0_dp/bulk_shear_ratio_limit)//', '// &
       compact_real(bulk_shear_ratio_limit)//']: the stiffness would be ill-conditioned '// &
       '(nu closer than 5e-7 to 0.5, or than 1e-6 to -1)'

@@ -15,7 +15,7 @@ module visco2d_mesh_build
   use visco2d_overlap, only: overlap_t, check_edges, check_overlaps, edge_keys, overlap_none, overlap_same_nodes, &
                              overlap_shared_edge, overlap_same_side, overlap_area, overlap_coincident_nodes, &
                              overlap_hanging_node
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_mesh, only: mesh_t, node_index, side_nodes
   use visco2d_mesh_cards, only: mesh_input_t
   implicit none
@@ -129,8 +129,8 @@ contains
     do i = 2, mesh%nnode
       if (mesh%node_id(i) == mesh%node_id(i - 1)) then
         line = max(input%node_line(order(i)), input%node_line(order(i - 1)))
-        call set_error(error, 'node '//itoa(mesh%node_id(i))//' defined twice (also on line '// &
-          itoa(min(input%node_line(order(i)), input%node_line(order(i - 1))))//')', file=deck%file, &
+        call set_error(error, 'node '//integer_text(mesh%node_id(i))//' defined twice (also on line '// &
+          integer_text(min(input%node_line(order(i)), input%node_line(order(i - 1))))//')', file=deck%file, &
           line=line, column=column_at(deck, line, '1'), card='NODE')
         return
       end if
@@ -156,8 +156,8 @@ contains
     do e = 2, mesh%nelem
       if (mesh%element_id(e) == mesh%element_id(e - 1)) then
         line = max(mesh%element_line(e), mesh%element_line(e - 1))
-        call set_error(error, 'element '//itoa(mesh%element_id(e))//' defined twice (also on line '// &
-          itoa(min(mesh%element_line(e), mesh%element_line(e - 1)))//')', file=deck%file, &
+        call set_error(error, 'element '//integer_text(mesh%element_id(e))//' defined twice (also on line '// &
+          integer_text(min(mesh%element_line(e), mesh%element_line(e - 1)))//')', file=deck%file, &
           line=line, column=column_at(deck, line, '1'), card='ELEMENT')
         return
       end if
@@ -166,9 +166,9 @@ contains
       do j = 1, 4
         node = node_index(mesh, input%nodes(j, element_order(e)))
         if (node == 0) then
-          call set_error(error, 'element '//itoa(mesh%element_id(e))//' uses node '// &
-            itoa(input%nodes(j, element_order(e)))//', which is not defined', file=deck%file, &
-            line=mesh%element_line(e), column=column_at(deck, mesh%element_line(e), itoa(1 + j)), card='ELEMENT')
+          call set_error(error, 'element '//integer_text(mesh%element_id(e))//' uses node '// &
+            integer_text(input%nodes(j, element_order(e)))//', which is not defined', file=deck%file, &
+            line=mesh%element_line(e), column=column_at(deck, mesh%element_line(e), integer_text(1 + j)), card='ELEMENT')
           return
         end if
         mesh%connectivity(j, e) = node
@@ -192,7 +192,7 @@ contains
     end do
     do i = 1, mesh%nnode
       if (.not. used(i)) then
-        call set_error(error, 'node '//itoa(mesh%node_id(i))//' is not connected to any element', &
+        call set_error(error, 'node '//integer_text(mesh%node_id(i))//' is not connected to any element', &
           file=deck%file, line=input%node_line(order(i)), column=column_at(deck, input%node_line(order(i)), '1'), &
           card='NODE')
         return
@@ -215,14 +215,14 @@ contains
     upper = maxval(mesh%xy, dim=2)
     mesh%size = norm2(upper - lower)
     if (mesh%size < min_mesh_size) then
-      call set_error(error, 'the mesh is '//rtoa(mesh%size)//' m across: lengths are in metres and a mesh must be '// &
-        'at least '//rtoa(min_mesh_size)//' m across', file=deck%file, line=mesh%line, column=mesh%column, &
+      call set_error(error, 'the mesh is '//message_real(mesh%size)//' m across: lengths are in metres and a mesh must be '// &
+        'at least '//message_real(min_mesh_size)//' m across', file=deck%file, line=mesh%line, column=mesh%column, &
         card=mesh%card)
       return
     end if
     if (geometry == geometry_axisymmetric .and. lower(1) < -geometry_tolerance*mesh%size) then
       i = minloc(mesh%xy(1, :), dim=1)
-      call set_error(error, 'node '//itoa(mesh%node_id(i))//' has r < 0; axisymmetric meshes need r >= 0', &
+      call set_error(error, 'node '//integer_text(mesh%node_id(i))//' has r < 0; axisymmetric meshes need r >= 0', &
         file=deck%file, line=input%node_line(order(i)), column=column_at(deck, input%node_line(order(i)), '2'), &
         card='NODE')
       return
@@ -245,25 +245,25 @@ contains
       jacobian = element_min_jacobian(mesh%xy(:, mesh%connectivity(:, e)))
       if (jacobian > floor) cycle
       if (jacobian > 0.0_dp) then
-        why = ' is nearly flat: its smallest Jacobian, '//rtoa(jacobian)//' m^2, is below 1e-12 of the mesh''s '// &
+        why = ' is nearly flat: its smallest Jacobian, '//message_real(jacobian)//' m^2, is below 1e-12 of the mesh''s '// &
               'size squared; give it a reasonable shape'
       else if (mesh%card == 'MESH' .and. column_at(deck, mesh%line, 'CORE') + column_at(deck, mesh%line, 'GRADE') > 0) then
         ! A generated grid whose CORE/GRADE leave its layers no room at this LEVEL (CORE=0.94 on GRID=LEGACY,
         ! level 1): the user numbered no node, so "number its nodes counter-clockwise" would mislead.
         column = column_at(deck, mesh%line, 'CORE')
         if (column == 0) column = column_at(deck, mesh%line, 'GRADE')
-        call set_error(error, 'the grid folds: element '//itoa(mesh%element_id(e))//' is inverted (Jacobian '// &
-          rtoa(jacobian)//' m^2): its CORE and GRADE leave the layers no room at this LEVEL; a smaller '// &
+        call set_error(error, 'the grid folds: element '//integer_text(mesh%element_id(e))//' is inverted (Jacobian '// &
+          message_real(jacobian)//' m^2): its CORE and GRADE leave the layers no room at this LEVEL; a smaller '// &
           'CORE or GRADE (or a higher LEVEL) keeps it valid', file=deck%file, line=mesh%line, column=column, &
           card=mesh%card)
         return
       else if (mesh%card == 'MESH') then
-        why = ' of the generated grid has a non-positive Jacobian ('//rtoa(jacobian)//'): the MESH card''s '// &
+        why = ' of the generated grid has a non-positive Jacobian ('//message_real(jacobian)//'): the MESH card''s '// &
               'dimensions fold it'
       else
-        why = ' has a non-positive Jacobian ('//rtoa(jacobian)//'): number its nodes counter-clockwise and keep it convex'
+        why = ' has a non-positive Jacobian ('//message_real(jacobian)//'): number its nodes counter-clockwise and keep it convex'
       end if
-      call set_error(error, 'element '//itoa(mesh%element_id(e))//why, file=deck%file, line=mesh%element_line(e), &
+      call set_error(error, 'element '//integer_text(mesh%element_id(e))//why, file=deck%file, line=mesh%element_line(e), &
         column=element_column(deck, mesh, e), card=mesh%card)
       return
     end do
@@ -312,30 +312,30 @@ contains
     end if
     select case (finding%kind)
     case (overlap_same_nodes)
-      message = 'elements '//named(first)//' and '//itoa(mesh%element_id(second))//' have the same four nodes ('// &
+      message = 'elements '//named(first)//' and '//integer_text(mesh%element_id(second))//' have the same four nodes ('// &
         node_list(mesh%connectivity(:, second))//'): a coincident element doubles the stiffness there'
     case (overlap_shared_edge)
       message = 'the side '//node_pair(finding%nodes)//' is shared by elements '//named(finding%elements(1))//', '// &
-        named(finding%elements(2))//' and '//itoa(mesh%element_id(finding%elements(3)))// &
+        named(finding%elements(2))//' and '//integer_text(mesh%element_id(finding%elements(3)))// &
         ': a side joins at most two elements, so elements overlap there'
       second = maxloc(mesh%element_line(finding%elements), dim=1)
       second = finding%elements(second)
     case (overlap_same_side)
-      message = 'elements '//named(first)//' and '//itoa(mesh%element_id(second))//' lie on the same side of '// &
+      message = 'elements '//named(first)//' and '//integer_text(mesh%element_id(second))//' lie on the same side of '// &
         'their common side '//node_pair(finding%nodes)//': they overlap'
     case (overlap_area)
       if (second == 0) then
         second = first
-        message = 'element '//itoa(mesh%element_id(first))//' lies where the mesh covers the body twice '// &
+        message = 'element '//integer_text(mesh%element_id(first))//' lies where the mesh covers the body twice '// &
           '(each part of the body must be meshed once)'
       else
-        message = 'element '//itoa(mesh%element_id(second))//' overlaps element '//named(first)// &
+        message = 'element '//integer_text(mesh%element_id(second))//' overlaps element '//named(first)// &
           ': their areas intersect (each part of the body must be meshed once)'
       end if
     case (overlap_coincident_nodes)
-      message = 'nodes '//itoa(mesh%node_id(finding%nodes(1)))//' and '//itoa(mesh%node_id(finding%nodes(2)))// &
+      message = 'nodes '//integer_text(mesh%node_id(finding%nodes(1)))//' and '//integer_text(mesh%node_id(finding%nodes(2)))// &
         ' are at the same point (r = '// &
-        rtoa(mesh%xy(1, finding%nodes(1)))//', z = '//rtoa(mesh%xy(2, finding%nodes(1)))//') but are two '// &
+        message_real(mesh%xy(1, finding%nodes(1)))//', z = '//message_real(mesh%xy(2, finding%nodes(1)))//') but are two '// &
         'nodes: elements '//named(first)//' and '//named(second)//' are not joined there (a crack, whose '// &
         'faces would pass through each other unseen); give both elements one node'
       line = max(input%node_line(order(finding%nodes(1))), input%node_line(order(finding%nodes(2))))
@@ -344,7 +344,7 @@ contains
     case (overlap_hanging_node)
       first = finding%elements(2)              ! the element whose side holds the node
       second = finding%elements(1)
-      message = 'node '//itoa(mesh%node_id(finding%nodes(1)))//' of element '//itoa(mesh%element_id(second))// &
+      message = 'node '//integer_text(mesh%node_id(finding%nodes(1)))//' of element '//integer_text(mesh%element_id(second))// &
         ' lies on a side of element '//named(first)//' but is not one of its nodes: the two are not joined '// &
         'along that side (a hanging node); split that side at the node'
     end select
@@ -357,22 +357,22 @@ contains
     function named(e) result(text)
       integer, intent(in) :: e
       character(:), allocatable :: text
-      text = itoa(mesh%element_id(e))//' (line '//itoa(mesh%element_line(e))//')'
+      text = integer_text(mesh%element_id(e))//' (line '//integer_text(mesh%element_line(e))//')'
     end function named
 
     function node_pair(nodes) result(text)
       integer, intent(in) :: nodes(2)
       character(:), allocatable :: text
-      text = itoa(mesh%node_id(nodes(1)))//'-'//itoa(mesh%node_id(nodes(2)))
+      text = integer_text(mesh%node_id(nodes(1)))//'-'//integer_text(mesh%node_id(nodes(2)))
     end function node_pair
 
     function node_list(nodes) result(text)
       integer, intent(in) :: nodes(4)
       character(:), allocatable :: text
       integer :: k
-      text = itoa(mesh%node_id(nodes(1)))
+      text = integer_text(mesh%node_id(nodes(1)))
       do k = 2, 4
-        text = text//' '//itoa(mesh%node_id(nodes(k)))
+        text = text//' '//integer_text(mesh%node_id(nodes(k)))
       end do
     end function node_list
   end subroutine check_covering

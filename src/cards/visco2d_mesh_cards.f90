@@ -15,7 +15,7 @@ module visco2d_mesh_cards
   use visco2d_budget, only: run_size_t, mesh_run_size, memory_limit, bytes_text, count_text, max_mesh_entities, &
                             raise_hint
   use visco2d_ranges, only: max_coordinate
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_mesh, only: name_length
   implicit none
   private
@@ -61,14 +61,14 @@ contains
     call named_real(deck, card, 'DZ', dz, error, default=0.0_dp); if (allocated(error)) return
     call check_fields_used(deck, card, error, 'NODE n r z [GEN=k INC=dn DR=.. DZ=..]'); if (allocated(error)) return
     if (id <= 0) then
-      call card_error(error, deck, card, 'node number must be positive, got '//itoa(id), field_column(card, '1'))
+      call card_error(error, deck, card, 'node number must be positive, got '//integer_text(id), field_column(card, '1'))
       return
     end if
     if (count < 0) then
-      call card_error(error, deck, card, 'GEN must be >= 0, got '//itoa(count), field_column(card, 'GEN')); return
+      call card_error(error, deck, card, 'GEN must be >= 0, got '//integer_text(count), field_column(card, 'GEN')); return
     end if
     if (increment <= 0) then
-      call card_error(error, deck, card, 'INC must be > 0, got '//itoa(increment), field_column(card, 'INC')); return
+      call card_error(error, deck, card, 'INC must be > 0, got '//integer_text(increment), field_column(card, 'INC')); return
     end if
     if (count > 0 .and. dr == 0.0_dp .and. dz == 0.0_dp) then
       call card_error(error, deck, card, 'GEN needs a step DR= or DZ= (generated nodes would coincide)', &
@@ -76,7 +76,8 @@ contains
     end if
     last = int(id, int64) + int(count, int64)*increment
     if (last > max_id) then
-      call card_error(error, deck, card, 'GEN='//itoa(count)//' INC='//itoa(increment)//' from node '//itoa(id)// &
+      call card_error(error, deck, card, 'GEN='//integer_text(count)//' INC='//integer_text(increment)//' from node ' &
+        //integer_text(id)// &
         ' would number the last node '//count_text(last)//', past the largest node number '// &
         count_text(int(max_id, int64)), field_column(card, merge('GEN', 'INC', count > increment))); return
     end if
@@ -101,8 +102,8 @@ contains
       real(dp), intent(in) :: value
       character(*), intent(in) :: field, what
       if (abs(value) <= max_coordinate) return
-      call card_error(error, deck, card, what//' = '//rtoa(value)//' m is out of range: coordinates must be in [-'// &
-        rtoa(max_coordinate)//', '//rtoa(max_coordinate)//'] m', field_column(card, field))
+      call card_error(error, deck, card, what//' = '//message_real(value)//' m is out of range: coordinates must be in [-'// &
+        message_real(max_coordinate)//', '//message_real(max_coordinate)//'] m', field_column(card, field))
     end subroutine check_coordinate
   end subroutine read_node_card
 
@@ -119,7 +120,7 @@ contains
     if (input_is_generated(input, deck, card, error)) return
     call positional_integer(deck, card, 1, 'element number', id, error); if (allocated(error)) return
     do j = 1, 4
-      call positional_integer(deck, card, 1 + j, 'node '//itoa(j)//' of 4', nodes(j), error)
+      call positional_integer(deck, card, 1 + j, 'node '//integer_text(j)//' of 4', nodes(j), error)
       if (allocated(error)) return
     end do
     call named_word(deck, card, 'MAT', material, error, default=''); if (allocated(error)) return
@@ -129,25 +130,25 @@ contains
     call check_fields_used(deck, card, error, 'ELEMENT e n1 n2 n3 n4 MAT=id [GEN=k INC=de NINC=dn]')
     if (allocated(error)) return
     if (id <= 0) then
-      call card_error(error, deck, card, 'element number must be positive, got '//itoa(id), field_column(card, '1'))
+      call card_error(error, deck, card, 'element number must be positive, got '//integer_text(id), field_column(card, '1'))
       return
     end if
     do j = 1, 4
       if (nodes(j) <= 0) then
-        call card_error(error, deck, card, 'node numbers must be positive, got '//itoa(nodes(j)), &
-                        field_column(card, itoa(1 + j))); return
+        call card_error(error, deck, card, 'node numbers must be positive, got '//integer_text(nodes(j)), &
+                        field_column(card, integer_text(1 + j))); return
       end if
     end do
     if (generate < 0) then
-      call card_error(error, deck, card, 'GEN must be >= 0, got '//itoa(generate), field_column(card, 'GEN')); return
+      call card_error(error, deck, card, 'GEN must be >= 0, got '//integer_text(generate), field_column(card, 'GEN')); return
     end if
     if (increment <= 0) then
-      call card_error(error, deck, card, 'INC must be > 0, got '//itoa(increment), field_column(card, 'INC')); return
+      call card_error(error, deck, card, 'INC must be > 0, got '//integer_text(increment), field_column(card, 'INC')); return
     end if
     do j = 1, 4
       if (count(nodes == nodes(j)) > 1) then
-        call card_error(error, deck, card, 'node '//itoa(nodes(j))// &
-          ' appears twice: a quadrilateral needs 4 distinct nodes', field_column(card, itoa(1 + j))); return
+        call card_error(error, deck, card, 'node '//integer_text(nodes(j))// &
+          ' appears twice: a quadrilateral needs 4 distinct nodes', field_column(card, integer_text(1 + j))); return
       end if
     end do
     if (len(material) > name_length) then
@@ -155,14 +156,14 @@ contains
     end if
     last = int(id, int64) + int(generate, int64)*increment
     if (last > max_id) then
-      call card_error(error, deck, card, 'GEN='//itoa(generate)//' INC='//itoa(increment)//' from element '// &
-        itoa(id)//' would number the last element '//count_text(last)//', past the largest element number '// &
+      call card_error(error, deck, card, 'GEN='//integer_text(generate)//' INC='//integer_text(increment)//' from element '// &
+        integer_text(id)//' would number the last element '//count_text(last)//', past the largest element number '// &
         count_text(int(max_id, int64)), field_column(card, merge('GEN', 'INC', generate > increment))); return
     end if
     do j = 1, 4                                   ! node numbers are linear in i: check the last element's
       extreme = int(nodes(j), int64) + int(generate, int64)*node_increment
       if (extreme < 1 .or. extreme > max_id) then
-        call card_error(error, deck, card, 'GEN='//itoa(generate)//' NINC='//itoa(node_increment)// &
+        call card_error(error, deck, card, 'GEN='//integer_text(generate)//' NINC='//integer_text(node_increment)// &
           ' would give element '//count_text(last)//' node '//count_text(extreme)//': node numbers must be in 1..'// &
           count_text(int(max_id, int64)), field_column(card, merge('NINC', 'GEN ', has_ninc()))); return
       end if
@@ -301,7 +302,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     input_is_generated = input%generator_line > 0
     if (input_is_generated) call card_error(error, deck, card, card%keyword// &
-      ' cards cannot be combined with the MESH card on line '//itoa(input%generator_line))
+      ' cards cannot be combined with the MESH card on line '//integer_text(input%generator_line))
   end function input_is_generated
 
   subroutine reserve_nodes(input, extra)

@@ -18,7 +18,7 @@
 module visco2d_pad_mesh
   use visco2d_kinds, only: dp, geometry_axisymmetric
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_mesh_build, only: bandwidth_numbering
   use visco2d_mesh, only: boundary_sides
   use visco2d_deck_types, only: deck_t, fix_t, line_error, add_warning, analysis_dynamic
@@ -121,14 +121,15 @@ contains
     spacing = pad%size
     if (spacing == 0.0_dp) spacing = pole_edge(deck)
     if (pad%size > 0.0_dp .and. pad%size < 0.5_dp*pole_edge(deck)) call add_warning(deck, pad%line, 'PAD', &
-      'SIZE = '//rtoa(pad%size)//' m is under half the body''s element size at its pole ('//rtoa(pole_edge(deck))// &
+      'SIZE = '//message_real(pad%size)//' m is under half the body''s element size at its pole (' &
+        //message_real(pole_edge(deck))// &
       ' m): each body node then loads the finer pad surface like a point and indents it locally (large local '// &
       'strains, too much compression); leave SIZE out to put the pad''s nodes under the body''s')
-    if (width < reach) call add_warning(deck, pad%line, 'PAD', 'WIDTH = '//rtoa(width)//' m is less than the '// &
-      'body''s radius '//rtoa(reach)//' m: body nodes beyond the pad''s edge find nothing to touch')
+    if (width < reach) call add_warning(deck, pad%line, 'PAD', 'WIDTH = '//message_real(width)//' m is less than the '// &
+      'body''s radius '//message_real(reach)//' m: body nodes beyond the pad''s edge find nothing to touch')
     if (spacing > 0.5_dp*min(width, pad%thickness*4.0_dp)) then
-      call line_error(error, deck, pad%line, 'SIZE = '//rtoa(spacing)//' m is too coarse for a pad '// &
-        rtoa(pad%thickness)//' m thick and '//rtoa(width)//' m wide (at most half the width and twice the '// &
+      call line_error(error, deck, pad%line, 'SIZE = '//message_real(spacing)//' m is too coarse for a pad '// &
+        message_real(pad%thickness)//' m thick and '//message_real(width)//' m wide (at most half the width and twice the '// &
         'thickness)', merge('SIZE     ', 'THICKNESS', pad%size > 0.0_dp)); return
     end if
     if (pad%size > 0.0_dp) then
@@ -138,8 +139,8 @@ contains
     end if
     z_lines = depth_lines(pad%thickness, pad%cover, spacing)
     if (size(r_lines) == 0 .or. size(z_lines) == 0) then
-      call line_error(error, deck, pad%line, 'SIZE = '//rtoa(spacing)//' m is too fine: the pad would need more '// &
-                      'than '//itoa(max_lines)//' grid lines across its width or thickness', 'SIZE'); return
+      call line_error(error, deck, pad%line, 'SIZE = '//message_real(spacing)//' m is too fine: the pad would need more '// &
+                      'than '//integer_text(max_lines)//' grid lines across its width or thickness', 'SIZE'); return
     end if
     nr = size(r_lines) - 1
     nz = size(z_lines) - 1
@@ -317,14 +318,14 @@ contains
       if (deck%materials(pad%cover_index)%density <= 0.0_dp .and. &
           (deck%analysis == analysis_dynamic .or. deck%gravity_line > 0)) then
         call line_error(error, deck, deck%materials(pad%cover_index)%line, 'material '//pad%cover_material// &
-          ' (the pad''s cover, PAD card on line '//itoa(pad%line)//') has no density: RHO= > 0 is needed', 'RHO')
+          ' (the pad''s cover, PAD card on line '//integer_text(pad%line)//') has no density: RHO= > 0 is needed', 'RHO')
         return
       end if
     end if
     if (deck%materials(pad%material_index)%density <= 0.0_dp .and. &
         (deck%analysis == analysis_dynamic .or. deck%gravity_line > 0)) then
       call line_error(error, deck, deck%materials(pad%material_index)%line, 'material '//pad%material// &
-        ' (the pad''s, PAD card on line '//itoa(pad%line)//') has no density: '// &
+        ' (the pad''s, PAD card on line '//integer_text(pad%line)//') has no density: '// &
         trim(merge('ANALYSIS DYNAMIC', 'GRAVITY         ', deck%analysis == analysis_dynamic))//' needs RHO= > 0', 'RHO')
     end if
     end associate

@@ -6,7 +6,7 @@ module visco2d_time
   use visco2d_kinds, only: dp
   use visco2d_ranges, only: time_step_range, time_range
   use visco2d_error, only: error_t
-  use visco2d_strings, only: itoa, short_real
+  use visco2d_strings, only: integer_text, short_real
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, check_fields_used, field_column
   use visco2d_model, only: time_stage_t
   implicit none
@@ -50,7 +50,7 @@ contains
     ! length/requested <= 1e9/1e-12: no overflow; the count is checked before it becomes an integer.
     if (length/requested > real(max_steps, dp)) then
       call card_error(error, cards, card, 'DT = '//short_real(requested)//' s would take more than '// &
-                      itoa(max_steps)//' steps to reach TEND', field_column(card, 'DT')); return
+                      integer_text(max_steps)//' steps to reach TEND', field_column(card, 'DT')); return
     end if
     stage%steps = max(1, ceiling(length/requested*(1.0_dp - 1.0e-12_dp)))
     stage%dt = length/stage%steps
@@ -61,8 +61,8 @@ contains
     end do
     if (total > max_steps) then
       steps = total - stage%steps
-      call card_error(error, cards, card, 'the TIME stages add up to '//itoa(total)//' steps, more than '// &
-                      itoa(max_steps)//' (the stages before this one take '//itoa(steps)//')', &
+      call card_error(error, cards, card, 'the TIME stages add up to '//integer_text(total)//' steps, more than '// &
+                      integer_text(max_steps)//' (the stages before this one take '//integer_text(steps)//')', &
                       field_column(card, 'DT')); return
     end if
     stages = [stages, stage]

@@ -37,7 +37,7 @@
 !> body is smoothed.
 module visco2d_advice
   use visco2d_kinds, only: dp, pi, geometry_axisymmetric
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_deck, only: deck_t, warning_t, analysis_dynamic, initial_velocity
   use visco2d_record, only: record_t, record_warn
   use visco2d_contact, only: hertz_impact, hertz_t
@@ -123,15 +123,16 @@ contains
       associate (dt => deck%stages(k)%dt, line => deck%stages(k)%line)
       if (scales%contact_duration > 0.0_dp) then
         steps = scales%contact_duration/dt
-        if (steps < real(contact_steps_minimum, dp)) call add(line, 'DT = '//rtoa(dt)//' s leaves only '// &
-          itoa(int(steps))//' steps in the Hertz contact duration of this impact ('//rtoa(scales%contact_duration)// &
-          ' s): use at least '//itoa(contact_steps_minimum)//' (DT <= '// &
-          rtoa(scales%contact_duration/contact_steps_minimum)//' s); fewer overestimate alpha_m and t_m '// &
+        if (steps < real(contact_steps_minimum, dp)) call add(line, 'DT = '//message_real(dt)//' s leaves only '// &
+          integer_text(int(steps))//' steps in the Hertz contact duration of this impact (' &
+            //message_real(scales%contact_duration)// &
+          ' s): use at least '//integer_text(contact_steps_minimum)//' (DT <= '// &
+          message_real(scales%contact_duration/contact_steps_minimum)//' s); fewer overestimate alpha_m and t_m '// &
           '(+29 % at 3 steps on the Table 1 sphere)')
       end if
-      if (scales%body_transit > 0.0_dp .and. dt > scales%body_transit) call add(line, 'DT = '//rtoa(dt)// &
-        ' s is longer than the time a stress wave takes to cross the body ('//rtoa(scales%body_transit)// &
-        ' s at c_p = '//rtoa(scales%wave_speed)//' m/s): its lowest vibration modes are not resolved '// &
+      if (scales%body_transit > 0.0_dp .and. dt > scales%body_transit) call add(line, 'DT = '//message_real(dt)// &
+        ' s is longer than the time a stress wave takes to cross the body ('//message_real(scales%body_transit)// &
+        ' s at c_p = '//message_real(scales%wave_speed)//' m/s): its lowest vibration modes are not resolved '// &
         '(Wilson-theta damps them), so stresses and accelerations in time are filtered')
       end associate
     end do
@@ -153,8 +154,8 @@ contains
         line = deck%dynamics%initial_line
         card = 'INITIAL'
       end if
-      warning%text = deck%cards%file//':'//itoa(line)//': '//card//': the impact speed '//rtoa(speed)// &
-        ' m/s (a drop of '//rtoa(speed**2/(2.0_dp*9.80665_dp))//' m) is far above fruit handling (drops below '// &
+      warning%text = deck%cards%file//':'//integer_text(line)//': '//card//': the impact speed '//message_real(speed)// &
+        ' m/s (a drop of '//message_real(speed**2/(2.0_dp*9.80665_dp))//' m) is far above fruit handling (drops below '// &
         'about 1 m, 4.4 m/s); a height or speed in the wrong unit (cm for m)?'
       deck%warnings = [deck%warnings, warning]
     end subroutine speed_warning
@@ -163,7 +164,7 @@ contains
       integer, intent(in) :: line
       character(*), intent(in) :: message
       type(warning_t) :: warning
-      warning%text = deck%cards%file//':'//itoa(line)//': TIME: '//message
+      warning%text = deck%cards%file//':'//integer_text(line)//': TIME: '//message
       deck%warnings = [deck%warnings, warning]
     end subroutine add
   end subroutine time_step_warnings
@@ -182,8 +183,8 @@ contains
     if (allocated(deck%stages)) then
       if (size(deck%stages) > 0) line = deck%stages(1)%line
     end if
-    message = 'the energy balance is off by '//rtoa(100.0_dp*relative)//' % of the energy put into the body '// &
-      '(above '//rtoa(100.0_dp*balance_warning_level)//' %): the time integration is inaccurate; a smaller DT '// &
+    message = 'the energy balance is off by '//message_real(100.0_dp*relative)//' % of the energy put into the body '// &
+      '(above '//message_real(100.0_dp*balance_warning_level)//' %): the time integration is inaccurate; a smaller DT '// &
       'brings it down (stable runs at a resolved DT stay below 0.1 %)'
   end subroutine energy_balance_warning
 
@@ -270,13 +271,13 @@ contains
       if (allocated(deck%materials)) then
         if (size(deck%materials) > 0) line = deck%materials(deck%mesh%element_material(1))%line
       end if
-      call record_warn(record, 'the largest principal strain reached '//rtoa(100.0_dp*strain)//' % (above '// &
-        rtoa(100.0_dp*strain_warning_level)//' %): beyond the small-strain model, stresses and displacements '// &
+      call record_warn(record, 'the largest principal strain reached '//message_real(100.0_dp*strain)//' % (above '// &
+        message_real(100.0_dp*strain_warning_level)//' %): beyond the small-strain model, stresses and displacements '// &
         'are only indicative', file=deck%cards%file, line=line, card='MATERIAL')
     end if
     if (pad_strain > strain_warning_level) call record_warn(record, 'the largest principal strain in the pad ('// &
-      deck%pad%material//') reached '//rtoa(100.0_dp*pad_strain)//' % (above '// &
-      rtoa(100.0_dp*strain_warning_level)//' %): beyond the small-strain, linear pad model (a foam buckles '// &
+      deck%pad%material//') reached '//message_real(100.0_dp*pad_strain)//' % (above '// &
+      message_real(100.0_dp*strain_warning_level)//' %): beyond the small-strain, linear pad model (a foam buckles '// &
       'and densifies); its results are only indicative', file=deck%cards%file, line=deck%pad%line, card='PAD')
     if (deck%plate%line == 0 .or. .not. generated_round_body(deck%mesh)) return
     radius = pole_curvature_radius(deck%mesh, body_elements(deck))
@@ -287,8 +288,8 @@ contains
       if (ios /= 0) return
       alpha = 1.0e-3_dp*alpha
       if (alpha > approach_warning_level*radius) call record_warn(record, 'the approach alpha_max = '// &
-        rtoa(1.0e3_dp*alpha)//' mm is '//rtoa(100.0_dp*alpha/radius)//' % of the radius (above '// &
-        rtoa(100.0_dp*approach_warning_level)//' %): beyond the small-displacement contact model', &
+        message_real(1.0e3_dp*alpha)//' mm is '//message_real(100.0_dp*alpha/radius)//' % of the radius (above '// &
+        message_real(100.0_dp*approach_warning_level)//' %): beyond the small-displacement contact model', &
         file=deck%cards%file, line=deck%plate%line, card='PLATE')
       return
     end do

@@ -4,7 +4,7 @@
 module visco2d_hertz
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, pi, geometry_tolerance, hertz_time_constant
-  use visco2d_strings, only: gtoa
+  use visco2d_strings, only: table_real
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, record_put, record_put_real
   use visco2d_mesh, only: pole_curvature_radius, generated_round_body
@@ -82,23 +82,23 @@ contains
     associate (material => deck%materials(1))
     wave_speed = sqrt(material%young/max(material%density, tiny(1.0_dp)))
     if (.not. abs(speed) < wave_speed) then
-      call record_put(record, 'hertz_reference', 'none: V = '//gtoa(abs(speed))//' m/s is not small against the '// &
-                      'wave speed sqrt(E/rho) = '//gtoa(wave_speed)//' m/s (Hertz impact is quasi-static)')
+      call record_put(record, 'hertz_reference', 'none: V = '//table_real(abs(speed))//' m/s is not small against the '// &
+                      'wave speed sqrt(E/rho) = '//table_real(wave_speed)//' m/s (Hertz impact is quasi-static)')
       return
     end if
     hertz = hertz_impact(material%young, material%poisson, radius, mass, speed)
     if (.not. hertz_finite(hertz)) then
-      call record_put(record, 'hertz_reference', 'none: not a finite number at V = '//gtoa(abs(speed))//' m/s')
+      call record_put(record, 'hertz_reference', 'none: not a finite number at V = '//table_real(abs(speed))//' m/s')
       return
     end if
     if (hertz%alpha_max <= geometry_tolerance*radius) then
-      call record_put(record, 'hertz_reference', 'none: V = '//gtoa(abs(speed))//' m/s is too small (alpha_m = '// &
-                      gtoa(hertz%alpha_max)//' m, below the round-off of the node positions)')
+      call record_put(record, 'hertz_reference', 'none: V = '//table_real(abs(speed))//' m/s is too small (alpha_m = '// &
+                      table_real(hertz%alpha_max)//' m, below the round-off of the node positions)')
       return
     end if
     if (hertz%alpha_max >= radius) then
-      call record_put(record, 'hertz_reference', 'none: alpha_m = '//gtoa(hertz%alpha_max)//' m is not small '// &
-                      'against R = '//gtoa(radius)//' m')
+      call record_put(record, 'hertz_reference', 'none: alpha_m = '//table_real(hertz%alpha_max)//' m is not small '// &
+                      'against R = '//table_real(radius)//' m')
       return
     end if
     call record_put_real(record, 'hertz_young_Pa', material%young)

@@ -2,12 +2,12 @@
 !> following the load path exactly (the contact set changes at the load
 !> factors where a free node reaches the plate or a contact node's reaction
 !> reaches zero), on the rigid plate or on a PAD. Uses the contact state of
-!> visco2d_contact; the solves of each contact set are visco2d_held_system's.
+!> visco2d_contact; the solves of each contact set are visco2d_constrained_system's.
 module visco2d_static_contact
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof, band_vector, support_mask, external_load, gravity_load, lumped_mass
   use visco2d_static, only: static_solution_t, solve_static, static_record
@@ -16,7 +16,7 @@ module visco2d_static_contact
   use visco2d_bruise, only: bruise_static
   use visco2d_pad_mesh, only: is_pad_node, body_nodes, body_elements
   use visco2d_advice, only: deformation_warnings, largest_strain
-  use visco2d_held_system, only: held_system_t, held_system_create, held_system_solve
+  use visco2d_constrained_system, only: constrained_system_t, constrained_system_create, constrained_system_solve
   use visco2d_contact, only: contact_t, contact_create, contact_count, contact_force, contact_gap, &
                              contact_pressure, contact_radius, contact_partner_sum, pad_compression
   implicit none
@@ -113,8 +113,8 @@ contains
     if (allocated(error)) return
     if (contact%pad) then                               ! the pad's top would be under the rigid plate
       if (pad_compression(deck, contact, u) >= deck%pad%thickness) then
-        call set_error(error, 'the pad is compressed '//gtoa(1.0e3_dp*pad_compression(deck, contact, u))// &
-          ' mm, more than its thickness of '//gtoa(1.0e3_dp*deck%pad%thickness)//' mm (its own weight and '// &
+        call set_error(error, 'the pad is compressed '//table_real(1.0e3_dp*pad_compression(deck, contact, u))// &
+          ' mm, more than its thickness of '//table_real(1.0e3_dp*deck%pad%thickness)//' mm (its own weight and '// &
           'the body''s press it through the rigid plate): far beyond the small-strain pad model; make the '// &
           'PAD stiffer or thinner', file=deck%cards%file, line=deck%pad%line, card='PAD')
         return
@@ -158,7 +158,7 @@ contains
     type(contact_t), intent(inout) :: contact
     type(static_path_t), intent(out) :: path
     type(error_t), allocatable, intent(out) :: error
-    type(held_system_t) :: system
+    type(constrained_system_t) :: system
     logical, allocatable :: held(:)
     real(dp), allocatable :: change_at(:)
     real(dp) :: next
@@ -177,17 +177,17 @@ contains
       node = contact%candidates(i)
       if (mesh%xy(2, node) - contact%z_plate <= contact%tolerance) call path_touch(deck, contact, path, node)
     end do
-    call held_system_create(deck, contact, system, error)
+    call constrained_system_create(deck, contact, system, error)
     if (allocated(error)) return
     limit = 50 + 10*size(contact%candidates)
     do event = 1, limit
       held = static_held(deck, contact, path%state)
-      call held_system_solve(deck, system, held, path%values, path%base, path%rate, path%reaction_base, &
+      call constrained_system_solve(deck, system, held, path%values, path%base, path%rate, path%reaction_base, &
                              path%reaction_rate, error)
       path%solves = path%solves + 1
       if (allocated(error)) then
-        error%message = error%message//' (with '//itoa(count(contact%active))//' node(s) on the plate at '// &
-          gtoa(100.0_dp*path%load_factor)//' % of the load: a body that only rests on the plate needs a load '// &
+        error%message = error%message//' (with '//integer_text(count(contact%active))//' node(s) on the plate at '// &
+          table_real(100.0_dp*path%load_factor)//' % of the load: a body that only rests on the plate needs a load '// &
           'that presses it on, and supports that stop it from turning or sliding)'
         if (error%line == 0) then                       ! located at the PLATE card, which holds the body
           error%line = deck%plate%line
@@ -216,9 +216,9 @@ contains
       contact%iterations = contact%iterations + 1
     end do
     node = maxloc(path%changes, dim=1)
-    call set_error(error, 'the contact set did not settle after '//itoa(limit)//' changes: at '// &
-      gtoa(100.0_dp*path%load_factor)//' % of the load, node '//itoa(mesh%node_id(node))//' (r = '// &
-      gtoa(1.0e3_dp*mesh%xy(1, node))//' mm) went '//itoa(path%changes(node))//' times between free and held '// &
+    call set_error(error, 'the contact set did not settle after '//integer_text(limit)//' changes: at '// &
+      table_real(100.0_dp*path%load_factor)//' % of the load, node '//integer_text(mesh%node_id(node))//' (r = '// &
+      table_real(1.0e3_dp*mesh%xy(1, node))//' mm) went '//integer_text(path%changes(node))//' times between free and held '// &
       '(it pulls on the plate when held and goes through it when free)'//slip_hint(contact), &
       file=deck%cards%file, line=deck%plate%line, card='PLATE')
     end associate
@@ -438,15 +438,15 @@ contains
       end do
     end do
     if (worst == 0 .or. residual <= round_off_balance*scale) return
-    where = 'the static solution is not in equilibrium at node '//itoa(deck%mesh%node_id(worst))//' (r = '// &
-      gtoa(1.0e3_dp*deck%mesh%xy(1, worst))//' mm): a nodal force of '//gtoa(residual)//' where none acts, '// &
-      'against loads and reactions up to '//gtoa(scale)
+    where = 'the static solution is not in equilibrium at node '//integer_text(deck%mesh%node_id(worst))//' (r = '// &
+      table_real(1.0e3_dp*deck%mesh%xy(1, worst))//' mm): a nodal force of '//table_real(residual)//' where none acts, '// &
+      'against loads and reactions up to '//table_real(scale)
     if (residual >= singular_balance*scale) then
       call set_error(error, where//'; the stiffness may be singular (a body free to move): fix its rigid motions', &
                      file=deck%cards%file, line=deck%plate%line, card='PLATE')
       return
     end if
-    round_off = ' ('//gtoa(residual/scale)//' of them; '//gtoa(round_off_balance)//' allowed): the round-off '// &
+    round_off = ' ('//table_real(residual/scale)//' of them; '//table_real(round_off_balance)//' allowed): the round-off '// &
       'of an ill-conditioned system, not a singular stiffness'
     if (contact%pad) then
       compression = pad_compression(deck, contact, u)
@@ -454,8 +454,8 @@ contains
       do node = 1, body_nodes(deck)
         deformation = max(deformation, abs(u(node_dof(deck%mesh, node, 2)) + compression))
       end do
-      call set_error(error, where//round_off//': the body rides down '//gtoa(1.0e3_dp*compression)// &
-        ' mm with the pad''s compression, '//gtoa(compression/max(deformation, tiny(1.0_dp)))// &
+      call set_error(error, where//round_off//': the body rides down '//table_real(1.0e3_dp*compression)// &
+        ' mm with the pad''s compression, '//table_real(compression/max(deformation, tiny(1.0_dp)))// &
         ' times its own deformation, and that motion formed through its stiffness leaves the residual; make '// &
         'the PAD thinner or stiffer (closer to the body''s modulus)', &
         file=deck%cards%file, line=deck%pad%line, card='PAD')
@@ -485,8 +485,8 @@ contains
       z = node_dof(deck%mesh, node, 2)
       if ((contact%active(node) .and. reaction(z) < -small) .or. &
           (.not. contact%active(node) .and. contact_gap(deck, contact, u, node) < -contact%tolerance)) then
-        call set_error(error, 'the static contact state is not admissible at node '//itoa(deck%mesh%node_id(node))// &
-          ' (r = '//gtoa(1.0e3_dp*deck%mesh%xy(1, node))//' mm): '//trim(merge('it pulls on the plate     ', &
+        call set_error(error, 'the static contact state is not admissible at node '//integer_text(deck%mesh%node_id(node))// &
+          ' (r = '//table_real(1.0e3_dp*deck%mesh%xy(1, node))//' mm): '//trim(merge('it pulls on the plate     ', &
           'it is through the plate   ', contact%active(node))), file=deck%cards%file, line=deck%plate%line, card='PLATE')
         return
       end if

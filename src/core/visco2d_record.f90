@@ -3,7 +3,7 @@
 !> field snapshots. Solvers fill a record; `visco2d_output` writes it.
 module visco2d_record
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: gtoa, itoa
+  use visco2d_strings, only: table_real, integer_text
   implicit none
   private
 
@@ -98,14 +98,14 @@ contains
     type(record_t), intent(inout) :: record
     character(*), intent(in) :: key
     real(dp), intent(in) :: value
-    call record_put(record, key, gtoa(value))
+    call record_put(record, key, table_real(value))
   end subroutine record_put_real
 
   subroutine record_put_integer(record, key, value)
     type(record_t), intent(inout) :: record
     character(*), intent(in) :: key
     integer, intent(in) :: value
-    call record_put(record, key, itoa(value))
+    call record_put(record, key, integer_text(value))
   end subroutine record_put_integer
 
   !> Add a run-time warning, located like an error (`file:line: CARD: message`;
@@ -122,7 +122,7 @@ contains
       if (len(file) > 0) then
         warning%text = file
         if (present(line)) then
-          if (line > 0) warning%text = warning%text//':'//itoa(line)
+          if (line > 0) warning%text = warning%text//':'//integer_text(line)
         end if
         warning%text = warning%text//': '
       end if

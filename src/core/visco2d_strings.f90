@@ -5,43 +5,43 @@ module visco2d_strings
   implicit none
   private
 
-  public :: itoa, rtoa, gtoa, es_field, short_real, compact_real, to_upper, to_lower, nearest_word
+  public :: integer_text, message_real, table_real, es_field, short_real, compact_real, to_upper, to_lower, nearest_word
 
   !> Integer (default or 64-bit) as text without blanks.
-  interface itoa
-    module procedure itoa_default, itoa_int64
-  end interface itoa
+  interface integer_text
+    module procedure integer_text_default, integer_text_int64
+  end interface integer_text
 
 contains
 
   !> Integer as text without blanks.
-  pure function itoa_default(value) result(text)
+  pure function integer_text_default(value) result(text)
     integer, intent(in) :: value
     character(:), allocatable :: text
     character(len=16) :: buffer
     write(buffer, '(i0)') value
     text = trim(buffer)
-  end function itoa_default
+  end function integer_text_default
 
   !> 64-bit integer as text without blanks.
-  pure function itoa_int64(value) result(text)
+  pure function integer_text_int64(value) result(text)
     integer(int64), intent(in) :: value
     character(:), allocatable :: text
     character(len=24) :: buffer
     write(buffer, '(i0)') value
     text = trim(buffer)
-  end function itoa_int64
+  end function integer_text_int64
 
   !> Real as text with 4 significant decimals (for messages): 1.8110E+07,
   !> and a three-digit exponent where one is needed (1.0000E-300, never the
   !> E-less 1.0000-300 of a two-digit exponent field).
-  pure function rtoa(value) result(text)
+  pure function message_real(value) result(text)
     real(dp), intent(in) :: value
     character(:), allocatable :: text
     character(len=32) :: buffer
     write(buffer, '(es13.4e3)') value
     text = two_digit_exponent(trim(adjustl(buffer)))
-  end function rtoa
+  end function message_real
 
   !> A real right-aligned in exactly `width` characters like the edit
   !> descriptor ES<width>.<digits> (1.00000000E+07 for width 16, digits 8),
@@ -65,7 +65,7 @@ contains
   end function es_field
 
   !> Real as text with 10 significant digits (for summaries and tables).
-  pure function gtoa(value) result(text)
+  pure function table_real(value) result(text)
     real(dp), intent(in) :: value
     character(:), allocatable :: text
     character(len=32) :: buffer
@@ -75,7 +75,7 @@ contains
     end if
     write(buffer, '(es17.9e3)') value
     text = trim(adjustl(buffer))
-  end function gtoa
+  end function table_real
 
   !> Shortest text (up to 17 significant digits) that reads back as the value:
   !> plain decimals for 1e-4 <= |value| < 1e15 (0.7 -> '0.7', 0.002 -> '0.002',
@@ -139,7 +139,7 @@ contains
     if (len(text) > 2) then
       if (text(len(text) - 1:) == '.0') text = text(1:len(text) - 2)
     end if
-    text = text//'e'//itoa(exponent)
+    text = text//'e'//integer_text(exponent)
   end function compact_real
 
   !> Shortest scientific text that reads back as the value ('1.0E+14').
@@ -161,7 +161,7 @@ contains
   pure function digit_text(digits) result(text)
     integer, intent(in) :: digits
     character(:), allocatable :: text
-    text = itoa(max(digits, 0))
+    text = integer_text(max(digits, 0))
   end function digit_text
 
   !> 'E+007' -> 'E+07', 'E-300' kept: an exponent printed with three digits

@@ -19,7 +19,7 @@
 !> advanced over dt (eqs. [13], [14], [23], [24]). Each stage is a procedure
 !> of visco2d_time_step; this module runs them in order (time_step), and
 !> around them what is measured: the impact (visco2d_impact), the energy
-!> books and the instability check (visco2d_energy_book), the history rows,
+!> books and the instability check (visco2d_energy_balance), the history rows,
 !> snapshots and summary (visco2d_dynamic_record), the timers.
 !>
 !> S~ depends on dt and on the supports only: it is factored once per TIME
@@ -46,7 +46,7 @@ module visco2d_dynamic
   use, intrinsic :: iso_fortran_env, only: int64
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_deck, only: deck_t, total_steps, initial_velocity, stop_at_tend, stop_at_separation
   use visco2d_dynamic_cards, only: integrator_wilson
   use visco2d_element, only: gauss_count
@@ -68,8 +68,8 @@ module visco2d_dynamic
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_time_step, only: stepper_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
                                solve_supports, contact_repeat, commit_substep, solve_point_state
-  use visco2d_energy_book, only: energy_book_t, energy_growth_limit, book_start, book_substep, book_contact_loss, &
-                                 book_growth
+  use visco2d_energy_balance, only: energy_balance_t, energy_growth_limit, balance_start, balance_substep, balance_contact_loss, &
+                                 balance_growth
   use visco2d_dynamic_record, only: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, &
                                     keep_state, insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary, &
                                     warn_unwritten_fields
@@ -81,7 +81,7 @@ module visco2d_dynamic
   !> What a run measures beside the step: the energy books, the impact, the
   !> envelopes, the record's log and the states kept at the maxima.
   type :: measures_t
-    type(energy_book_t) :: book
+    type(energy_balance_t) :: book
     type(impact_t) :: impact
     type(bruise_t) :: bruise                 !< envelopes (BRUISE cards or OUTPUT ENVELOPES=YES only)
     type(dynamic_log_t) :: log
@@ -115,7 +115,7 @@ contains
     call initial_state(deck, stepper, state)
     associate (body_mass => merge(0.0_dp, stepper%mass, stepper%pad))    ! the body's, not a PAD's
     if (stepper%contact_on) call impact_start(deck, body_mass, state%a, measures%impact)
-    call book_start(measures%book, stepper%mass, state%v)
+    call balance_start(measures%book, stepper%mass, state%v)
     call log_create(deck, body_mass, stepper%contact_on, record, measures%log)
     end associate
     step_count = 0
@@ -204,7 +204,7 @@ contains
     type(deck_t), intent(in) :: deck
     integer, intent(in) :: stage
     real(dp), intent(in) :: dt
-    type(energy_book_t), intent(inout) :: book
+    type(energy_balance_t), intent(inout) :: book
     type(error_t), allocatable, intent(out) :: error
     real(dp) :: row_sum(size(stepper%mass)), omega_max
     integer :: r, info
@@ -224,7 +224,7 @@ contains
         return
       else if (info < 0) then
         call set_error(error, 'the contact capacitance matrix is not positive definite (equation '// &
-          itoa(-info)//' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+          integer_text(-info)//' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
         return
       end if
     end do
@@ -249,15 +249,15 @@ contains
       name = 'S + 6/(theta dt)^2 M'
       term = '6/(theta DT)^2 M'
     else
-      name = 'S + c M of '//stepper%integrator%label//' (c = '//rtoa(mass_coefficient(point%row, point%h))//' 1/s^2)'
+      name = 'S + c M of '//stepper%integrator%label//' (c = '//message_real(mass_coefficient(point%row, point%h))//' 1/s^2)'
       term = 'c M'
     end if
     mass_term = mass_coefficient(point%row, point%h)*minval(stepper%mass, mask=.not. stepper%supports)
     diagonal = maxval(abs(point%effective%ab(1, :)))
     if (.not. (mass_term > epsilon(1.0_dp)*diagonal)) then
       call set_error(error, 'the effective stiffness '//name//' is not positive definite'// &
-        node_text(deck%mesh, equation)//': with DT = '//rtoa(dt)//' s the mass term '//term//' ('// &
-        rtoa(mass_term)//') is lost in round-off against S (diagonal up to '//rtoa(diagonal)// &
+        node_text(deck%mesh, equation)//': with DT = '//message_real(dt)//' s the mass term '//term//' ('// &
+        message_real(mass_term)//') is lost in round-off against S (diagonal up to '//message_real(diagonal)// &
         '), so a body free to move has no stiffness against that motion; use a DT of the order of the '// &
         'duration of the event', file=deck%cards%file, line=deck%stages(stage)%line, card='TIME')
     else
@@ -310,16 +310,16 @@ contains
         touch_fraction = min(touch_fraction, offset + point%row%fraction*stepper%touch_fraction)
         call impact_surface_stress(measures%impact, deck, stepper%contact, state%stress, stepper%solution, &
                                    point%over_h, stepper%memory, state%history)
-        call book_contact_loss(measures%book, deck, stepper%contact, stepper%mass, state%v)
+        call balance_contact_loss(measures%book, deck, stepper%contact, stepper%mass, state%v)
       end if
-      call book_substep(measures%book, stepper%mass, stepper%gravity, stepper%supports, stepper%du, &
+      call balance_substep(measures%book, stepper%mass, stepper%gravity, stepper%supports, stepper%du, &
                         state%v + stepper%dv, state%load, stepper%load_next, state%internal, stepper%internal_next, &
                         state%reaction, stepper%reaction_next, energy)
       if (.not. ieee_is_finite(energy) .or. .not. all(ieee_is_finite(stepper%trial))) then
         what = 'the energy or a stress is not finite (NaN or Inf)'
         return
       end if
-      call book_growth(measures%book, energy, what)
+      call balance_growth(measures%book, energy, what)
       if (allocated(what)) return
       call timer_start(phase_constitutive)
       ! The envelopes take the state where the integrator holds equilibrium,
@@ -386,14 +386,14 @@ contains
   !> back-substitution with the run's factor (the best of a few repeats).
   subroutine measure_floor(stepper)
     type(stepper_t), intent(in) :: stepper
-    real(dp) :: rhs(size(stepper%base))
+    real(dp) :: rhs(size(stepper%effective_load))
     integer(int64) :: start, finish, rate
     real(dp) :: best
     integer :: repeat
     best = huge(1.0_dp)
     call system_clock(count_rate=rate)
     do repeat = 1, 5
-      rhs = stepper%base
+      rhs = stepper%effective_load
       call system_clock(start)
       call factor_solve(stepper%points(1)%factor, rhs)
       call system_clock(finish)
@@ -411,8 +411,8 @@ contains
     real(dp), intent(in) :: t, dt
     character(*), intent(in) :: what
     type(error_t), allocatable, intent(out) :: error
-    call set_error(error, 'the time integration is unstable at step '//itoa(step_count + 1)//' (t = '// &
-      rtoa(t + dt)//' s, DT = '//rtoa(dt)//' s): '//what//'; '//stability_advice(stepper%integrator)// &
+    call set_error(error, 'the time integration is unstable at step '//integer_text(step_count + 1)//' (t = '// &
+      message_real(t + dt)//' s, DT = '//message_real(dt)//' s): '//what//'; '//stability_advice(stepper%integrator)// &
       '. No results were written.', file=deck%cards%file, line=deck%stages(stage)%line, card='TIME')
   end subroutine unstable_error
 

@@ -4,7 +4,7 @@
 !> strain energy and the summary keys of the end state.
 module visco2d_dynamic_record
   use visco2d_kinds, only: dp, whole_body_factor, energy_basis
-  use visco2d_strings, only: itoa, rtoa, short_real
+  use visco2d_strings, only: integer_text, message_real, short_real
   use visco2d_deck, only: deck_t, total_steps, stop_name
   use visco2d_element, only: gauss_count
   use visco2d_assembly, only: node_dof, nodal_field
@@ -16,7 +16,7 @@ module visco2d_dynamic_record
   use visco2d_impact, only: impact_t, impact_columns, impact_row, sensor_acceleration
   use visco2d_operators, only: operators_t
   use visco2d_dynamic_state, only: dynamic_state_t
-  use visco2d_energy_book, only: energy_book_t
+  use visco2d_energy_balance, only: energy_balance_t
   implicit none
   private
 
@@ -71,7 +71,7 @@ contains
     end associate
     log%body_mass = sum(mass(2::2))
     log%basis_factor = whole_body_factor(deck%settings%geometry)
-    log%width = max(6, len(itoa(total_steps(deck))))
+    log%width = max(6, len(integer_text(total_steps(deck))))
     allocate(log%probe_corners(size(deck%probes)))
     do k = 1, size(deck%probes)
       log%probe_corners(k)%pairs = node_corners(deck%mesh, deck%probes(k)%node)
@@ -106,7 +106,7 @@ contains
     type(record_t), intent(inout) :: record
     integer, intent(in) :: step
     type(dynamic_state_t), intent(in) :: state
-    type(energy_book_t), intent(in) :: book
+    type(energy_balance_t), intent(in) :: book
     real(dp), intent(in) :: stored                  !< strain energy stored in the springs
     type(impact_t), intent(in) :: impact
     integer :: p, node, first, columns_impact
@@ -173,8 +173,8 @@ contains
     real(dp), intent(in) :: t
     associate (times => deck%output%field_times)
     if (log%next_field > size(times)) return
-    call record_warn(record, itoa(size(times) - log%next_field + 1)//' FIELDS time(s) from '// &
-      short_real(times(log%next_field))//' s on not written: the run stopped at t = '//rtoa(t)//' s (STOP AT='// &
+    call record_warn(record, integer_text(size(times) - log%next_field + 1)//' FIELDS time(s) from '// &
+      short_real(times(log%next_field))//' s on not written: the run stopped at t = '//message_real(t)//' s (STOP AT='// &
       stop_name(deck%stop_at)//') before them, so results.h5 has no snapshot there', &
       file=deck%cards%file, line=deck%output%line, card='OUTPUT')
     end associate
@@ -214,7 +214,7 @@ contains
     real(dp), intent(in) :: time, u(:), v(:), a(:), stress(:, :, :)
     type(snapshot_t) :: snapshot
     character(len=16) :: digits
-    write(digits, '(i0.'//itoa(log%width)//')') at_step
+    write(digits, '(i0.'//integer_text(log%width)//')') at_step
     snapshot%name = 'step_'//trim(digits)
     snapshot%label = label
     snapshot%time = time
@@ -288,7 +288,7 @@ contains
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(dynamic_state_t), intent(in) :: state
-    type(energy_book_t), intent(in) :: book
+    type(energy_balance_t), intent(in) :: book
     real(dp), intent(in) :: stored
     integer, intent(in) :: history_values
     associate (f => log%basis_factor)

@@ -24,12 +24,12 @@
 module visco2d_integrators
   use visco2d_kinds, only: dp
   use visco2d_strings, only: short_real
-  use visco2d_dynamic_cards, only: dynamics_t, theta_unconditional, integrator_wilson, integrator_newmark, &
+  use visco2d_dynamic_cards, only: dynamic_settings_t, theta_unconditional, integrator_wilson, integrator_newmark, &
                                    integrator_hht, integrator_generalized_alpha, integrator_bathe, integrator_names
   implicit none
   private
 
-  public :: integrator_t, row_t, integrator_create, rule_collocation, rule_backward_euler
+  public :: integrator_t, substep_t, integrator_create, rule_collocation, rule_backward_euler
   public :: solve_interval, mass_coefficient, inertia_load, solve_point_inertia, update_kinematics
   public :: energy_overshoot, stability_advice
 
@@ -37,7 +37,7 @@ module visco2d_integrators
   integer, parameter :: rule_backward_euler = 2    !< Bathe's 3-point backward Euler sub-step
 
   !> One sub-step: its rule, its share of dt and its coefficients.
-  type :: row_t
+  type :: substep_t
     integer :: rule = rule_collocation
     real(dp) :: fraction = 1.0_dp        !< the sub-step's share of dt
     real(dp) :: theta = 1.0_dp           !< collocation factor: the solve point is t + theta (fraction dt)
@@ -45,14 +45,14 @@ module visco2d_integrators
     real(dp) :: gamma = 0.5_dp
     real(dp) :: alpha_m = 0.0_dp         !< inertia taken at t + (1 - alpha_m) dt
     real(dp) :: alpha_f = 0.0_dp         !< stiffness and loads taken at t + (1 - alpha_f) dt
-  end type row_t
+  end type substep_t
 
   !> An integrator: its kind (an integrator_* of visco2d_dynamic_cards), its
   !> label for the summary, and its sub-steps.
   type :: integrator_t
     integer :: kind = integrator_wilson
     character(:), allocatable :: label
-    type(row_t), allocatable :: rows(:)
+    type(substep_t), allocatable :: rows(:)
     real(dp) :: theta = 1.4_dp, beta = 1.0_dp/6.0_dp, gamma = 0.5_dp   !< as given (for the advice)
   end type integrator_t
 
@@ -60,43 +60,43 @@ contains
 
   !> The integrator of the INTEGRATOR (or WILSON) card.
   function integrator_create(dynamics) result(integrator)
-    type(dynamics_t), intent(in) :: dynamics
+    type(dynamic_settings_t), intent(in) :: dynamics
     type(integrator_t) :: integrator
     real(dp) :: alpha_m, alpha_f, rho
     integrator%kind = dynamics%integrator
     integrator%label = trim(integrator_names(dynamics%integrator))
     select case (dynamics%integrator)
     case (integrator_wilson)
-      integrator%rows = [row_t(rule_collocation, 1.0_dp, dynamics%theta, 6.0_dp, 0.5_dp, 0.0_dp, 0.0_dp)]
+      integrator%rows = [substep_t(rule_collocation, 1.0_dp, dynamics%theta, 6.0_dp, 0.5_dp, 0.0_dp, 0.0_dp)]
       integrator%label = integrator%label//' THETA='//short_real(dynamics%theta)
       integrator%theta = dynamics%theta
     case (integrator_newmark)
-      integrator%rows = [row_t(rule_collocation, 1.0_dp, 1.0_dp, 1.0_dp/dynamics%beta, dynamics%gamma, 0.0_dp, 0.0_dp)]
+      integrator%rows = [substep_t(rule_collocation, 1.0_dp, 1.0_dp, 1.0_dp/dynamics%beta, dynamics%gamma, 0.0_dp, 0.0_dp)]
       integrator%label = integrator%label//' BETA='//short_real(dynamics%beta)//' GAMMA='//short_real(dynamics%gamma)
       integrator%beta = dynamics%beta
       integrator%gamma = dynamics%gamma
     case (integrator_hht)
       alpha_f = dynamics%alpha
-      integrator%rows = [row_t(rule_collocation, 1.0_dp, 1.0_dp, 4.0_dp/(1.0_dp + alpha_f)**2, 0.5_dp + alpha_f, &
+      integrator%rows = [substep_t(rule_collocation, 1.0_dp, 1.0_dp, 4.0_dp/(1.0_dp + alpha_f)**2, 0.5_dp + alpha_f, &
                                0.0_dp, alpha_f)]
       integrator%label = integrator%label//' ALPHA='//short_real(dynamics%alpha)
     case (integrator_generalized_alpha)
       rho = dynamics%rho_infinity
       alpha_m = (2.0_dp*rho - 1.0_dp)/(rho + 1.0_dp)
       alpha_f = rho/(rho + 1.0_dp)
-      integrator%rows = [row_t(rule_collocation, 1.0_dp, 1.0_dp, 4.0_dp/(1.0_dp - alpha_m + alpha_f)**2, &
+      integrator%rows = [substep_t(rule_collocation, 1.0_dp, 1.0_dp, 4.0_dp/(1.0_dp - alpha_m + alpha_f)**2, &
                                0.5_dp - alpha_m + alpha_f, alpha_m, alpha_f)]
       integrator%label = integrator%label//' RHO_INF='//short_real(rho)
     case (integrator_bathe)
-      integrator%rows = [row_t(rule_collocation, 0.5_dp, 1.0_dp, 4.0_dp, 0.5_dp, 0.0_dp, 0.0_dp), &
-                         row_t(rule_backward_euler, 0.5_dp, 1.0_dp, 4.0_dp, 0.5_dp, 0.0_dp, 0.0_dp)]
+      integrator%rows = [substep_t(rule_collocation, 0.5_dp, 1.0_dp, 4.0_dp, 0.5_dp, 0.0_dp, 0.0_dp), &
+                         substep_t(rule_backward_euler, 0.5_dp, 1.0_dp, 4.0_dp, 0.5_dp, 0.0_dp, 0.0_dp)]
     end select
   end function integrator_create
 
   !> The solve interval h of a row over a sub-step of length `length`
   !> (theta dt for Wilson-theta, the sub-step itself otherwise).
   pure real(dp) function solve_interval(row, length) result(h)
-    type(row_t), intent(in) :: row
+    type(substep_t), intent(in) :: row
     real(dp), intent(in) :: length
     h = row%theta*length
   end function solve_interval
@@ -105,7 +105,7 @@ contains
   !> (1 - alpha_m)/(beta h^2) (6/tau^2 for Wilson-theta); 9/dt^2 = 9/(2 h)^2
   !> for the backward Euler sub-step (h = dt/2).
   pure real(dp) function mass_coefficient(row, h) result(c)
-    type(row_t), intent(in) :: row
+    type(substep_t), intent(in) :: row
     real(dp), intent(in) :: h
     if (row%rule == rule_backward_euler) then
       c = 9.0_dp/(2.0_dp*h)**2
@@ -121,7 +121,7 @@ contains
   !>   collocation  b = (1 - alpha_m)(v/(beta h) + (1/(2 beta) - 1) a) - alpha_m a   (6/tau v + 2 a for Wilson)
   !>   backward Euler  b = -(3 (u0 - u)/dt^2 + (v0 - 4 v)/dt), dt = 2 h.
   pure function inertia_load(row, h, u, v, a, u0, v0) result(b)
-    type(row_t), intent(in) :: row
+    type(substep_t), intent(in) :: row
     real(dp), intent(in) :: h
     real(dp), intent(in) :: u(:), v(:), a(:), u0(:), v0(:)
     real(dp) :: b(size(v))
@@ -139,7 +139,7 @@ contains
   !>   collocation  (1 - alpha_m) a_h + alpha_m a   (a_h = 6/tau^2 dU - 6/tau v - 2 a for Wilson)
   !>   backward Euler  a+ = 9/dt^2 dU - b.
   pure function solve_point_inertia(row, h, du, u, v, a, u0, v0) result(inertia)
-    type(row_t), intent(in) :: row
+    type(substep_t), intent(in) :: row
     real(dp), intent(in) :: h
     real(dp), intent(in) :: du(:), u(:), v(:), a(:), u0(:), v0(:)
     real(dp) :: inertia(size(du))
@@ -157,7 +157,7 @@ contains
   !> dU at the solve point (eqs. [37]-[39] generalized; the state at the
   !> sub-step's start (u, v, a), at the step's start (u0, v0) for backward Euler).
   pure subroutine update_kinematics(row, length, solution, u, v, a, u0, v0, du, dv, da)
-    type(row_t), intent(in) :: row
+    type(substep_t), intent(in) :: row
     real(dp), intent(in) :: length
     real(dp), intent(in) :: solution(:), u(:), v(:), a(:), u0(:), v0(:)
     real(dp), intent(out) :: du(:), dv(:), da(:)

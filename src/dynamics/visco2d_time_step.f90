@@ -29,7 +29,7 @@ module visco2d_time_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_deck, only: deck_t
   use visco2d_material, only: has_memory
   use visco2d_element, only: gauss_count
@@ -48,21 +48,21 @@ module visco2d_time_step
   use visco2d_pad_projection, only: project_on_surface
   use visco2d_timers, only: timer_start, timer_stop, phase_solve, phase_constitutive, phase_contact, &
                             phase_factorization
-  use visco2d_integrators, only: integrator_t, row_t, integrator_create, solve_interval, mass_coefficient, &
+  use visco2d_integrators, only: integrator_t, substep_t, integrator_create, solve_interval, mass_coefficient, &
                                  inertia_load, solve_point_inertia, update_kinematics
   use visco2d_dynamic_state, only: dynamic_state_t
   implicit none
   private
 
-  public :: stepper_t, point_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
+  public :: stepper_t, solve_point_t, stepper_create, effective_stiffness, factor_effective, effective_load, &
             solve_supports, contact_repeat, commit_substep, hold_contact, solve_point_state
 
   !> The solve point of one row: its intervals, S~ and its factor, the
   !> capacitance system of the held equations on that factor, and the step
   !> constants of the viscoelastic law over h (the solve) and over the
   !> sub-step (the stress update).
-  type :: point_t
-    type(row_t) :: row
+  type :: solve_point_t
+    type(substep_t) :: row
     real(dp) :: length = 0.0_dp                     !< the sub-step, fraction dt
     real(dp) :: h = 0.0_dp                          !< the solve interval, theta length
     type(band_matrix_t) :: effective                !< S~ (eq. [35]), unconstrained
@@ -71,7 +71,7 @@ module visco2d_time_step
     type(step_coefficients_t), allocatable :: over_h(:), over_length(:)   !< per material
     real(dp), allocatable :: shear(:), bulk(:)      !< per element, over the sub-step
     real(dp), allocatable :: shear_h(:), bulk_h(:)  !< per element, over h
-  end type point_t
+  end type solve_point_t
 
   !> What the step needs besides the state: the integrator and its solve
   !> points, the operators, mass and gravity, supports and the plate's held
@@ -79,7 +79,7 @@ module visco2d_time_step
   !> load_next, internal_next, reaction_next, target_next).
   type :: stepper_t
     type(integrator_t) :: integrator
-    type(point_t), allocatable :: points(:)
+    type(solve_point_t), allocatable :: points(:)
     type(operators_t) :: operators
     real(dp), allocatable :: mass(:), gravity(:)
     logical, allocatable :: supports(:), fixed(:), held(:)
@@ -92,7 +92,7 @@ module visco2d_time_step
     integer :: factorizations = 0
     real(dp) :: touch_fraction = 1.0_dp            !< earliest touch in the sub-step (0..1)
     real(dp), allocatable :: reaction_solve(:)     !< plate reactions at the solve point
-    real(dp), allocatable :: base(:), free(:), solution(:), prescribed(:), du(:), dv(:), da(:)
+    real(dp), allocatable :: effective_load(:), support_solution(:), solution(:), prescribed(:), du(:), dv(:), da(:)
     real(dp), allocatable :: load_next(:), internal_next(:), reaction_next(:), target_next(:)
     real(dp), allocatable :: trial(:, :, :), increments(:, :, :), history_h(:, :, :), history_length(:, :, :)
     !> The state at the solve point t + h when h is not the sub-step (Wilson-theta; solve_point_state).
@@ -132,7 +132,7 @@ contains
     stepper%mass = lumped_mass(deck%mesh, deck%settings, deck%materials)                ! eq. [32], row sums
     stepper%gravity = gravity_load(deck%mesh, deck%settings, deck%materials, deck%loads)
     call operators_create(deck, stepper%operators)
-    allocate(stepper%base(n), stepper%free(n), stepper%solution(n), stepper%prescribed(n), stepper%du(n), &
+    allocate(stepper%effective_load(n), stepper%support_solution(n), stepper%solution(n), stepper%prescribed(n), stepper%du(n), &
              stepper%dv(n), stepper%da(n), stepper%load_next(n), stepper%internal_next(n), stepper%reaction_next(n), &
              stepper%target_next(n))
     allocate(stepper%trial(4, gauss_count, mesh%nelem), stepper%increments(4, gauss_count, mesh%nelem))
@@ -259,7 +259,7 @@ contains
   end subroutine hold_contact
 
   !> Eq. [36] for row r from `state` (at the sub-step's start; `start` is the
-  !> state at the step's start) to t_next, into stepper%base:
+  !> state at the step's start) to t_next, into stepper%effective_load:
   !>   R~ = R_t + theta (1 - alpha_f)(R_next - R_t) + G - F(sigma_t) - (1 - alpha_f) F(s0_h) + M b
   !> with b the integrator's mass part (6/tau U'_t + 2 U''_t for Wilson-theta)
   !> and s0_h the history stress of eq. [23] over h as a pseudo-load; the
@@ -274,7 +274,7 @@ contains
     associate (point => stepper%points(r), row => stepper%points(r)%row)
     stepper%load_next = external_load(deck%mesh, deck%settings, deck%loads, t_next)
     stepper%target_next = prescribed_displacement(deck%mesh, deck%loads, t_next)
-    stepper%base = state%load + row%theta*(1.0_dp - row%alpha_f)*(stepper%load_next - state%load) + stepper%gravity &
+    stepper%effective_load = state%load + row%theta*(1.0_dp - row%alpha_f)*(stepper%load_next - state%load) + stepper%gravity &
                    - state%internal + stepper%mass*inertia_load(row, point%h, state%u, state%v, state%a, start%u, start%v)
     if (.not. stepper%memory) return
     call history_stresses(deck%materials, deck%mesh%element_material, state%history, point%over_h, stepper%history_h)
@@ -288,10 +288,10 @@ contains
       if (element_terms(state%history, e) == 0) cycle
       if (row%alpha_f == 0.0_dp) then
         call scatter_add(deck%mesh, e, -operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), &
-                         stepper%base)
+                         stepper%effective_load)
       else
         call scatter_add(deck%mesh, e, -(1.0_dp - row%alpha_f)* &
-                         operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), stepper%base)
+                         operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), stepper%effective_load)
       end if
     end do
     end associate
@@ -312,9 +312,9 @@ contains
       stepper%touch_fraction = 1.0_dp
     end if
     if (stepper%by_refactoring) return
-    stepper%free = stepper%base
-    call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%free)
-    call factor_solve(point%factor, stepper%free)                             ! eq. [34] without contact
+    stepper%support_solution = stepper%effective_load
+    call band_constrain_rhs(point%effective, stepper%supports, stepper%prescribed, stepper%support_solution)
+    call factor_solve(point%factor, stepper%support_solution)                             ! eq. [34] without contact
     end associate
   end subroutine solve_supports
 
@@ -405,10 +405,10 @@ contains
     call hold_contact(stepper, info)
     call timer_stop(phase_factorization)
     if (info > 0) then
-      call set_error(error, 'the effective stiffness is not positive definite at equation '//itoa(info)// &
+      call set_error(error, 'the effective stiffness is not positive definite at equation '//integer_text(info)// &
         ' after a contact change', file=deck%cards%file, line=deck%plate%line, card='PLATE')
     else if (info < 0) then
-      call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(-info)// &
+      call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//integer_text(-info)// &
         ' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
     end if
   end subroutine new_contact_set
@@ -445,7 +445,7 @@ contains
     call project_on_surface(stepper%contact%partner, stepper%contact%weight, stepper%mass, rows, targets, &
                             vectors, info)
     if (info /= 0) then
-      call set_error(error, 'the pad contact constraints are dependent (equation '//itoa(info)// &
+      call set_error(error, 'the pad contact constraints are dependent (equation '//integer_text(info)// &
         ' of the held set): two body nodes hold the same pad surface equation in the same way', &
         file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
@@ -462,11 +462,11 @@ contains
     integer, intent(in) :: r
     associate (point => stepper%points(r))
     if (stepper%by_refactoring) then
-      stepper%solution = stepper%base
+      stepper%solution = stepper%effective_load
       call band_constrain_rhs(point%effective, stepper%fixed, stepper%prescribed, stepper%solution)
       call factor_solve(point%factor, stepper%solution)
     else
-      stepper%solution = stepper%free
+      stepper%solution = stepper%support_solution
       if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%prescribed, stepper%solution)
     end if
     end associate
@@ -491,7 +491,7 @@ contains
     associate (point => stepper%points(r), p => stepper%held_rows)
     inertia = solve_point_inertia(point%row, point%h, stepper%solution, state%u, state%v, state%a, start%u, start%v)
     stepper%reaction_solve = 0.0_dp
-    stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%base(p)
+    stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%effective_load(p)
     do i = 1, size(p)                               ! less the inertia relative to the surface under the node
       stepper%reaction_solve(p(i)) = stepper%reaction_solve(p(i)) &
                                      - stepper%mass(p(i))*(inertia(p(i)) - partner_sum(stepper, inertia, p(i)))
@@ -503,7 +503,7 @@ contains
   !> stress of eq. [23]) from the increment du, and their internal force.
   subroutine trial_stresses(stepper, point, state)
     type(stepper_t), intent(inout) :: stepper
-    type(point_t), intent(in) :: point
+    type(solve_point_t), intent(in) :: point
     type(dynamic_state_t), intent(in) :: state
     if (stepper%memory) then
       call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &

@@ -13,7 +13,7 @@ module visco2d_hdf5
   use hdf5
   use visco2d_kinds, only: dp
   use visco2d_system, only: file_open_write, file_write, file_close
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   implicit none
   private
 
@@ -127,7 +127,7 @@ contains
     if (writer%status /= 0) return
     allocate(image(bytes), stat=status)
     if (status /= 0) then
-      call fail(writer, status, 'not enough memory for the file image ('//itoa(int(bytes, int64))//' bytes)')
+      call fail(writer, status, 'not enough memory for the file image ('//integer_text(int(bytes, int64))//' bytes)')
       return
     end if
     buffer = c_loc(image)
@@ -143,7 +143,7 @@ contains
     if (writer%status /= 0) return
     inquire(file=writer%path, size=size_on_disk, iostat=status)
     if (status /= 0 .or. size_on_disk /= int(bytes, int64)) call fail(writer, -1, 'only '// &
-      itoa(max(size_on_disk, 0_int64))//' of '//itoa(int(bytes, int64))//' bytes reached the disk '// &
+      integer_text(max(size_on_disk, 0_int64))//' of '//integer_text(int(bytes, int64))//' bytes reached the disk '// &
       '(disk full or a file size limit?)')
   end subroutine write_image
 
@@ -153,7 +153,7 @@ contains
     type(h5_writer_t), intent(inout) :: writer
     integer, intent(in) :: status
     character(*), intent(in) :: what
-    if (status /= 0) call fail(writer, status, 'HDF5 failed on '//what//' (status '//itoa(int(status, int64))//')')
+    if (status /= 0) call fail(writer, status, 'HDF5 failed on '//what//' (status '//integer_text(int(status, int64))//')')
   end subroutine check
 
   !> Keep the first failure (status /= 0) with its message.

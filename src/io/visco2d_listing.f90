@@ -3,7 +3,7 @@
 !> curves, node and element tables, supports and loads, and the results.
 module visco2d_listing
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps, analysis_dynamic, formulation_name, &
                           initial_velocity, stop_name
   use visco2d_material, only: material_kind_name, material_kind_elastic, material_kind_uniaxial, has_memory
@@ -66,21 +66,21 @@ contains
     call text_put(out, '   effects           '//effects)
     call text_put(out, '   formulation       '//formulation_name(deck%settings%formulation))
     if (deck%analysis == analysis_dynamic) then
-      call text_put(out, '   Wilson theta      '//gtoa(deck%dynamics%theta))
+      call text_put(out, '   Wilson theta      '//table_real(deck%dynamics%theta))
       associate (velocity => initial_velocity(deck))
-      call text_put(out, '   initial velocity  ('//gtoa(velocity(1))//', '//gtoa(velocity(2))//') m/s')
+      call text_put(out, '   initial velocity  ('//table_real(velocity(1))//', '//table_real(velocity(2))//') m/s')
       end associate
       if (any(deck%dynamics%acceleration_given)) call text_put(out, '   initial accel.    ('// &
-        gtoa(deck%dynamics%acceleration(1))//', '//gtoa(deck%dynamics%acceleration(2))//') m/s^2 (as given)')
+        table_real(deck%dynamics%acceleration(1))//', '//table_real(deck%dynamics%acceleration(2))//') m/s^2 (as given)')
       if (.not. all(deck%dynamics%acceleration_given)) call text_put(out, &
         '   initial accel.    from equilibrium M a = R(0) + gravity (components not given)')
-      call text_put(out, '   output            history every '//itoa(deck%output%every)//' step(s), '// &
-        itoa(size(deck%output%field_times))//' requested field time(s)')
+      call text_put(out, '   output            history every '//integer_text(deck%output%every)//' step(s), '// &
+        integer_text(size(deck%output%field_times))//' requested field time(s)')
     end if
     if (deck%loads%gravity > 0.0_dp) call text_put(out, &
-      '   gravity           '//gtoa(deck%loads%gravity)//' m/s^2 in -z')
+      '   gravity           '//table_real(deck%loads%gravity)//' m/s^2 in -z')
     if (deck%plate%line > 0) then
-      call text_put(out, '   plate             z = '//gtoa(deck%plate%z)//' m, '// &
+      call text_put(out, '   plate             z = '//table_real(deck%plate%z)//' m, '// &
         trim(merge('STICK (u_r, u_z held)', 'SLIP (u_z held)      ', deck%plate%stick))//', RELEASE='// &
         trim(merge('YES', 'NO ', deck%plate%release)))
       if (deck%analysis == analysis_dynamic) call text_put(out, '   stop at           '//stop_name(deck%stop_at))
@@ -114,11 +114,11 @@ contains
     call text_put(out, '')
     call text_put(out, ' MESH')
     call text_put(out, '   source            '//mesh%source)
-    call text_put(out, '   nodes             '//itoa(mesh%nnode))
-    call text_put(out, '   elements          '//itoa(mesh%nelem))
-    call text_put(out, '   equations         '//itoa(2*mesh%nnode))
-    call text_put(out, '   half-bandwidth    '//itoa(mesh%half_bandwidth_before)//' as input, '// &
-                  itoa(mesh%half_bandwidth)//' after reverse Cuthill-McKee')
+    call text_put(out, '   nodes             '//integer_text(mesh%nnode))
+    call text_put(out, '   elements          '//integer_text(mesh%nelem))
+    call text_put(out, '   equations         '//integer_text(2*mesh%nnode))
+    call text_put(out, '   half-bandwidth    '//integer_text(mesh%half_bandwidth_before)//' as input, '// &
+                  integer_text(mesh%half_bandwidth)//' after reverse Cuthill-McKee')
     call text_put(out, '')
     call text_put(out, ' MATERIALS')
     call text_put(out, '   id           kind          E(0) (Pa)       nu(0)     G(0) (Pa)       K (Pa)          rho (kg/m3)')
@@ -163,9 +163,9 @@ contains
           real_field(deck%stages(k)%dt, 16, 8)//' '//real_field(deck%stages(k)%end_time, 16, 8))
       end do
       if (deck%analysis == analysis_dynamic) then
-        call text_put(out, '   '//itoa(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0')
+        call text_put(out, '   '//integer_text(total_steps(deck))//' Wilson-theta steps from the initial state at t = 0')
       else
-        call text_put(out, '   '//itoa(total_steps(deck))//' steps after the instantaneous response at t = 0')
+        call text_put(out, '   '//integer_text(total_steps(deck))//' steps after the instantaneous response at t = 0')
       end if
     end if
     if (size(deck%loads%curves) > 0) then
@@ -194,7 +194,7 @@ contains
       call text_put(out, integer_field(mesh%node_id(i), 9)//' '//real_field(mesh%xy(1, i), 16, 8)//' '// &
         real_field(mesh%xy(2, i), 16, 8)//integer_field(mesh%equation(i), 9))
     end do
-    if (mesh%nnode > listing_row_limit) call text_put(out, '   ... '//itoa(mesh%nnode - listing_row_limit)// &
+    if (mesh%nnode > listing_row_limit) call text_put(out, '   ... '//integer_text(mesh%nnode - listing_row_limit)// &
       ' more nodes: see results.h5 /mesh/nodes')
     call text_put(out, '')
     call text_put(out, ' ELEMENTS  (number, nodes 1-4, material)')
@@ -205,7 +205,7 @@ contains
       end do
       call text_put(out, line//'  '//trim(mesh%element_material_name(i)))
     end do
-    if (mesh%nelem > listing_row_limit) call text_put(out, '   ... '//itoa(mesh%nelem - listing_row_limit)// &
+    if (mesh%nelem > listing_row_limit) call text_put(out, '   ... '//integer_text(mesh%nelem - listing_row_limit)// &
       ' more elements: see results.h5 /mesh/elements')
     end associate
   end subroutine listing_mesh
@@ -219,21 +219,21 @@ contains
     call text_put(out, '')
     call text_put(out, ' SUPPORTS AND LOADS')
     do k = 1, size(deck%loads%fixes)
-      call text_put(out, '   FIX      line '//itoa(deck%loads%fixes(k)%line)//': '// &
-        itoa(size(deck%loads%fixes(k)%nodes))// &
+      call text_put(out, '   FIX      line '//integer_text(deck%loads%fixes(k)%line)//': '// &
+        integer_text(size(deck%loads%fixes(k)%nodes))// &
         ' node(s), '//merge('u_r ', '    ', deck%loads%fixes(k)%fix_r)//merge('u_z', '   ', &
           deck%loads%fixes(k)%fix_z)// &
         trim(prescribed_text(deck, k)))
     end do
     do k = 1, size(deck%loads%pressures)
-      call text_put(out, '   PRESSURE line '//itoa(deck%loads%pressures(k)%line)//': '// &
-        edge_set_name(deck%loads%pressures(k)%edge_set)//' p = '//gtoa(deck%loads%pressures(k)%value)//' Pa'// &
+      call text_put(out, '   PRESSURE line '//integer_text(deck%loads%pressures(k)%line)//': '// &
+        edge_set_name(deck%loads%pressures(k)%edge_set)//' p = '//table_real(deck%loads%pressures(k)%value)//' Pa'// &
         curve_text(deck, deck%loads%pressures(k)%curve))
     end do
     do k = 1, size(deck%loads%forces)
-      call text_put(out, '   FORCE    line '//itoa(deck%loads%forces(k)%line)//': node '// &
-        itoa(mesh%node_id(deck%loads%forces(k)%node))//' F = ('//gtoa(deck%loads%forces(k)%value(1))//', '// &
-        gtoa(deck%loads%forces(k)%value(2))//') N'//curve_text(deck, deck%loads%forces(k)%curve))
+      call text_put(out, '   FORCE    line '//integer_text(deck%loads%forces(k)%line)//': node '// &
+        integer_text(mesh%node_id(deck%loads%forces(k)%node))//' F = ('//table_real(deck%loads%forces(k)%value(1))//', '// &
+        table_real(deck%loads%forces(k)%value(2))//') N'//curve_text(deck, deck%loads%forces(k)%curve))
     end do
     end associate
   end subroutine listing_loads
@@ -297,7 +297,7 @@ contains
   function integer_field(value, width) result(text)
     integer, intent(in) :: value, width
     character(:), allocatable :: text
-    text = text_field(itoa(value), width, right=.true.)
+    text = text_field(integer_text(value), width, right=.true.)
   end function integer_field
 
   !> Text padded with blanks to `width` (left-aligned, or right-aligned); longer text is kept whole.
@@ -343,8 +343,8 @@ contains
     associate (fix => deck%loads%fixes(k))
     if (all(fix%value == 0.0_dp)) return
     text = ', prescribed'
-    if (fix%fix_r) text = text//' u_r = '//gtoa(fix%value(1))//' m'
-    if (fix%fix_z) text = text//' u_z = '//gtoa(fix%value(2))//' m'
+    if (fix%fix_r) text = text//' u_r = '//table_real(fix%value(1))//' m'
+    if (fix%fix_z) text = text//' u_z = '//table_real(fix%value(2))//' m'
     text = text//curve_text(deck, fix%curve)
     end associate
   end function prescribed_text

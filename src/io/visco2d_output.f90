@@ -8,7 +8,7 @@ module visco2d_output
   use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, geometry_name
   use visco2d_record, only: record_t, summary_item_t
   use visco2d_hdf5, only: h5_writer_t, h5_open_file, h5_close_file, h5_group, h5_close_group, &
@@ -99,9 +99,9 @@ contains
     end do
     call text_put(out, line)
     do i = 1, record%nrow
-      line = gtoa(record%history(1, i))
+      line = table_real(record%history(1, i))
       do j = 2, size(record%columns)
-        line = line//','//gtoa(record%history(j, i))
+        line = line//','//table_real(record%history(j, i))
       end do
       call text_put(out, line)
     end do
@@ -130,9 +130,9 @@ contains
       do j = 1, size(table%columns)
         if (j > 1) line = line//','
         if (trim(table%columns(j)) == 'node') then          ! the deck's node number
-          line = line//itoa(nint(table%values(j, i)))
+          line = line//integer_text(nint(table%values(j, i)))
         else
-          line = line//gtoa(table%values(j, i))
+          line = line//table_real(table%values(j, i))
         end if
       end do
       call text_put(out, line)

@@ -9,7 +9,7 @@ module visco2d_output_check
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, gtoa
+  use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, analysis_dynamic, initial_velocity
   use visco2d_record, only: record_t, snapshot_t
   implicit none
@@ -58,7 +58,7 @@ contains
         do j = 1, size(record%columns)
           if (ieee_is_finite(record%history(j, i))) cycle
           where = 'history column '//trim(record%columns(j))//' = '//non_finite_text(record%history(j, i))// &
-                  ' in row '//itoa(i)//' of '//itoa(record%nrow)//row_place(record, i)
+                  ' in row '//integer_text(i)//' of '//integer_text(record%nrow)//row_place(record, i)
           exit rows
         end do
       end do rows
@@ -71,7 +71,7 @@ contains
     end if
     if (len(where) == 0 .and. allocated(record%pressure%values)) then
       if (.not. all(ieee_is_finite(record%pressure%values))) where = 'the contact pressure over radius '// &
-        '(pressure.csv) holds '//itoa(count(.not. ieee_is_finite(record%pressure%values)))//' non-finite value(s)'
+        '(pressure.csv) holds '//integer_text(count(.not. ieee_is_finite(record%pressure%values)))//' non-finite value(s)'
     end if
     if (len(where) == 0) return
     call set_error(error, producer//' produced a non-finite result: '//where// &
@@ -91,9 +91,9 @@ contains
       if (.not. ieee_is_finite(record%history(j, row))) cycle
       if (len(text) > 0) text = text//', '
       if (trim(record%columns(j)) == 'step' .and. abs(record%history(j, row)) < 1.0e9_dp) then
-        text = text//'step '//itoa(nint(record%history(j, row)))
+        text = text//'step '//integer_text(nint(record%history(j, row)))
       else
-        text = text//trim(record%columns(j))//' = '//gtoa(record%history(j, row))
+        text = text//trim(record%columns(j))//' = '//table_real(record%history(j, row))
       end if
     end do
     if (len(text) > 0) text = ' ('//text//')'
@@ -112,7 +112,7 @@ contains
       where = 'the time of '//name//' = '//non_finite_text(snapshot%time)
       return
     end if
-    name = name//' at t = '//gtoa(snapshot%time)//' s'
+    name = name//' at t = '//table_real(snapshot%time)//' s'
     if (allocated(snapshot%displacement)) where = nodal(snapshot%displacement, 'displacement')
     if (len(where) == 0 .and. allocated(snapshot%velocity)) where = nodal(snapshot%velocity, 'velocity')
     if (len(where) == 0 .and. allocated(snapshot%acceleration)) where = nodal(snapshot%acceleration, 'acceleration')
@@ -133,7 +133,7 @@ contains
         do c = 1, size(values, 1)
           if (ieee_is_finite(values(c, k))) cycle
           text = 'field '//field//' of '//name//' = '//non_finite_text(values(c, k))//' at '//node_name(k)// &
-                 ', component '//itoa(c)
+                 ', component '//integer_text(c)
           return
         end do
       end do
@@ -149,7 +149,7 @@ contains
           do c = 1, size(values, 1)
             if (ieee_is_finite(values(c, g, e))) cycle
             text = 'field stress_gauss of '//name//' = '//non_finite_text(values(c, g, e))//' at '// &
-                   element_name(e)//', Gauss point '//itoa(g)//', component '//itoa(c)
+                   element_name(e)//', Gauss point '//integer_text(g)//', component '//integer_text(c)
             return
           end do
         end do
@@ -159,18 +159,18 @@ contains
     function node_name(k) result(text)
       integer, intent(in) :: k
       character(:), allocatable :: text
-      text = 'node index '//itoa(k)
+      text = 'node index '//integer_text(k)
       if (allocated(deck%mesh%node_id)) then
-        if (k <= size(deck%mesh%node_id)) text = 'node '//itoa(deck%mesh%node_id(k))
+        if (k <= size(deck%mesh%node_id)) text = 'node '//integer_text(deck%mesh%node_id(k))
       end if
     end function node_name
 
     function element_name(e) result(text)
       integer, intent(in) :: e
       character(:), allocatable :: text
-      text = 'element index '//itoa(e)
+      text = 'element index '//integer_text(e)
       if (allocated(deck%mesh%element_id)) then
-        if (e <= size(deck%mesh%element_id)) text = 'element '//itoa(deck%mesh%element_id(e))
+        if (e <= size(deck%mesh%element_id)) text = 'element '//integer_text(deck%mesh%element_id(e))
       end if
     end function element_name
   end function snapshot_problem
@@ -247,8 +247,8 @@ contains
     if (allocated(deck%mesh%xy)) then
       do i = 1, size(deck%mesh%xy, 2)
         if (all(ieee_is_finite(deck%mesh%xy(:, i)))) cycle
-        call set_error(error, 'node '//itoa(deck%mesh%node_id(i))//' has a non-finite coordinate (r, z) = ('// &
-          gtoa(deck%mesh%xy(1, i))//', '//gtoa(deck%mesh%xy(2, i))//'); no output is written', &
+        call set_error(error, 'node '//integer_text(deck%mesh%node_id(i))//' has a non-finite coordinate (r, z) = ('// &
+          table_real(deck%mesh%xy(1, i))//', '//table_real(deck%mesh%xy(2, i))//'); no output is written', &
           file=deck%cards%file, line=card_line(deck, mesh_card()), card=card_name(deck, mesh_card()))
         return
       end do
@@ -319,7 +319,7 @@ contains
     else if (value < 0.0_dp) then
       text = '-Infinity'
     else
-      text = gtoa(value)
+      text = table_real(value)
     end if
   end function non_finite_text
 

@@ -5,7 +5,7 @@
 module visco2d_text_file
   use, intrinsic :: iso_fortran_env, only: int64
   use, intrinsic :: iso_c_binding, only: c_ptr, c_null_ptr, c_associated
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_system, only: file_open_write, file_write, file_close
   implicit none
   private
@@ -54,7 +54,7 @@ contains
     character(*), intent(in) :: line
     if (len(file%message) > 0) return
     if (file_write(file%stream, line) /= 0 .or. file_write(file%stream, new_line('a')) /= 0) then
-      file%message = 'writing failed after '//itoa(file%bytes)//' bytes (disk full or a file size limit?)'
+      file%message = 'writing failed after '//integer_text(file%bytes)//' bytes (disk full or a file size limit?)'
       return
     end if
     file%bytes = file%bytes + len(line) + 1
@@ -75,7 +75,7 @@ contains
       return
     end if
     inquire(file=file%path, size=size, iostat=status)
-    if (status /= 0 .or. size /= file%bytes) file%message = 'only '//itoa(max(size, 0_int64))//' of '// &
-      itoa(file%bytes)//' bytes reached the disk (disk full or a file size limit?)'
+    if (status /= 0 .or. size /= file%bytes) file%message = 'only '//integer_text(max(size, 0_int64))//' of '// &
+      integer_text(file%bytes)//' bytes reached the disk (disk full or a file size limit?)'
   end subroutine text_close
 end module visco2d_text_file

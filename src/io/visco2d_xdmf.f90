@@ -25,7 +25,7 @@ module visco2d_xdmf
   use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, snapshot_t
   use visco2d_hdf5, only: h5_writer_t, h5_group, h5_close_group, h5_write
@@ -143,8 +143,8 @@ contains
     type(snapshot_t), intent(in) :: snapshot
     character(:), allocatable :: group, view, nodes, elements
     integer :: k
-    nodes = itoa(deck%mesh%nnode)
-    elements = itoa(deck%mesh%nelem)
+    nodes = integer_text(deck%mesh%nnode)
+    elements = integer_text(deck%mesh%nelem)
     group = '/fields/'//snapshot%name
     call text_put(out, '      <Grid Name="'//snapshot%name//'" GridType="Uniform">')
     call text_put(out, '        <Time Value="'//time_text(snapshot%time)//'"/>')

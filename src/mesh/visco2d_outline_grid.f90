@@ -8,7 +8,7 @@
 !> mapped radially onto the spline (`outline_grid`).
 module visco2d_outline_grid
   use visco2d_kinds, only: dp, pi
-  use visco2d_strings, only: itoa, rtoa
+  use visco2d_strings, only: integer_text, message_real
   use visco2d_roots, only: increasing_root
   use visco2d_mesh_generator, only: sphere_grid, sphere_grid_contact, edge_set_outer
   implicit none
@@ -55,44 +55,45 @@ contains
     n = size(r)
     if (n < 3) then
       problem = 'needs at least 3 points (r z pairs: the contact pole on the axis, a point off it, the far pole '// &
-                'on the axis), got '//itoa(n)
+                'on the axis), got '//integer_text(n)
       return
     end if
     if (n > outline_max_points) then
-      problem = 'has '//itoa(n)//' points, more than '//itoa(outline_max_points); return
+      problem = 'has '//integer_text(n)//' points, more than '//integer_text(outline_max_points); return
     end if
     if (r(1) /= 0.0_dp) then
       point = 1
-      problem = 'outline point 1 is the contact pole and must be on the axis (r = 0), got r = '//rtoa(r(1)); return
+      problem = 'outline point 1 is the contact pole and must be on the axis (r = 0), got r = '//message_real(r(1)); return
     end if
     do i = 2, n - 1
       point = i
       if (r(i) < 0.0_dp) then
-        problem = 'outline point '//itoa(i)//': r must be >= 0, got '//rtoa(r(i)); return
+        problem = 'outline point '//integer_text(i)//': r must be >= 0, got '//message_real(r(i)); return
       end if
       if (r(i) == 0.0_dp) then
-        problem = 'outline point '//itoa(i)//' is on the axis between the poles (only the first and the last point may '// &
+        problem = 'outline point '//integer_text(i)//' is on the axis between the poles (only the first and the last point may '// &
                   'have r = 0: the body would be pinched)'; return
       end if
     end do
     point = n
     if (r(n) /= 0.0_dp) then
-      problem = 'outline point '//itoa(n)//' (the last) is the far pole and must be on the axis (r = 0), got r = '// &
-                rtoa(r(n)); return
+      problem = 'outline point '//integer_text(n)//' (the last) is the far pole and must be on the axis (r = 0), got r = '// &
+                message_real(r(n)); return
     end if
     do i = 2, n
       point = i
       if (z(i) <= z(1)) then
         at_z = .true.
-        problem = 'outline point '//itoa(i)//' (z = '//rtoa(z(i))//') is not above the contact pole (point 1, z = '// &
-                  rtoa(z(1))//'): the first point must be the lowest of the body, the pole that touches the plate'
+        problem = 'outline point '//integer_text(i)//' (z = '//message_real(z(i)) &
+          //') is not above the contact pole (point 1, z = '// &
+                  message_real(z(1))//'): the first point must be the lowest of the body, the pole that touches the plate'
         return
       end if
     end do
     do i = 2, n
       point = i
       if (r(i) == r(i - 1) .and. z(i) == z(i - 1)) then
-        problem = 'outline point '//itoa(i)//' repeats point '//itoa(i - 1); return
+        problem = 'outline point '//integer_text(i)//' repeats point '//integer_text(i - 1); return
       end if
     end do
     outline%centre = 0.5_dp*(z(1) + z(n))
@@ -101,17 +102,17 @@ contains
       do j = 1, n - 1                             ! name a crossing if there is one
         call first_crossing(j, point)
         if (point > 0) then
-          problem = 'the outline crosses itself: the segment from point '//itoa(j)//' to '//itoa(j + 1)// &
-                    ' crosses the segment from point '//itoa(point)//' to '//itoa(point + 1)
+          problem = 'the outline crosses itself: the segment from point '//integer_text(j)//' to '//integer_text(j + 1)// &
+                    ' crosses the segment from point '//integer_text(point)//' to '//integer_text(point + 1)
           point = j + 1
           return
         end if
       end do
       point = i + 1
-      problem = 'the outline is not star-shaped from its centre (r = 0, z = '//rtoa(outline%centre)// &
-        ', halfway between the poles): point '//itoa(i + 1)//' is not further round from the contact pole than '// &
-        'point '//itoa(i)//' (polar angles '//rtoa(polar_angle(r(i), z(i), outline%centre)*180.0_dp/pi)//' and '// &
-        rtoa(polar_angle(r(i + 1), z(i + 1), outline%centre)*180.0_dp/pi)//' deg): every ray from the centre '// &
+      problem = 'the outline is not star-shaped from its centre (r = 0, z = '//message_real(outline%centre)// &
+        ', halfway between the poles): point '//integer_text(i + 1)//' is not further round from the contact pole than '// &
+        'point '//integer_text(i)//' (polar angles '//message_real(polar_angle(r(i), z(i), outline%centre)*180.0_dp/pi)//' and '// &
+        message_real(polar_angle(r(i + 1), z(i + 1), outline%centre)*180.0_dp/pi)//' deg): every ray from the centre '// &
         'must meet the outline once'
       return
     end do
@@ -152,7 +153,7 @@ contains
     if (.not. (outline%radius(1) - outline%second(1) > 0.0_dp)) then
       point = 2
       problem = 'the outline is not convex at the contact pole: its interpolating spline''s curvature there is '// &
-        rtoa((outline%radius(1) - outline%second(1))/outline%radius(1)**2)//' 1/m (the pole must touch the '// &
+        message_real((outline%radius(1) - outline%second(1))/outline%radius(1)**2)//' 1/m (the pole must touch the '// &
         'plate like a sphere: the points next to it must rise from it)'
       return
     end if
@@ -162,20 +163,22 @@ contains
         rho = outline_radius(outline, phi)
         point = i + 1
         if (rho <= 0.0_dp) then
-          problem = 'the interpolated outline reaches the centre between points '//itoa(i)//' and '//itoa(i + 1)// &
+          problem = 'the interpolated outline reaches the centre between points '//integer_text(i)//' and '//integer_text(i + 1)// &
                     ' (the points turn too sharply there: give more points)'
           return
         end if
         if (.not. (rho <= 2.0_dp*largest)) then
-          problem = 'the interpolated outline swings out to '//rtoa(rho)//' m from the centre between points '// &
-            itoa(i)//' and '//itoa(i + 1)//', beyond twice the points'' largest distance '//rtoa(largest)// &
+          problem = 'the interpolated outline swings out to '//message_real(rho)//' m from the centre between points '// &
+            integer_text(i)//' and '//integer_text(i + 1)//', beyond twice the points'' largest distance ' &
+              //message_real(largest)// &
             ' m (points much closer together than their neighbours, or turning too sharply: smooth them)'
           return
         end if
         if (outline%centre - rho*cos(phi) <= lowest) then
           at_z = .true.
-          problem = 'the interpolated outline dips below the contact pole (z = '//rtoa(lowest)//') between points '// &
-            itoa(i)//' and '//itoa(i + 1)//' (z = '//rtoa(outline%centre - rho*cos(phi))//'): the pole must be '// &
+          problem = 'the interpolated outline dips below the contact pole (z = '//message_real(lowest)//') between points '// &
+            integer_text(i)//' and '//integer_text(i + 1)//' (z = '//message_real(outline%centre - rho*cos(phi)) &
+              //'): the pole must be '// &
             'the lowest point of the body (give more points near the pole)'
           return
         end if

@@ -28,7 +28,7 @@
 !> d + (a_k - a_o) keeps full relative precision; no polynomial is formed.
 module visco2d_relaxation
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, short_real
+  use visco2d_strings, only: integer_text, short_real
   use visco2d_sorting, only: sorted_order
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
   implicit none
@@ -144,19 +144,19 @@ contains
       return
     end if
     if (size(rate) /= size(modulus)) then
-      message = 'the '//series//' relaxation series has '//itoa(size(modulus))//' '//modulus_name// &
-                ' values but '//itoa(size(rate))//' '//rate_name//' values'
+      message = 'the '//series//' relaxation series has '//integer_text(size(modulus))//' '//modulus_name// &
+                ' values but '//integer_text(size(rate))//' '//rate_name//' values'
       return
     end if
     do i = 1, size(modulus)
       if (.not. ieee_is_finite(modulus(i))) then
-        message = series//' term '//itoa(i)//': '//modulus_name//' is not a finite number'
+        message = series//' term '//integer_text(i)//': '//modulus_name//' is not a finite number'
       else if (.not. ieee_is_finite(rate(i))) then
-        message = series//' term '//itoa(i)//': '//rate_name//' is not a finite number'
+        message = series//' term '//integer_text(i)//': '//rate_name//' is not a finite number'
       else if (modulus(i) <= 0.0_dp) then
-        message = series//' term '//itoa(i)//': '//modulus_name//' must be > 0, got '//short_real(modulus(i))
+        message = series//' term '//integer_text(i)//': '//modulus_name//' must be > 0, got '//short_real(modulus(i))
       else if (rate(i) < 0.0_dp) then
-        message = series//' term '//itoa(i)//': '//rate_name//' must be >= 0, got '//short_real(rate(i))
+        message = series//' term '//integer_text(i)//': '//rate_name//' must be >= 0, got '//short_real(rate(i))
       end if
       if (len(message) > 0) return
     end do
@@ -266,7 +266,7 @@ contains
       end if
     end if
     if (len(search%message) == 0 .and. search%count /= search%n) &
-      search%message = 'conversion failed: found '//itoa(search%count)//' poles for '//itoa(search%n)// &
+      search%message = 'conversion failed: found '//integer_text(search%count)//' poles for '//integer_text(search%n)// &
                        ' distinct rates'
     message = search%message
     residue = search%residue*search%scale

@@ -33,7 +33,7 @@ module visco2d_plastic_static
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp, whole_body_factor
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa, short_real
+  use visco2d_strings, only: integer_text, short_real
   use visco2d_mesh, only: mesh_t
   use visco2d_material, only: material_t, elastic_matrix, stress_from_strain
   use visco2d_model, only: settings_t, loads_t, source_t
@@ -157,8 +157,9 @@ contains
           if (k == 1 .and. iteration == 1) then
             call singular_error(mesh, source, info, error)
           else
-            call analysis_error('the tangent stiffness is singular in load increment '//itoa(k)//' of '//itoa(n)// &
-              ' (Newton iteration '//itoa(iteration)//', equation '//itoa(info)//'): the load is probably above '// &
+            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '//integer_text(n)// &
+              ' (Newton iteration '//integer_text(iteration)//', equation '//integer_text(info) &
+                //'): the load is probably above '// &
               'the limit load of the perfectly plastic body (give a hardening TANGENT= or SLOPE=, or less load)')
           end if
           return
@@ -173,8 +174,8 @@ contains
         force_ratio = norm2(merge(0.0_dp, r, fixed))/scale
         summary%force_residual(iteration, k) = force_ratio
         if (.not. (ieee_is_finite(force_ratio) .and. all(ieee_is_finite(u)))) then
-          call analysis_error('the plastic static solve diverged in load increment '//itoa(k)//' of '//itoa(n)// &
-            ' (Newton iteration '//itoa(iteration)//': the displacement or the residual is not finite)')
+          call analysis_error('the plastic static solve diverged in load increment '//integer_text(k)//' of '//integer_text(n)// &
+            ' (Newton iteration '//integer_text(iteration)//': the displacement or the residual is not finite)')
           return
         end if
         du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with this factor
@@ -187,8 +188,8 @@ contains
         end if
       end do
       if (.not. converged) then
-        call analysis_error('the plastic static solve did not converge in load increment '//itoa(k)//' of '// &
-          itoa(n)//': after '//itoa(max_iterations)//' Newton iterations the force residual is '// &
+        call analysis_error('the plastic static solve did not converge in load increment '//integer_text(k)//' of '// &
+          integer_text(n)//': after '//integer_text(max_iterations)//' Newton iterations the force residual is '// &
           short_real(force_ratio)//' of the load (tolerance '//short_real(force_tolerance)//') and the energy '// &
           'norm '//short_real(energy_next/max(energy_first, tiny(1.0_dp)))//' of the first iteration''s '// &
           '(tolerance '//short_real(energy_tolerance)//'): the load may be above the limit load; give more '// &

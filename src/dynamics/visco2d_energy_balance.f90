@@ -4,9 +4,9 @@
 !> as the elastic internal force is) and the kinetic energy; the run stops
 !> with an error if kinetic + internal energy grows far beyond what can
 !> have been put into the body, or keeps growing past it step after step.
-module visco2d_energy_book
+module visco2d_energy_balance
   use visco2d_kinds, only: dp
-  use visco2d_strings, only: itoa, gtoa, rtoa
+  use visco2d_strings, only: integer_text, table_real, message_real
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof
   use visco2d_contact, only: contact_t, contact_partner_sum
@@ -14,7 +14,7 @@ module visco2d_energy_book
   implicit none
   private
 
-  public :: energy_book_t, energy_growth_limit, book_start, book_substep, book_contact_loss, book_growth
+  public :: energy_balance_t, energy_growth_limit, balance_start, balance_substep, balance_contact_loss, balance_growth
 
   !> The run stops as unstable when kinetic + internal energy exceeds this
   !> multiple of the energy that can have been put into the body: the initial
@@ -41,7 +41,7 @@ module visco2d_energy_book
   real(dp), parameter :: growth_floor = 10.0_dp
 
   !> The energy books (per radian in axisymmetry, per metre in plane strain).
-  type :: energy_book_t
+  type :: energy_balance_t
     real(dp) :: kinetic = 0.0_dp, kinetic0 = 0.0_dp, internal_work = 0.0_dp, load_work = 0.0_dp
     real(dp) :: support_work = 0.0_dp, gravity_work = 0.0_dp, contact_loss = 0.0_dp
     real(dp) :: positive_input = 0.0_dp   !< initial kinetic energy + positive work of loads, gravity, FIX motions
@@ -49,19 +49,19 @@ module visco2d_energy_book
     integer :: growth_steps = 0           !< consecutive steps of excess growth by >= growth_rate_limit
     real(dp) :: balance = 0.0_dp, balance_max = 0.0_dp, input_max = 0.0_dp
     real(dp) :: growth_limit = energy_growth_limit   !< energy_growth_limit times the overshoot factor
-  end type energy_book_t
+  end type energy_balance_t
 
 contains
 
   !> The books at t = 0: only the initial kinetic energy.
-  subroutine book_start(book, mass, v)
-    type(energy_book_t), intent(out) :: book
+  subroutine balance_start(book, mass, v)
+    type(energy_balance_t), intent(out) :: book
     real(dp), intent(in) :: mass(:), v(:)
     book%kinetic0 = 0.5_dp*dot_product(mass, v**2)
     book%kinetic = book%kinetic0
     book%positive_input = book%kinetic0
     book%input_max = book%kinetic0
-  end subroutine book_start
+  end subroutine balance_start
 
   !> Book a sub-step of increment du ending with velocity v_next: the
   !> trapezoidal work of the internal force, the loads, the FIX supports
@@ -70,9 +70,9 @@ contains
   !> and the trapezoidal reaction work of the step a node touches (its large
   !> reaction times its free travel to the plate) would be an artifact (26 %
   !> of the input at nu = 0.4999). Returns kinetic + internal energy.
-  subroutine book_substep(book, mass, gravity, supports, du, v_next, load, load_next, internal, internal_next, &
+  subroutine balance_substep(book, mass, gravity, supports, du, v_next, load, load_next, internal, internal_next, &
                           reaction, reaction_next, energy)
-    type(energy_book_t), intent(inout) :: book
+    type(energy_balance_t), intent(inout) :: book
     real(dp), intent(in) :: mass(:), gravity(:), du(:), v_next(:)
     logical, intent(in) :: supports(:)
     real(dp), intent(in) :: load(:), load_next(:), internal(:), internal_next(:), reaction(:), reaction_next(:)
@@ -93,7 +93,7 @@ contains
     book%input_max = max(book%input_max, book%kinetic0 + abs(book%load_work + book%support_work + book%gravity_work))
     book%balance_max = max(book%balance_max, abs(book%balance))
     energy = book%kinetic + book%internal_work
-  end subroutine book_substep
+  end subroutine balance_substep
 
   !> The kinetic energy (velocity v before the sub-step's update) of the
   !> components the plate stopped in this sub-step. On a pad, the energy of
@@ -102,8 +102,8 @@ contains
   !> 1/mu = 1/m + sum_k w_k^2/m_k of the node and the surface nodes (the
   !> coupling of pairs touching in the same sub-step through a shared
   !> surface node is left out); on the rigid plate mu = m.
-  subroutine book_contact_loss(book, deck, contact, mass, v)
-    type(energy_book_t), intent(inout) :: book
+  subroutine balance_contact_loss(book, deck, contact, mass, v)
+    type(energy_balance_t), intent(inout) :: book
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(in) :: contact
     real(dp), intent(in) :: mass(:), v(:)
@@ -119,13 +119,13 @@ contains
         (v(r) - contact_partner_sum(deck, contact, v, node, 1))**2
       end associate
     end do
-  end subroutine book_contact_loss
+  end subroutine balance_contact_loss
 
   !> The instability test after a step (kinetic + internal energy `energy`):
   !> the bound growth_limit times the positive input, and the growth rate of
   !> the excess over it. `what` is allocated (the reason) when it fails.
-  subroutine book_growth(book, energy, what)
-    type(energy_book_t), intent(inout) :: book
+  subroutine balance_growth(book, energy, what)
+    type(energy_balance_t), intent(inout) :: book
     real(dp), intent(in) :: energy
     character(:), allocatable, intent(out) :: what
     book%excess(0:growth_window - 1) = book%excess(1:growth_window)
@@ -137,16 +137,16 @@ contains
       book%growth_steps = 0
     end if
     if (energy > book%growth_limit*book%positive_input .and. energy > 0.0_dp) then
-      what = 'the kinetic + internal energy ('//gtoa(energy)//' J) has grown past '// &
-        rtoa(book%growth_limit)//' times the energy put into the body ('//gtoa(book%positive_input)// &
+      what = 'the kinetic + internal energy ('//table_real(energy)//' J) has grown past '// &
+        message_real(book%growth_limit)//' times the energy put into the body ('//table_real(book%positive_input)// &
         ' J: the initial kinetic energy and the positive work of loads, gravity and prescribed motions)'
     else if (book%growth_steps >= growth_window .and. &
              book%excess(growth_window) > growth_floor*book%positive_input) then
-      what = 'the kinetic + internal energy ('//gtoa(energy)//' J) exceeds '//rtoa(growth_floor)// &
-        ' times the energy put into the body ('//gtoa(book%positive_input)//' J) and has grown by '// &
-        rtoa(growth_rate_limit)//' or more in each '// &
-        'of the last '//itoa(growth_window)//' steps (by '// &
-        rtoa(book%excess(growth_window)/max(book%excess(0), tiny(1.0_dp)))//' in all)'
+      what = 'the kinetic + internal energy ('//table_real(energy)//' J) exceeds '//message_real(growth_floor)// &
+        ' times the energy put into the body ('//table_real(book%positive_input)//' J) and has grown by '// &
+        message_real(growth_rate_limit)//' or more in each '// &
+        'of the last '//integer_text(growth_window)//' steps (by '// &
+        message_real(book%excess(growth_window)/max(book%excess(0), tiny(1.0_dp)))//' in all)'
     end if
-  end subroutine book_growth
-end module visco2d_energy_book
+  end subroutine balance_growth
+end module visco2d_energy_balance

@@ -6,10 +6,10 @@
 !> equations are eliminated and S refactored; on a PAD they are multi-point
 !> constraints in a capacitance system on S factored once with the supports,
 !> and a body resting on the pad alone is solved for its rigid translation.
-module visco2d_held_system
+module visco2d_constrained_system
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: itoa
+  use visco2d_strings, only: integer_text
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof, assemble_stiffness, external_load, gravity_load, support_mask, &
                               prescribed_displacement
@@ -24,10 +24,10 @@ module visco2d_held_system
   implicit none
   private
 
-  public :: held_system_t, held_system_create, held_system_solve
+  public :: constrained_system_t, constrained_system_create, constrained_system_solve
 
   !> The stiffness and the full load of a static contact problem.
-  type :: held_system_t
+  type :: constrained_system_t
     type(band_matrix_t) :: stiffness             !< S, unconstrained
     real(dp), allocatable :: load(:)             !< loads and gravity
     real(dp), allocatable :: prescribed(:)       !< prescribed support displacements
@@ -47,17 +47,17 @@ module visco2d_held_system
     integer :: anchor = 0                        !< the anchor equation (0: the body has supports of its own)
     real(dp), allocatable :: rigid(:)            !< (n) the body's rigid z translation
     real(dp), allocatable :: anchor_column(:)    !< (n) S^-1 of the anchor constraint's pad part
-  end type held_system_t
+  end type constrained_system_t
 
 contains
 
   !> The stiffness S and the full load R (loads and gravity) of a static
   !> contact problem, assembled once for the whole path; with a pad, S
   !> factored once with the supports and the pad's constraints set.
-  subroutine held_system_create(deck, contact, system, error)
+  subroutine constrained_system_create(deck, contact, system, error)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(in) :: contact
-    type(held_system_t), intent(out) :: system
+    type(constrained_system_t), intent(out) :: system
     type(error_t), allocatable, intent(out) :: error
     real(dp), allocatable :: shear(:), bulk(:)
     integer :: info
@@ -89,7 +89,7 @@ contains
     end if
     call capacitance_reset(system%capacitance, size(system%load))
     call capacitance_partners(system%capacitance, system%partner, system%weight)
-  end subroutine held_system_create
+  end subroutine constrained_system_create
 
   !> Whether the body (the nodes before the pad's) has no supported z
   !> equation, so that its rigid z translation is free in S.
@@ -109,7 +109,7 @@ contains
   !> anchored_solve. info > 0: still singular.
   subroutine anchor_body(deck, system, equation, info)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(inout) :: system
+    type(constrained_system_t), intent(inout) :: system
     integer, intent(in) :: equation
     integer, intent(out) :: info
     integer :: node, k
@@ -145,9 +145,9 @@ contains
   !> the full load and prescribed support displacements (held values 0), and
   !> u_0, the response to the held values alone (no load), with their
   !> reactions S u - R. The state at load factor lambda is u_0 + lambda u_1.
-  subroutine held_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
+  subroutine constrained_system_solve(deck, system, held, values, base, rate, reaction_base, reaction_rate, error)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(inout) :: system
+    type(constrained_system_t), intent(inout) :: system
     logical, intent(in) :: held(:)
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:), reaction_base(:), reaction_rate(:)
@@ -160,13 +160,13 @@ contains
     if (allocated(error)) return
     reaction_rate = band_multiply(system%stiffness, rate) - system%load
     reaction_base = band_multiply(system%stiffness, base)
-  end subroutine held_system_solve
+  end subroutine constrained_system_solve
 
-  !> held_system_solve on the rigid plate: the held equations eliminated and
+  !> constrained_system_solve on the rigid plate: the held equations eliminated and
   !> S refactored with them fixed.
   subroutine eliminated_solve(deck, system, held, values, base, rate, error)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(in) :: system
+    type(constrained_system_t), intent(in) :: system
     logical, intent(in) :: held(:)
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:)
@@ -191,13 +191,13 @@ contains
     base = rhs(:, 2)
   end subroutine eliminated_solve
 
-  !> held_system_solve with a pad: the held equations are constraints
+  !> constrained_system_solve with a pad: the held equations are constraints
   !> u_c - sum w u_p = value imposed by the capacitance system on S's factor
   !> with the supports (visco2d_capacitance): u_1 from the load and the
   !> prescribed supports (held values 0), u_0 from the held values alone.
   subroutine pad_system_solve(deck, system, held, values, base, rate, error)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(inout) :: system
+    type(constrained_system_t), intent(inout) :: system
     logical, intent(in) :: held(:)
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:)
@@ -212,7 +212,7 @@ contains
     end if
     call capacitance_set(system%capacitance, system%factor, free_held, info)
     if (info > 0) then
-      call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//itoa(info)// &
+      call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//integer_text(info)// &
                      ' of the held set)', file=deck%cards%file, line=deck%pad%line, card='PAD')
       return
     end if
@@ -236,7 +236,7 @@ contains
   !> the body would be free, an error at the PAD card.
   subroutine move_anchor(deck, system, held, error)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(inout) :: system
+    type(constrained_system_t), intent(inout) :: system
     logical, intent(in) :: held(:)
     type(error_t), allocatable, intent(out) :: error
     integer :: node, equation, chosen, info
@@ -276,7 +276,7 @@ contains
   !> c lambda) = 0, i.e. lambda_a + sum over the z constraints lambda_i = -phi^T f.
   subroutine anchored_solve(deck, system, values, base, rate, error)
     type(deck_t), intent(in) :: deck
-    type(held_system_t), intent(in) :: system
+    type(constrained_system_t), intent(in) :: system
     real(dp), intent(in) :: values(:)
     real(dp), allocatable, intent(out) :: base(:), rate(:)
     type(error_t), allocatable, intent(out) :: error
@@ -343,4 +343,4 @@ contains
       constrained_value = x(equation) - constraint_sum(system%partner, system%weight, x, equation)
     end function constrained_value
   end subroutine anchored_solve
-end module visco2d_held_system
+end module visco2d_constrained_system
