@@ -13,6 +13,7 @@ module visco2d_driver
   use visco2d_scene, only: effects_t, scene_effects, effects_text
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_static, only: static_solution_t, solve_static, static_record
+  use visco2d_plastic_static, only: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
   use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_progress, only: progress_begin, progress_end
@@ -133,6 +134,7 @@ contains
     type(deck_t) :: deck
     type(effects_t) :: effects
     type(static_solution_t) :: static_solution
+    type(plastic_summary_t) :: plastic_summary
     character(:), allocatable :: case_name
     real :: cpu_start, cpu_end
     integer(int64) :: clock_start, clock_end, clock_rate
@@ -216,6 +218,14 @@ contains
         if (effects%contact) then
           call solve_static_contact(deck, record, error)
           if (allocated(error)) return
+        else if (any_plastic(deck%materials)) then      ! load increments and Newton (visco2d_plastic_static)
+          call solve_plastic_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+                                    static_solution, plastic_summary, error)
+          if (allocated(error)) return
+          call static_record(deck%mesh, deck%settings, deck%probes, static_solution, record)
+          call plastic_record(deck%settings, plastic_summary, record)
+          call bruise_static(deck, static_solution%stress, static_solution%strain, record)
+          call record_put_integer(record, 'factorizations', plastic_summary%iterations)
         else
           call solve_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, static_solution, error)
           if (allocated(error)) return

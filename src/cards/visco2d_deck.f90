@@ -11,8 +11,9 @@ module visco2d_deck
   use visco2d_kinds, only: geometry_axisymmetric, geometry_plane_strain
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, short_real, nearest_word
-  use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column
-  use visco2d_material_cards, only: read_material, read_prony, finish_material
+  use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column, &
+                           named_integer, has_field
+  use visco2d_material_cards, only: read_material, read_prony, finish_material, read_plastic, read_hardening
   use visco2d_curve_cards, only: read_curve
   use visco2d_time, only: time_stage_t, read_time
   use visco2d_dynamic_cards, only: dynamic_settings_t, output_request_t, read_wilson, read_initial, read_drop, &
@@ -28,7 +29,7 @@ module visco2d_deck
                                 expect_t, warning_t, &
                                 analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
                                 geometry_name, total_steps, formulation_name, initial_velocity, add_warning, &
-                                solver_card_names
+                                solver_card_names, card_at_line
   use visco2d_deck_targets, only: pending_t, read_fix, read_pressure, read_force, read_probe, read_expect, &
                                   resolve_materials, resolve_fixes, resolve_forces, resolve_probes, curve_index
   use visco2d_deck_meaning, only: check_meaning
@@ -46,8 +47,9 @@ module visco2d_deck
   public :: plate_t, pad_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(28) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
-    'FORMULATION', 'SOLVER', 'MATERIAL', 'PRONY', 'NODE', 'ELEMENT', 'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
+  character(len=11), parameter :: card_keywords(30) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+    'FORMULATION', 'SOLVER', 'MATERIAL', 'PRONY', 'PLASTIC', 'HARDENING', 'NODE', 'ELEMENT', 'MESH', 'FIX', &
+    'PRESSURE', 'FORCE', 'GRAVITY', &
     'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'PAD', 'STOP', 'PROBE', 'EXPECT', &
     'BRUISE', 'END']
 
@@ -60,7 +62,11 @@ module visco2d_deck
     integer, allocatable :: pressure_cards(:)             !< card index of each PRESSURE card
     integer :: title_line = 0, analysis_line = 0, geometry_line = 0, formulation_line = 0
     integer :: material_card = 0                          !< index of the last MATERIAL card, 0 if none
+    logical :: increments_given = .false.                 !< ANALYSIS STATIC has INCREMENTS= or ITERATIONS=
   end type reading_t
+
+  !> The largest INCREMENTS= and ITERATIONS= of ANALYSIS STATIC.
+  integer, parameter :: max_increments = 100000, max_iterations = 1000
 
 contains
 
@@ -128,6 +134,18 @@ contains
         return
       end if
       call read_prony(cards, card, deck%materials(size(deck%materials)), error)
+    case ('PLASTIC')
+      if (.not. follows(deck, reading, i, ['MATERIAL ', 'PRONY    ', 'PLASTIC  ', 'HARDENING'])) then
+        call card_error(error, cards, card, 'PLASTIC must follow its MATERIAL card (or that material''s PRONY cards)')
+        return
+      end if
+      call read_plastic(cards, card, deck%materials(size(deck%materials)), error)
+    case ('HARDENING')
+      if (.not. follows(deck, reading, i, ['PLASTIC  ', 'HARDENING'])) then
+        call card_error(error, cards, card, 'HARDENING must follow its PLASTIC TABLE card (or another HARDENING card)')
+        return
+      end if
+      call read_hardening(cards, card, deck%materials(size(deck%materials)), error)
     case ('CURVE')
       call read_curve(cards, card, deck%loads%curves, error)
     case ('TIME')
@@ -159,7 +177,7 @@ contains
     case default
       call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
         suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
-        'GEOMETRY FORMULATION MATERIAL PRONY NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
+        'GEOMETRY FORMULATION MATERIAL PRONY PLASTIC HARDENING NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
         'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE PAD STOP PROBE EXPECT BRUISE END)')
     end select
     end associate
@@ -185,7 +203,23 @@ contains
       reading%analysis_line = card%line
       call positional_word(cards, card, 1, 'analysis kind (STATIC, QUASISTATIC or DYNAMIC)', word, error)
       if (allocated(error)) return
-      call check_fields_used(cards, card, error, 'ANALYSIS STATIC | QUASISTATIC | DYNAMIC')
+      if (word == 'STATIC') then                   ! the load increments and Newton iterations of a plastic solve
+        reading%increments_given = has_field(card, 'INCREMENTS')
+        call named_integer(cards, card, 'INCREMENTS', deck%settings%increments, error, default=10)
+        if (allocated(error)) return
+        if (deck%settings%increments < 1 .or. deck%settings%increments > max_increments) then
+          call card_error(error, cards, card, 'INCREMENTS must be in [1, '//integer_text(max_increments)//'], got '// &
+                          integer_text(deck%settings%increments), field_column(card, 'INCREMENTS')); return
+        end if
+        reading%increments_given = reading%increments_given .or. has_field(card, 'ITERATIONS')
+        call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, default=30)
+        if (allocated(error)) return
+        if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
+          call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
+                          integer_text(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
+        end if
+      end if
+      call check_fields_used(cards, card, error, 'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC')
       if (allocated(error)) return
       select case (word)
       case ('STATIC')
@@ -332,6 +366,50 @@ contains
     end associate
   end subroutine check_repeated_force
 
+  !> True if card k directly follows a card of one of these keywords, after a MATERIAL card.
+  logical function follows(deck, reading, k, keywords)
+    type(deck_t), intent(in) :: deck
+    type(reading_t), intent(in) :: reading
+    integer, intent(in) :: k
+    character(*), intent(in) :: keywords(:)
+    follows = .false.
+    if (reading%material_card == 0 .or. k < 2) return
+    follows = any(deck%cards%cards(k - 1)%keyword == keywords)
+  end function follows
+
+  !> Plasticity is solved by ANALYSIS STATIC alone so far, without a PLATE
+  !> or PAD: elsewhere a PLASTIC card is an error (not an elastic run). An
+  !> INCREMENTS= on a deck without plasticity is a warning (one linear solve).
+  subroutine check_plastic_analysis(deck, reading, error)
+    type(deck_t), intent(inout) :: deck
+    type(reading_t), intent(in) :: reading
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, m
+    m = 0
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%plastic) then
+        m = k
+        exit
+      end if
+    end do
+    if (m == 0) then
+      if (reading%increments_given) call add_warning(deck, reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and '// &
+        'ITERATIONS= are for plastic materials (a PLASTIC card); this deck has none and is solved in one linear step')
+      return
+    end if
+    k = card_at_line(deck, deck%materials(m)%plastic_line)
+    if (deck%analysis /= analysis_static) then
+      call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
+        deck%materials(m)%id//') is available for ANALYSIS STATIC only so far; this deck is ANALYSIS '// &
+        analysis_name(deck%analysis)//' (line '//integer_text(reading%analysis_line)//')'); return
+    end if
+    if (deck%plate%line > 0 .or. deck%pad%line > 0) then
+      call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
+        deck%materials(m)%id//') is not available with PLATE or PAD contact yet (line '// &
+        integer_text(max(deck%plate%line, deck%pad%line))//')'); return
+    end if
+  end subroutine check_plastic_analysis
+
   !> True if card k (a PRONY) directly follows a MATERIAL or PRONY card.
   logical function follows_material(deck, reading, k)
     type(deck_t), intent(in) :: deck
@@ -390,6 +468,7 @@ contains
     do i = 1, size(deck%materials)
       call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
     end do
+    call check_plastic_analysis(deck, reading, error); if (allocated(error)) return
     call check_time_stages(deck, reading%analysis_line, error); if (allocated(error)) return
     call check_dynamic_cards(deck, error); if (allocated(error)) return
     call check_contact_cards(deck, error); if (allocated(error)) return

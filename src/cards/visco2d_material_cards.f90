@@ -1,21 +1,25 @@
 !> The MATERIAL and PRONY cards: elastic, viscoelastic (shear Prony series,
 !> eq. [12]) and uniaxial (eq. [47], converted exactly by eq. [48]) materials,
-!> completed once all their PRONY cards are read.
+!> completed once all their PRONY cards are read; the PLASTIC and HARDENING
+!> cards of a material's von Mises plasticity (its hardening curve: bilinear,
+!> PLASTIC YIELD= TANGENT=, or tabulated, PLASTIC TABLE [SLOPE=] and
+!> HARDENING STRAIN= STRESS= points).
 module visco2d_material_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
   use visco2d_strings, only: short_real, message_real, integer_text, compact_real
-  use visco2d_ranges, only: modulus_range, density_range, rate_range, bulk_shear_ratio_limit
+  use visco2d_ranges, only: modulus_range, density_range, rate_range, bulk_shear_ratio_limit, &
+                            failure_stress_range, plastic_strain_range, hardening_slope_range
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, positional_word, check_fields_used, &
-                           has_field, field_column
+                           has_field, field_column, positional_count
   use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
-                              material_kind_uniaxial, elastic_constants_from_e_nu
+                              material_kind_uniaxial, elastic_constants_from_e_nu, bilinear_hardening
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_sorting, only: sorted_order
   implicit none
   private
 
-  public :: read_material, read_prony, finish_material
+  public :: read_material, read_prony, finish_material, read_plastic, read_hardening
 
 contains
 
@@ -151,10 +155,126 @@ contains
     end subroutine check_new_rate
   end subroutine read_prony
 
+  !> PLASTIC YIELD=Y TANGENT=Et (the bilinear curve: H = E Et / (E - Et),
+  !> E the instantaneous Young's modulus, set by finish_material) or
+  !> PLASTIC TABLE [SLOPE=H] followed by HARDENING cards: the von Mises
+  !> plasticity of the material whose cards it follows.
+  subroutine read_plastic(cards, card, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    character(:), allocatable :: word
+    if (material%plastic) then
+      call card_error(error, cards, card, 'material '//material%id//' already has a PLASTIC card (line '// &
+                      integer_text(material%plastic_line)//'): give one per material'); return
+    end if
+    material%plastic = .true.
+    material%plastic_line = card%line
+    if (positional_count(card) > 0) then
+      call positional_word(cards, card, 1, 'TABLE', word, error); if (allocated(error)) return
+      if (word /= 'TABLE') then
+        call card_error(error, cards, card, 'PLASTIC takes YIELD=.. TANGENT=.. (a bilinear curve) or the word '// &
+                        'TABLE (then HARDENING cards), got "'//word//'"', field_column(card, '1')); return
+      end if
+      material%plastic_table = .true.
+      material%plastic_column = field_column(card, '1')
+      call named_real(cards, card, 'SLOPE', material%hardening%final_slope, error, default=0.0_dp, &
+                      range=hardening_slope_range); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'PLASTIC TABLE [SLOPE=..], then HARDENING STRAIN=.. STRESS=..')
+      if (allocated(error)) return
+      allocate(material%hardening%plastic_strain(0), material%hardening%stress(0))
+    else
+      call named_real(cards, card, 'YIELD', material%plastic_yield, error, range=failure_stress_range)
+      if (allocated(error)) return
+      call named_real(cards, card, 'TANGENT', material%plastic_tangent, error, range=hardening_slope_range)
+      if (allocated(error)) return
+      material%plastic_column = field_column(card, 'TANGENT')
+      call check_fields_used(cards, card, error, 'PLASTIC YIELD=.. TANGENT=.. or PLASTIC TABLE [SLOPE=..]')
+    end if
+  end subroutine read_plastic
+
+  !> HARDENING STRAIN=ebar STRESS=sigma_y: one point of a PLASTIC TABLE's
+  !> curve. The first is the initial yield (STRAIN=0); the strains increase
+  !> and the stresses do not decrease (no softening: a softening material
+  !> localizes in one row of elements, its answer the mesh's).
+  subroutine read_hardening(cards, card, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: strain, stress
+    integer :: n
+    if (.not. material%plastic_table) then
+      call card_error(error, cards, card, 'HARDENING points belong to a PLASTIC TABLE card; the PLASTIC card of '// &
+                      'material '//material%id//' (line '//integer_text(material%plastic_line)//') gives YIELD= TANGENT='); return
+    end if
+    call named_real(cards, card, 'STRAIN', strain, error, range=plastic_strain_range); if (allocated(error)) return
+    call named_real(cards, card, 'STRESS', stress, error, range=failure_stress_range); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'HARDENING STRAIN=.. STRESS=.. after PLASTIC TABLE')
+    if (allocated(error)) return
+    associate (curve => material%hardening)
+    n = size(curve%stress)
+    if (n == 0 .and. strain /= 0.0_dp) then
+      call card_error(error, cards, card, 'the first HARDENING point is the initial yield stress: STRAIN=0, got '// &
+                      short_real(strain), field_column(card, 'STRAIN')); return
+    end if
+    if (n > 0) then
+      if (strain <= curve%plastic_strain(n)) then
+        call card_error(error, cards, card, 'the HARDENING strains must increase: STRAIN='//short_real(strain)// &
+          ' is not above the previous point''s '//short_real(curve%plastic_strain(n)), field_column(card, 'STRAIN'))
+        return
+      end if
+      if (stress < curve%stress(n)) then
+        call card_error(error, cards, card, 'softening is not supported: STRESS='//short_real(stress)// &
+          ' Pa is below the previous point''s '//short_real(curve%stress(n))//' Pa (the stresses must not '// &
+          'decrease along the curve)', field_column(card, 'STRESS')); return
+      end if
+    end if
+    curve%plastic_strain = [curve%plastic_strain, strain]
+    curve%stress = [curve%stress, stress]
+    end associate
+  end subroutine read_hardening
+
+  !> Complete a material once its cards are read: the viscoelastic part
+  !> (finish_viscoelastic), then its hardening curve (finish_plastic).
+  subroutine finish_material(cards, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    call finish_viscoelastic(cards, material, error); if (allocated(error)) return
+    call finish_plastic(cards, material, error)
+  end subroutine finish_material
+
+  !> The hardening curve of a PLASTIC material: a table needs a point; the
+  !> bilinear curve needs 0 <= E_t < E (E instantaneous), H = E E_t / (E - E_t).
+  subroutine finish_plastic(cards, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (.not. material%plastic) return
+    do k = 1, cards%count
+      if (cards%cards(k)%line == material%plastic_line) exit
+    end do
+    if (material%plastic_table) then
+      if (size(material%hardening%stress) == 0) call card_error(error, cards, cards%cards(k), 'material '// &
+        material%id//': PLASTIC TABLE needs HARDENING cards after it, the first STRAIN=0 STRESS=<initial yield>', &
+        material%plastic_column)
+      return
+    end if
+    if (material%plastic_tangent >= material%young) then
+      call card_error(error, cards, cards%cards(k), 'TANGENT must be below the Young''s modulus of material '// &
+        material%id//', E = '//short_real(material%young)//' Pa (0 <= E_t < E: E_t = E would be no yield at '// &
+        'all), got '//short_real(material%plastic_tangent)//' Pa', material%plastic_column); return
+    end if
+    material%hardening = bilinear_hardening(material%plastic_yield, material%plastic_tangent, material%young)
+  end subroutine finish_plastic
+
   !> Complete a material once its PRONY cards are read: convert a uniaxial
   !> series (eq. [48], exactly), fold beta = 0 terms into G_inf, sort the
   !> memory terms by rate, and set the instantaneous G, E and nu.
-  subroutine finish_material(cards, material, error)
+  subroutine finish_viscoelastic(cards, material, error)
     type(card_deck_t), intent(in) :: cards
     type(material_t), intent(inout) :: material
     type(error_t), allocatable, intent(inout) :: error
@@ -200,7 +320,7 @@ contains
         end if
       end do
     end subroutine material_error
-  end subroutine finish_material
+  end subroutine finish_viscoelastic
 
   !> The instantaneous K/G within [1/limit, limit] (nu within about
   !> (-1 + 1e-6, 0.5 - 1e-6)): beyond, the stiffness mixes terms 1e6 times apart

@@ -23,6 +23,7 @@ module visco2d_ranges
   public :: length_range, drop_height_range, pressure_range, force_range, time_range, time_step_range
   public :: curve_factor_range, expected_value_range, tolerance_range, bulk_shear_ratio_limit
   public :: failure_stress_range, failure_energy_range, pad_length_range, max_coordinate
+  public :: plastic_strain_range, hardening_slope_range
 
   !> Accepted values: lower <= value <= upper and, if floor > 0, |value| >= floor
   !> or (if zero) value = 0.
@@ -74,6 +75,10 @@ module visco2d_ranges
   type(range_t), parameter :: tolerance_range = range_t(1.0e-15_dp, 1.0e3_dp, 0.0_dp, '')
   !> STRESS and THRESHOLDS of BRUISE (a failure stress): positive, from a gel to steel x 100.
   type(range_t), parameter :: failure_stress_range = range_t(1.0e-3_dp, 1.0e12_dp, 0.0_dp, 'Pa')
+  !> STRAIN of HARDENING: an equivalent plastic strain, 0 to 100 (far beyond any tissue's).
+  type(range_t), parameter :: plastic_strain_range = range_t(0.0_dp, 1.0e2_dp, 0.0_dp, '')
+  !> TANGENT of PLASTIC and SLOPE of PLASTIC TABLE: 0 (perfectly plastic) up to the largest modulus.
+  type(range_t), parameter :: hardening_slope_range = range_t(0.0_dp, 1.0e14_dp, 0.0_dp, 'Pa')
   !> ENERGY and THRESHOLDS of BRUISE CRITERION=ENERGY (a failure energy density), positive.
   type(range_t), parameter :: failure_energy_range = range_t(1.0e-3_dp, 1.0e12_dp, 0.0_dp, 'J/m^3')
 

@@ -4,7 +4,9 @@
 !> phi1(t) = G_inf + sum_m G_m exp(-beta_m t). Terms with beta = 0 have no
 !> memory and are folded into G_inf, so an elastic material is the
 !> no-memory limit (G_inf = G, no Prony terms). The incremental update is in
-!> visco2d_viscoelastic.
+!> visco2d_viscoelastic. A material with a PLASTIC card also carries the
+!> hardening curve of its von Mises plasticity (hardening_t; the return
+!> mapping is visco2d_plasticity's).
 module visco2d_material
   use visco2d_kinds, only: dp
   implicit none
@@ -14,10 +16,19 @@ module visco2d_material
   public :: material_kind_name, has_memory, shear_relaxation_modulus
   public :: elastic_matrix, stress_from_strain
   public :: von_mises, max_shear, elastic_constants_from_e_nu
+  public :: hardening_t, bilinear_hardening
 
   integer, parameter :: material_kind_elastic = 1       !< MATERIAL id ELASTIC
   integer, parameter :: material_kind_viscoelastic = 2  !< MATERIAL id VISCOELASTIC + PRONY G= BETA=
   integer, parameter :: material_kind_uniaxial = 3      !< MATERIAL id UNIAXIAL + PRONY E= ALPHA= (eq. [47])
+
+  !> The uniaxial yield stress against the equivalent plastic strain: piecewise
+  !> linear through the points, with `final_slope` beyond the last.
+  type :: hardening_t
+    real(dp), allocatable :: plastic_strain(:)   !< ebar_k, increasing, the first 0
+    real(dp), allocatable :: stress(:)           !< sigma_k, Pa, the first the initial yield stress
+    real(dp) :: final_slope = 0.0_dp             !< d sigma_y / d ebar beyond the last point, Pa
+  end type hardening_t
 
   !> One material of the deck.
   type :: material_t
@@ -39,9 +50,28 @@ module visco2d_material
     integer :: line = 0                      !< line of the MATERIAL card
     integer :: card_column = 0               !< column of its K= (NU= for UNIAXIAL) field, for errors
     integer, allocatable :: prony_lines(:)   !< lines of its PRONY cards, in the order given
+    !> Von Mises plasticity (a PLASTIC card after the MATERIAL card): the hardening curve.
+    logical :: plastic = .false.
+    type(hardening_t) :: hardening
+    logical :: plastic_table = .false.       !< PLASTIC TABLE (HARDENING cards); else YIELD= TANGENT=
+    real(dp) :: plastic_yield = 0.0_dp       !< Y of PLASTIC YIELD=, Pa (bilinear)
+    real(dp) :: plastic_tangent = 0.0_dp     !< E_t of PLASTIC TANGENT=, Pa (bilinear)
+    integer :: plastic_line = 0              !< line of the PLASTIC card
+    integer :: plastic_column = 0            !< column of its TANGENT= field (TABLE for a table), for errors
   end type material_t
 
 contains
+
+  !> The bilinear curve of a yield stress Y (Pa) and a tangent modulus E_t
+  !> (Pa, 0 <= E_t < E) for the Young's modulus E (Pa): the plastic modulus
+  !> H = E E_t / (E - E_t) beyond Y, so that a uniaxial test reads the slope E_t.
+  pure function bilinear_hardening(yield, tangent, young) result(hardening)
+    real(dp), intent(in) :: yield, tangent, young
+    type(hardening_t) :: hardening
+    hardening%plastic_strain = [0.0_dp]
+    hardening%stress = [yield]
+    hardening%final_slope = young*tangent/(young - tangent)
+  end function bilinear_hardening
 
   pure function material_kind_name(kind) result(name)
     integer, intent(in) :: kind

@@ -20,6 +20,8 @@ module visco2d_model
     integer :: geometry = geometry_axisymmetric   !< geometry_axisymmetric or geometry_plane_strain
     integer :: formulation = formulation_standard !< formulation_standard or formulation_bbar
     integer :: solver = 0                         !< the SOLVER card's choice (visco2d_factor's numbers; 0: the default)
+    integer :: increments = 10                    !< INCREMENTS= of ANALYSIS STATIC: load increments of a plastic solve
+    integer :: iterations = 30                    !< ITERATIONS= of ANALYSIS STATIC: Newton iterations allowed per increment
   end type settings_t
 
   !> A support: components prescribed at a set of nodes, u = value * curve(t)

@@ -25,11 +25,12 @@
 !> `final_slope` beyond the last point (0: perfectly plastic there). The
 !> bilinear curve of a yield stress Y and a tangent modulus E_t is the one
 !> point (0, Y) with the plastic modulus H = E E_t / (E - E_t) beyond it
-!> (bilinear_hardening). The consistent tangent is Simo and Hughes's
+!> (bilinear_hardening). The curve's type and the bilinear one live with the
+!> material (visco2d_material) and are re-exported here. The consistent tangent is Simo and Hughes's
 !> (Computational Inelasticity, 1998, Box 3.2) with mu_n in place of G.
 module visco2d_plasticity
   use visco2d_kinds, only: dp
-  use visco2d_material, only: material_t
+  use visco2d_material, only: material_t, hardening_t, bilinear_hardening
   use visco2d_viscoelastic, only: step_coefficients_t, deviatoric_part, deviatoric_stress, history_stress, &
                                   update_history
   implicit none
@@ -37,13 +38,6 @@ module visco2d_plasticity
 
   public :: hardening_t, bilinear_hardening, yield_stress, hardening_slope
   public :: return_result_t, radial_return, consistent_tangent, deviatoric_norm, viscoplastic_update
-
-  !> The uniaxial yield stress against the equivalent plastic strain.
-  type :: hardening_t
-    real(dp), allocatable :: plastic_strain(:)   !< ebar_k, increasing, the first 0
-    real(dp), allocatable :: stress(:)           !< sigma_k, Pa, the first the initial yield stress
-    real(dp) :: final_slope = 0.0_dp             !< d sigma_y / d ebar beyond the last point, Pa
-  end type hardening_t
 
   !> What the return mapping of one Gauss point gives.
   type :: return_result_t
@@ -63,17 +57,6 @@ module visco2d_plasticity
   integer, parameter :: max_return_iterations = 50
 
 contains
-
-  !> The bilinear curve of a yield stress Y (Pa) and a tangent modulus E_t
-  !> (Pa, 0 <= E_t < E) for the Young's modulus E (Pa): the plastic modulus
-  !> H = E E_t / (E - E_t) beyond Y, so that a uniaxial test reads the slope E_t.
-  pure function bilinear_hardening(yield, tangent, young) result(hardening)
-    real(dp), intent(in) :: yield, tangent, young
-    type(hardening_t) :: hardening
-    hardening%plastic_strain = [0.0_dp]
-    hardening%stress = [yield]
-    hardening%final_slope = young*tangent/(young - tangent)
-  end function bilinear_hardening
 
   !> sigma_y(ebar), Pa.
   pure real(dp) function yield_stress(hardening, ebar) result(stress)

@@ -1,0 +1,346 @@
+!> ANALYSIS STATIC of a deck with a PLASTIC material: the loads (pressures,
+!> point loads, gravity and prescribed displacements, all proportional)
+!> applied in `settings%increments` equal increments, each iterated to
+!> equilibrium by a full Newton method with the consistent tangent of the
+!> return mapping (visco2d_plasticity: Simo and Hughes 1998, Box 3.2).
+!>
+!> In increment k the load is lambda_k R, lambda_k = k/N. Newton iteration i
+!> solves K_t du = R_k - F(u) (the prescribed displacements' increment taken
+!> in the first iteration), K_t = sum_e sum_gp B^T C_gp B |J| r assembled
+!> from the tangents C_gp of the last stress evaluation (the elastic matrix
+!> where a point is elastic or its material has no PLASTIC card). Each
+!> Gauss point's stress is the radial return from the increment's start:
+!> s_trial = s_n + 2 G dev(de), p = p_n + K tr(de). An increment has
+!> converged when both
+!>   |r|  <= force_tolerance  max(|R_k|, |F(u)|)   (free equations; F holds the reactions)
+!>   |r . K_t^-1 r| <= energy_tolerance |du_1 . r_0|   (the energy norm of the next correction,
+!>                                                     relative to the first iteration's)
+!> hold; after `settings%iterations` (ITERATIONS=, default 30) a located error (the ANALYSIS card, the
+!> increment, the iteration, both residuals) is returned, never a result.
+!>
+!> Energies (per radian in axisymmetry, as visco2d_static's): the external
+!> work is the trapezoidal sum of 1/2 (P_(k-1) + P_k) . (u_k - u_(k-1)) over the
+!> increments, P the applied load lambda_k R on the free equations and the
+!> reactions on the supported ones; the stored elastic energy
+!> int (p^2/(2K) + s:s/(4G)) dV; the plastic dissipation the same rule's
+!> int 1/2 (s_(k-1) + s_k) : de_p dV. The trapezoid on sigma : de splits
+!> exactly into the elastic and the plastic parts, so W - U - D is the work
+!> of the out-of-balance forces left by Newton: the balance W = U + D holds
+!> to the force tolerance.
+!> The kernel's backward value s_k : de_p (return_result_t%dissipation) is
+!> summed too, as `dissipation_backward`: it differs from D by O(1/N).
+module visco2d_plastic_static
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_kinds, only: dp, whole_body_factor
+  use visco2d_error, only: error_t, set_error
+  use visco2d_strings, only: integer_text, short_real
+  use visco2d_mesh, only: mesh_t
+  use visco2d_material, only: material_t, elastic_matrix, stress_from_strain
+  use visco2d_model, only: settings_t, loads_t, source_t
+  use visco2d_element, only: element_b_matrices, gauss_count
+  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
+  use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
+                              scatter_add, nodal_field, nodal_average
+  use visco2d_static, only: static_solution_t
+  use visco2d_solve_errors, only: singular_error, not_finite_error
+  use visco2d_plasticity, only: return_result_t, radial_return, consistent_tangent, deviatoric_norm
+  use visco2d_record, only: record_t, record_put_integer, record_put_real
+  implicit none
+  private
+
+  public :: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
+  public :: force_tolerance, energy_tolerance
+
+  real(dp), parameter :: force_tolerance = 1.0e-8_dp    !< |r| relative to the load (and reactions)
+  real(dp), parameter :: energy_tolerance = 1.0e-16_dp  !< |r . K^-1 r| relative to the first iteration's
+
+  !> What a plastic static solve adds to the static solution.
+  type :: plastic_summary_t
+    integer :: increments = 0                       !< load increments N
+    integer :: iterations = 0                       !< Newton iterations, all increments
+    integer :: iterations_max = 0                   !< the most in one increment
+    integer, allocatable :: increment_iterations(:) !< (N) Newton iterations per increment
+    real(dp), allocatable :: force_residual(:, :)   !< (ITERATIONS, N) |r| / max(|R_k|, |F|) after each iteration
+    real(dp), allocatable :: equivalent_plastic(:, :) !< (gauss_count, nelem) ebar at the end
+    real(dp) :: equivalent_plastic_max = 0.0_dp     !< max ebar
+    real(dp) :: dissipation = 0.0_dp                !< plastic dissipation D (trapezoidal), J (per radian in axisymmetry)
+    real(dp) :: dissipation_backward = 0.0_dp       !< sum s_k : de_p dV, J (the kernel's backward rule)
+    real(dp) :: yielded_volume = 0.0_dp             !< int over the points with ebar > 0, m^3 (per radian in axisymmetry)
+  end type plastic_summary_t
+
+contains
+
+  !> True if a material of the deck has a PLASTIC card.
+  pure logical function any_plastic(materials)
+    type(material_t), intent(in) :: materials(:)
+    integer :: k
+    any_plastic = .false.
+    do k = 1, size(materials)
+      if (materials(k)%plastic) any_plastic = .true.
+    end do
+  end function any_plastic
+
+  !> The load-incremented Newton solve of a static deck with plasticity
+  !> (module comment): the static solution (displacement, reactions, Gauss
+  !> strains and stresses, stored energy and external work) and the summary.
+  subroutine solve_plastic_static(mesh, materials, settings, loads, source, solution, summary, error)
+    type(mesh_t), intent(in) :: mesh
+    type(material_t), intent(in) :: materials(:)
+    type(settings_t), intent(in) :: settings
+    type(loads_t), intent(in) :: loads
+    type(source_t), intent(in) :: source
+    type(static_solution_t), intent(out) :: solution
+    type(plastic_summary_t), intent(out) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: b(:, :, :, :), weight(:, :), tangent(:, :, :, :)
+    real(dp), allocatable :: stress(:, :, :), strain(:, :, :), ebar(:, :)          ! committed
+    real(dp), allocatable :: trial_stress(:, :, :), trial_strain(:, :, :), trial_ebar(:, :), plastic(:, :, :)
+    real(dp), allocatable :: load(:), presc(:), u(:), u_start(:), du(:), rhs(:), force(:), force_start(:), r(:)
+    real(dp), allocatable :: step_backward(:, :)
+    logical, allocatable :: fixed(:)
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
+    real(dp) :: lambda, energy_first, energy_next, force_ratio, scale
+    integer :: nelem, e, k, iteration, info, n, max_iterations
+    logical :: converged
+
+    nelem = mesh%nelem
+    n = settings%increments
+    max_iterations = settings%iterations
+    allocate(b(4, 8, gauss_count, nelem), weight(gauss_count, nelem), tangent(4, 4, gauss_count, nelem))
+    do e = 1, nelem
+      call element_b_matrices(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), b(:, :, :, e), weight(:, e), &
+                              settings%formulation)
+      associate (m => materials(mesh%element_material(e)))
+      do k = 1, gauss_count
+        tangent(:, :, k, e) = elastic_matrix(m%shear, m%bulk)
+      end do
+      end associate
+    end do
+    allocate(stress(4, gauss_count, nelem), strain(4, gauss_count, nelem), ebar(gauss_count, nelem))
+    allocate(plastic(4, gauss_count, nelem), step_backward(gauss_count, nelem))
+    stress = 0.0_dp
+    strain = 0.0_dp
+    ebar = 0.0_dp
+    trial_stress = stress
+    trial_strain = strain
+    trial_ebar = ebar
+    load = external_load(mesh, settings, loads, 0.0_dp) + gravity_load(mesh, settings, materials, loads)
+    fixed = support_mask(mesh, settings, loads)
+    presc = prescribed_displacement(mesh, loads, 0.0_dp)
+    allocate(u(2*mesh%nnode), force(2*mesh%nnode))
+    u = 0.0_dp
+    force = 0.0_dp
+    summary%increments = n
+    allocate(summary%increment_iterations(n), summary%force_residual(max_iterations, n))
+    summary%increment_iterations = 0
+    summary%force_residual = 0.0_dp
+    solution%external_work = 0.0_dp
+
+    do k = 1, n
+      lambda = real(k, dp)/real(n, dp)
+      u_start = u
+      force_start = force
+      energy_first = 0.0_dp
+      converged = .false.
+      do iteration = 1, max_iterations
+        call assemble_tangent()
+        rhs = lambda*load - force
+        if (iteration == 1) then
+          call band_constrain_rhs(stiffness, fixed, lambda*presc - u, rhs)
+        else
+          call band_constrain_rhs(stiffness, fixed, 0.0_dp*u, rhs)
+        end if
+        call factor_compute(factor, stiffness, fixed, info, solver_of_card(settings%solver))
+        if (info > 0) then
+          if (k == 1 .and. iteration == 1) then
+            call singular_error(mesh, source, info, error)
+          else
+            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '//integer_text(n)// &
+              ' (Newton iteration '//integer_text(iteration)//', equation '//integer_text(info) &
+                //'): the load is probably above '// &
+              'the limit load of the perfectly plastic body (give a hardening TANGENT= or SLOPE=, or less load)')
+          end if
+          return
+        end if
+        du = rhs
+        call factor_solve(factor, du, info)
+        if (info /= 0) then
+          call set_error(error, solve_failure_text(info))     ! located by the driver
+          return
+        end if
+        if (iteration == 1) energy_first = abs(sum(merge(0.0_dp, du*rhs, fixed)))
+        u = u + du
+        call evaluate(u - u_start)
+        r = lambda*load - force
+        scale = max(norm2(lambda*load), norm2(force), tiny(1.0_dp))
+        force_ratio = norm2(merge(0.0_dp, r, fixed))/scale
+        summary%force_residual(iteration, k) = force_ratio
+        if (.not. (ieee_is_finite(force_ratio) .and. all(ieee_is_finite(u)))) then
+          call analysis_error('the plastic static solve diverged in load increment '//integer_text(k)//' of '//integer_text(n)// &
+            ' (Newton iteration '//integer_text(iteration)//': the displacement or the residual is not finite)')
+          return
+        end if
+        du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with this factor
+        call factor_solve(factor, du, info)
+        if (info /= 0) then
+          call set_error(error, solve_failure_text(info))     ! located by the driver
+          return
+        end if
+        energy_next = abs(sum(merge(0.0_dp, du*r, fixed)))
+        if (force_ratio <= force_tolerance .and. (energy_next <= energy_tolerance*energy_first .or. &
+                                                  energy_first == 0.0_dp)) then
+          converged = .true.
+          exit
+        end if
+      end do
+      if (.not. converged) then
+        call analysis_error('the plastic static solve did not converge in load increment '//integer_text(k)//' of '// &
+          integer_text(n)//': after '//integer_text(max_iterations)//' Newton iterations the force residual is '// &
+          short_real(force_ratio)//' of the load (tolerance '//short_real(force_tolerance)//') and the energy '// &
+          'norm '//short_real(energy_next/max(energy_first, tiny(1.0_dp)))//' of the first iteration''s '// &
+          '(tolerance '//short_real(energy_tolerance)//'): the load may be above the limit load; give more '// &
+          'INCREMENTS= (or ITERATIONS=) or a hardening TANGENT=')
+        return
+      end if
+      summary%increment_iterations(k) = iteration
+      summary%iterations = summary%iterations + iteration
+      summary%iterations_max = max(summary%iterations_max, iteration)
+      ! Commit: the trapezoidal work and dissipation of the increment (module comment).
+      solution%external_work = solution%external_work + 0.5_dp*dot_product( &
+        merge(force_start, (lambda - 1.0_dp/n)*load, fixed) + merge(force, lambda*load, fixed), u - u_start)
+      do e = 1, nelem
+        do info = 1, gauss_count
+          associate (s_start => deviator(stress(:, info, e)), s_end => deviator(trial_stress(:, info, e)))
+          summary%dissipation = summary%dissipation + weight(info, e)*0.5_dp* &
+            contract(s_start + s_end, plastic(:, info, e))
+          end associate
+          summary%dissipation_backward = summary%dissipation_backward + weight(info, e)*step_backward(info, e)
+        end do
+      end do
+      stress = trial_stress
+      strain = trial_strain
+      ebar = trial_ebar
+    end do
+
+    solution%displacement = nodal_field(mesh, u)
+    solution%reaction = nodal_field(mesh, force - load)
+    solution%strain = strain
+    solution%stress = stress
+    solution%nodal_stress = nodal_average(mesh, stress)
+    solution%strain_energy = 0.0_dp
+    do e = 1, nelem
+      associate (m => materials(mesh%element_material(e)))
+      do info = 1, gauss_count
+        solution%strain_energy = solution%strain_energy + weight(info, e)*( &
+          (sum(stress(1:3, info, e))/3.0_dp)**2/(2.0_dp*m%bulk) + &
+          deviatoric_norm(deviator(stress(:, info, e)))**2/(4.0_dp*m%shear))
+      end do
+      end associate
+    end do
+    summary%equivalent_plastic = ebar
+    summary%equivalent_plastic_max = maxval(ebar)
+    summary%yielded_volume = sum(weight, mask=ebar > 0.0_dp)
+    if (.not. all(ieee_is_finite(solution%stress)) .or. .not. ieee_is_finite(solution%strain_energy) .or. &
+        .not. ieee_is_finite(solution%external_work)) &
+      call not_finite_error(source, 'the plastic static stress or energy', error)
+
+  contains
+
+    !> K_t from the tangents of the last evaluation.
+    subroutine assemble_tangent()
+      real(dp) :: ke(8, 8)
+      integer :: el, gp
+      call band_create(stiffness, 2*mesh%nnode, mesh%half_bandwidth)
+      do el = 1, nelem
+        ke = 0.0_dp
+        do gp = 1, gauss_count
+          ke = ke + weight(gp, el)*matmul(transpose(b(:, :, gp, el)), matmul(tangent(:, :, gp, el), b(:, :, gp, el)))
+        end do
+        call band_add_element(stiffness, element_dofs(mesh, el), ke)
+      end do
+    end subroutine assemble_tangent
+
+    !> Stresses, tangents and the internal force at u = u_start + increment:
+    !> every Gauss point's return from the increment's start.
+    subroutine evaluate(increment)
+      real(dp), intent(in) :: increment(:)
+      type(return_result_t) :: state
+      real(dp) :: local(8), de(4), trial(4), volumetric, mean, f(8)
+      integer :: el, gp
+      force = 0.0_dp
+      do el = 1, nelem
+        local = increment(element_dofs(mesh, el))
+        associate (m => materials(mesh%element_material(el)))
+        f = 0.0_dp
+        do gp = 1, gauss_count
+          de = matmul(b(:, :, gp, el), local)
+          trial_strain(:, gp, el) = strain(:, gp, el) + de
+          if (.not. m%plastic) then
+            trial_stress(:, gp, el) = stress_from_strain(m%shear, m%bulk, trial_strain(:, gp, el))
+            plastic(:, gp, el) = 0.0_dp
+            step_backward(gp, el) = 0.0_dp
+          else
+            volumetric = de(1) + de(2) + de(3)
+            mean = sum(stress(1:3, gp, el))/3.0_dp + m%bulk*volumetric
+            trial = deviator(stress(:, gp, el))
+            trial(1:3) = trial(1:3) + 2.0_dp*m%shear*(de(1:3) - volumetric/3.0_dp)
+            trial(4) = trial(4) + m%shear*de(4)
+            state = radial_return(m%hardening, m%shear, trial, ebar(gp, el))
+            trial_stress(:, gp, el) = state%stress
+            trial_stress(1:3, gp, el) = trial_stress(1:3, gp, el) + mean
+            trial_ebar(gp, el) = state%equivalent_plastic
+            plastic(:, gp, el) = state%plastic_increment
+            step_backward(gp, el) = state%dissipation
+            tangent(:, :, gp, el) = consistent_tangent(m%bulk, m%shear, state)
+          end if
+          f = f + weight(gp, el)*matmul(transpose(b(:, :, gp, el)), trial_stress(:, gp, el))
+        end do
+        end associate
+        call scatter_add(mesh, el, f, force)
+      end do
+    end subroutine evaluate
+
+    !> An error at the ANALYSIS card.
+    subroutine analysis_error(message)
+      character(*), intent(in) :: message
+      integer :: c, line
+      line = 0
+      do c = 1, size(source%keywords)
+        if (source%keywords(c) == 'ANALYSIS') line = source%lines(c)
+      end do
+      call set_error(error, message, file=source%file, line=line, card='ANALYSIS')
+    end subroutine analysis_error
+  end subroutine solve_plastic_static
+
+  !> The deviatoric part (s_r, s_z, s_theta, s_rz) of a stress.
+  pure function deviator(sigma) result(s)
+    real(dp), intent(in) :: sigma(4)
+    real(dp) :: s(4)
+    s = sigma
+    s(1:3) = s(1:3) - sum(sigma(1:3))/3.0_dp
+  end function deviator
+
+  !> s : de for a stress (r, z, theta, rz) and an engineering-shear strain.
+  pure real(dp) function contract(s, de)
+    real(dp), intent(in) :: s(4), de(4)
+    contract = dot_product(s, de)
+  end function contract
+
+  !> The summary keys of a plastic static solve (doc/outputs.md), energies
+  !> and volumes on the energy_basis (whole body in axisymmetry).
+  subroutine plastic_record(settings, summary, record)
+    type(settings_t), intent(in) :: settings
+    type(plastic_summary_t), intent(in) :: summary
+    type(record_t), intent(inout) :: record
+    associate (factor => whole_body_factor(settings%geometry))
+    call record_put_integer(record, 'load_increments', summary%increments)
+    call record_put_integer(record, 'newton_iterations', summary%iterations)
+    call record_put_integer(record, 'newton_iterations_max', summary%iterations_max)
+    call record_put_real(record, 'equivalent_plastic_strain_max', summary%equivalent_plastic_max)
+    call record_put_real(record, 'plastic_dissipation_J', factor*summary%dissipation)
+    call record_put_real(record, 'yielded_volume_m3', factor*summary%yielded_volume)
+    end associate
+  end subroutine plastic_record
+end module visco2d_plastic_static
