@@ -211,7 +211,8 @@ contains
   subroutine run_relax()
     real(dp), allocatable :: values(:), shear(:), beta(:)
     real(dp) :: poisson, bulk
-    character(:), allocatable :: option, text, message
+    character(:), allocatable :: option, text
+    type(error_t), allocatable :: conversion
     logical :: have_poisson, ok
     integer :: position, count, m
 
@@ -252,9 +253,9 @@ contains
     if (mod(count, 2) /= 0) &
       call usage_error('an odd number of values ('//integer_text(count)//'): expected pairs E ALPHA', relax=.true.)
 
-    call uniaxial_to_shear(values(1:count:2), values(2:count:2), poisson, bulk, shear, beta, message)
-    if (len(message) > 0) then
-      write(0, '(a)') 'visco2d relax: '//message
+    call uniaxial_to_shear(values(1:count:2), values(2:count:2), poisson, bulk, shear, beta, conversion)
+    if (allocated(conversion)) then
+      write(0, '(a)') 'visco2d relax: '//error_text(conversion)
       flush(0)
       call c_exit(1_c_int)
     end if

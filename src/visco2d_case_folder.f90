@@ -44,7 +44,8 @@ contains
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
     type(error_t), allocatable, intent(inout) :: error
-    character(:), allocatable :: final_dir, temporary_dir, old_dir, message, file
+    character(:), allocatable :: final_dir, temporary_dir, old_dir, file
+    type(error_t), allocatable :: failure
     logical :: replaced
 
     final_dir = out_root//'/'//case_name
@@ -64,30 +65,31 @@ contains
         return
       end if
       file = 'summary.txt'
-      call write_summary(temporary_dir//'/'//file, record, message)
-      if (len(message) == 0) then
+      call write_summary(temporary_dir//'/'//file, record, failure)
+      if (.not. allocated(failure)) then
         file = 'history.csv'
-        call write_history(temporary_dir//'/'//file, record, message)
+        call write_history(temporary_dir//'/'//file, record, failure)
       end if
-      if (len(message) == 0) then
+      if (.not. allocated(failure)) then
         file = 'listing.txt'
-        call write_listing(temporary_dir//'/'//file, case_name, deck, effects, record, message)
+        call write_listing(temporary_dir//'/'//file, case_name, deck, effects, record, failure)
       end if
-      if (len(message) == 0) then
+      if (.not. allocated(failure)) then
         file = 'results.h5'
-        call write_results_h5(temporary_dir//'/'//file, case_name, deck, record, message)
+        call write_results_h5(temporary_dir//'/'//file, case_name, deck, record, failure)
       end if
-      if (len(message) == 0 .and. allocated(record%pressure%columns)) then
+      if (.not. allocated(failure) .and. allocated(record%pressure%columns)) then
         file = 'pressure.csv'
-        call write_pressure(temporary_dir//'/'//file, record, message)
+        call write_pressure(temporary_dir//'/'//file, record, failure)
       end if
-      if (len(message) == 0) then
+      if (.not. allocated(failure)) then
         file = 'results.xmf'
-        call write_results_xdmf(temporary_dir//'/'//file, deck, record, message)
+        call write_results_xdmf(temporary_dir//'/'//file, deck, record, failure)
       end if
-      if (len(message) > 0) then
+      if (allocated(failure)) then
         call discard(temporary_dir)
-        call set_error(error, 'cannot write '//final_dir//'/'//file//': '//message//'; no output was kept', file=path)
+        call set_error(error, 'cannot write '//final_dir//'/'//file//': '//failure%message//'; no output was kept', &
+                       file=path)
         return
       end if
       replaced = directory_exists(final_dir)

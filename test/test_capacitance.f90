@@ -96,7 +96,7 @@ contains
     u = f
     call band_constrain(factor, fixed, values, u)
     call band_factor(factor, info)
-    call band_solve(factor, u)
+    call band_solve(factor, u, info)
   end function by_elimination
 
   !> The capacitance system on the factor of `solver` (band or profile).

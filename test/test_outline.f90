@@ -39,10 +39,10 @@ program test_outline
   use visco2d_static_contact, only: solve_static_contact
   use visco2d_mesh_generator, only: sphere_grid, spheroid_grid, sphere_grid_contact, sphere_grid_legacy, &
                                     sphere_default_grade, sphere_default_core
-  use visco2d_outline_grid, only: outline_t, outline_problem, make_outline, outline_radius, outline_grid, &
+  use visco2d_outline_grid, only: outline_t, check_outline, make_outline, outline_radius, outline_grid, &
                                   outline_volume, outline_pole_curvature_radius
   use visco2d_mesh_measures, only: shape_measures
-  use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real
+  use visco2d_testing, only: check, check_close, test_summary, write_deck, summary_real, message_of
   use visco2d_test_decks, only: try_read_deck, check_error_location
   use visco2d_strings, only: integer_text, message_real
   implicit none
@@ -114,11 +114,11 @@ contains
     real(dp), intent(in) :: r(:), z(:)
     character(*), intent(in) :: tag
     type(outline_t), intent(out) :: outline
-    character(:), allocatable :: problem
+    type(error_t), allocatable :: problem
     integer :: point
     logical :: at_z
-    call outline_problem(r, z, problem, point, at_z)
-    call check(tag//'_accepted', len(problem) == 0, problem)
+    call check_outline(r, z, problem, point, at_z)
+    call check(tag//'_accepted', .not. allocated(problem), message_of(problem))
     call make_outline(r, z, outline)
   end subroutine outline_of
 

@@ -254,33 +254,33 @@ contains
     call check('non_finite_run_no_output', .not. path_exists(root), root//' exists')
   end subroutine test_non_finite_run
 
-  !> Writers return what failed; a good write returns ''.
+  !> Writers return what failed (an error naming the file); a good write returns none.
   subroutine test_writers()
     type(deck_t) :: deck
     type(record_t) :: record
     type(error_t), allocatable :: error
-    character(:), allocatable :: message
     call read_deck(folder//'/block.inp', deck, error)
     if (allocated(error)) return
     call clean_record(deck, record)
-    call write_summary(folder//'/summary.txt', record, message)
-    call check('writer_summary_ok', len(message) == 0, message)
-    call write_history(folder//'/no/such/folder/history.csv', record, message)
-    call check_text_contains('writer_missing_folder', message, 'cannot create the file')
-    call write_listing(folder//'/no/such/folder/listing.txt', 'block', deck, 'none', record, message)
-    call check_text_contains('writer_listing_missing_folder', message, 'cannot create the file')
-    call write_results_h5(folder//'/no/such/folder/results.h5', 'block', deck, record, message)
-    call check('writer_h5_missing_folder', len(message) > 0, 'no message')
-    call write_results_h5(folder//'/results.h5', 'block', deck, record, message)
-    call check('writer_h5_ok', len(message) == 0, message)
-    call write_results_h5(folder//'/results.h5', 'block', deck, record, message)      ! HDF5 opened and closed again
-    call check('writer_h5_twice_ok', len(message) == 0, message)
+    call write_summary(folder//'/summary.txt', record, error)
+    call check('writer_summary_ok', .not. allocated(error), message_of(error))
+    call write_history(folder//'/no/such/folder/history.csv', record, error)
+    call check_text_contains('writer_missing_folder', message_of(error), 'cannot create the file')
+    call write_listing(folder//'/no/such/folder/listing.txt', 'block', deck, 'none', record, error)
+    call check_text_contains('writer_listing_missing_folder', message_of(error), 'cannot create the file')
+    call write_results_h5(folder//'/no/such/folder/results.h5', 'block', deck, record, error)
+    call check('writer_h5_missing_folder', allocated(error), 'no message')
+    call write_results_h5(folder//'/results.h5', 'block', deck, record, error)
+    call check('writer_h5_ok', .not. allocated(error), message_of(error))
+    call write_results_h5(folder//'/results.h5', 'block', deck, record, error)      ! HDF5 opened and closed again
+    call check('writer_h5_twice_ok', .not. allocated(error), message_of(error))
     if (path_exists('/dev/full')) then
       ! /dev/full takes no byte: stdio reports it (the Fortran runtime would not).
-      call write_summary('/dev/full', record, message)
-      call check_text_contains('writer_dev_full_summary', message, 'writing failed')
-      call write_history('/dev/full', record, message)
-      call check_text_contains('writer_dev_full_history', message, 'writing failed')
+      call write_summary('/dev/full', record, error)
+      call check_text_contains('writer_dev_full_summary', message_of(error), 'writing failed')
+      call check_text_contains('writer_dev_full_names_file', message_of(error), '/dev/full: ')
+      call write_history('/dev/full', record, error)
+      call check_text_contains('writer_dev_full_history', message_of(error), 'writing failed')
     end if
   end subroutine test_writers
 
@@ -396,7 +396,7 @@ contains
     type(deck_t) :: deck
     type(record_t) :: record
     type(error_t), allocatable :: error
-    character(:), allocatable :: message, listing(:)
+    character(:), allocatable :: listing(:)
     logical :: found
     call read_deck(folder//'/block.inp', deck, error)
     if (allocated(error)) return
@@ -408,8 +408,8 @@ contains
     call check('run_warning_located', record%warnings(1)%text == &
                'd.inp:12: TIME: the energy balance error is 7 % of the input', record%warnings(1)%text)
     call check('run_warning_plain', record%warnings(2)%text == 'no location', record%warnings(2)%text)
-    call write_listing(folder//'/listing.txt', 'block', deck, 'none', record, message)
-    call check('run_warnings_listing_written', len(message) == 0, message)
+    call write_listing(folder//'/listing.txt', 'block', deck, 'none', record, error)
+    call check('run_warnings_listing_written', .not. allocated(error), message_of(error))
     call read_lines(folder//'/listing.txt', listing, found)
     call check('run_warnings_in_listing', &
                any(listing == '   d.inp:12: TIME: the energy balance error is 7 % of the input'))

@@ -305,7 +305,8 @@ contains
     call band_factor(constrained, info)
     call check('displacement patch '//tag//': constrained stiffness factors', info == 0)
     if (info /= 0) return
-    call band_solve(constrained, u)
+    call band_solve(constrained, u, info)
+    call check('displacement patch '//tag//': the factored stiffness solves', info == 0)
 
     u_error = 0.0_dp
     u_max = maxval(abs(values))
@@ -342,7 +343,7 @@ contains
       constrained = stiffness
       call band_constrain(constrained, fixed, values, u_free)
       call band_factor(constrained, info)
-      call band_solve(constrained, u_free)
+      call band_solve(constrained, u_free, info)
       print '(a, es10.3)', '  displacement patch axi: same without the body load tau/r: max |u - u_linear| / max |u| = ', &
         maxval(abs(u_free - values))/u_max
       call check('displacement patch axi: without the body load tau/r the shear field is not reproduced '// &

@@ -12,6 +12,9 @@ module visco2d_banded
   public :: band_constrain_matrix, band_constrain_rhs
   public :: band_factor, band_solve, band_solve_many
 
+  !> band_solve's info for a matrix band_factor has not factored (a program error).
+  integer, parameter, public :: band_unfactored = -1
+
   !> Lower band storage as LAPACK's 'L': ab(1 + i - j, j) = A(i, j) for j <= i <= j + kd.
   type :: band_matrix_t
     integer :: n = 0                    !< order
@@ -156,23 +159,30 @@ contains
     matrix%factored = info == 0
   end subroutine band_factor
 
-  !> Solve A x = b in place with the factor from band_factor (LAPACK dpbtrs;
-  !> its info is non-zero only for illegal arguments, excluded by construction).
-  subroutine band_solve(matrix, b)
+  !> Solve A x = b in place with the factor from band_factor (LAPACK dpbtrs).
+  !> info: 0 solved; band_unfactored (b unchanged) if band_factor has not
+  !> factored the matrix (a program error the caller reports: factor_solve's
+  !> solve_unfactored); dpbtrs' info is non-zero only for illegal arguments,
+  !> excluded by construction.
+  subroutine band_solve(matrix, b, info)
     type(band_matrix_t), intent(in) :: matrix
     real(dp), intent(inout) :: b(:)
-    integer :: info
-    if (.not. matrix%factored) error stop 'visco2d_banded: band_solve called before band_factor'
+    integer, intent(out) :: info
+    info = band_unfactored
+    if (.not. matrix%factored) return
     call dpbtrs('L', matrix%n, matrix%kd, 1, matrix%ab, matrix%kd + 1, b, matrix%n, info)
   end subroutine band_solve
 
   !> Solve A X = B in place for several right-hand sides at once (one pass
-  !> over the factor for all of them: dpbtrs reads it once per column block).
-  subroutine band_solve_many(matrix, b)
+  !> over the factor for all of them: dpbtrs reads it once per column block);
+  !> info as band_solve.
+  subroutine band_solve_many(matrix, b, info)
     type(band_matrix_t), intent(in) :: matrix
     real(dp), intent(inout) :: b(:, :)
-    integer :: info
-    if (.not. matrix%factored) error stop 'visco2d_banded: band_solve_many called before band_factor'
+    integer, intent(out) :: info
+    info = band_unfactored
+    if (.not. matrix%factored) return
+    info = 0
     if (size(b, 2) == 0) return
     call dpbtrs('L', matrix%n, matrix%kd, size(b, 2), matrix%ab, matrix%kd + 1, b, size(b, 1), info)
   end subroutine band_solve_many

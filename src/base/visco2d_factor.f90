@@ -120,11 +120,13 @@ contains
     info = 0
     select case (factor%storage)
     case (solver_band)
-      call band_solve(factor%band, b)
+      call band_solve(factor%band, b, info)
+      if (info /= 0) info = solve_unfactored
     case (solver_cholmod)
       call cholmod_solve(factor%sparse, b, info)
     case default
-      call profile_solve(factor%profile, b)
+      call profile_solve(factor%profile, b, info)
+      if (info /= 0) info = solve_unfactored
     end select
   end subroutine factor_solve
 
@@ -139,11 +141,13 @@ contains
     info = 0
     select case (factor%storage)
     case (solver_band)
-      call band_solve_many(factor%band, b)
+      call band_solve_many(factor%band, b, info)
+      if (info /= 0) info = solve_unfactored
     case (solver_cholmod)
       call cholmod_solve_many(factor%sparse, b, info)
     case default
-      call profile_solve_many(factor%profile, b)
+      call profile_solve_many(factor%profile, b, info)
+      if (info /= 0) info = solve_unfactored
     end select
   end subroutine factor_solve_many
 

@@ -18,6 +18,9 @@ module visco2d_profile
 
   public :: profile_matrix_t, profile_from_band, profile_factor, profile_solve, profile_solve_many
 
+  !> profile_solve's info for a matrix profile_factor has not factored (a program error).
+  integer, parameter, public :: profile_unfactored = -1
+
   ! The inner loops are BLAS calls: the optimized BLAS vectorizes the dot
   ! products, which the compiler may not (reordering a sum changes its
   ! round-off, so it keeps the sequential order without -ffast-math).
@@ -116,13 +119,18 @@ contains
 
   !> Solve S x = b in place with the factor: L y = b forward (a dot product
   !> per row), then L^T x = y backward (an axpy per row), each one pass over
-  !> the envelope.
-  subroutine profile_solve(profile, b)
+  !> the envelope. info: 0 solved; profile_unfactored (b unchanged) if
+  !> profile_factor has not factored the matrix (a program error the caller
+  !> reports: factor_solve's solve_unfactored).
+  subroutine profile_solve(profile, b, info)
     type(profile_matrix_t), intent(in) :: profile
     real(dp), intent(inout), contiguous :: b(:)
+    integer, intent(out) :: info
     integer :: i, f
     integer(int64) :: row
-    if (.not. profile%factored) error stop 'visco2d_profile: profile_solve called before profile_factor'
+    info = profile_unfactored
+    if (.not. profile%factored) return
+    info = 0
     do i = 1, profile%n
       f = profile%first(i)
       row = profile%start(i) - f
@@ -138,18 +146,22 @@ contains
 
   !> Solve S X = B in place for several right-hand sides, one pass over the
   !> factor for all of them (B transposed into a work array so that every
-  !> row of L is applied to all columns while it is in cache).
-  subroutine profile_solve_many(profile, b)
+  !> row of L is applied to all columns while it is in cache); info as
+  !> profile_solve.
+  subroutine profile_solve_many(profile, b, info)
     type(profile_matrix_t), intent(in) :: profile
     real(dp), intent(inout) :: b(:, :)
+    integer, intent(out) :: info
     real(dp), allocatable :: x(:, :)
     integer :: i, f, m
     integer(int64) :: row
-    if (.not. profile%factored) error stop 'visco2d_profile: profile_solve_many called before profile_factor'
+    info = profile_unfactored
+    if (.not. profile%factored) return
+    info = 0
     if (size(b, 2) == 0) return
     if (size(b, 2) == 1) then
       x = b
-      call profile_solve(profile, x(:, 1))
+      call profile_solve(profile, x(:, 1), info)
       b = x
       return
     end if

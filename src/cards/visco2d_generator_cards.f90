@@ -10,7 +10,7 @@ module visco2d_generator_cards
   use visco2d_mesh_generator, only: spheroid_grid, rectangle_grid, ring_grid, sphere_default_grade, &
                                     sphere_default_core, sphere_grid_contact, sphere_grid_legacy, &
                                     spheroid_least_ratio, spheroid_largest_ratio
-  use visco2d_outline_grid, only: outline_t, outline_problem, make_outline, outline_grid, outline_max_points
+  use visco2d_outline_grid, only: outline_t, check_outline, make_outline, outline_grid, outline_max_points
   use visco2d_budget, only: run_size_t, mesh_run_size, sphere_mesh_counts, grid_mesh_counts, memory_limit, &
                             bytes_text, count_text, max_mesh_entities, raise_hint
   use visco2d_ranges, only: max_coordinate
@@ -142,7 +142,7 @@ contains
   end subroutine read_sphere_mesh
 
   !> The points r1 z1 ... rn zn of MESH OUTLINE (the positional values after
-  !> OUTLINE, in m): read, and checked as an outline (`outline_problem`),
+  !> OUTLINE, in m): read, and checked as an outline (`check_outline`),
   !> with an error at the point's r field (at its z field for a z problem);
   !> refused in a deck whose GEOMETRY is PLANESTRAIN (a body of revolution).
   subroutine read_outline_points(deck, card, r, z, error)
@@ -152,7 +152,7 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: values, n, i, point
     logical :: at_z
-    character(:), allocatable :: problem
+    type(error_t), allocatable :: problem
     do i = 1, deck%count
       if (deck%cards(i)%keyword /= 'GEOMETRY' .or. positional_count(deck%cards(i)) < 1) cycle
       if (to_upper(deck%cards(i)%tokens(deck%cards(i)%positions(1))%value) /= 'PLANESTRAIN') cycle
@@ -180,12 +180,12 @@ contains
           message_real(max_coordinate)//', '//message_real(max_coordinate)//'] m', field_column(card, integer_text(2*i))); return
       end if
     end do
-    call outline_problem(r, z, problem, point, at_z)
-    if (len(problem) == 0) return
+    call check_outline(r, z, problem, point, at_z)
+    if (.not. allocated(problem)) return
     if (point == 0) then
-      call card_error(error, deck, card, 'the outline '//problem, field_column(card, '1'))
+      call card_error(error, deck, card, 'the outline '//problem%message, field_column(card, '1'))
     else
-      call card_error(error, deck, card, problem, field_column(card, integer_text(2*point + merge(1, 0, at_z))))
+      call card_error(error, deck, card, problem%message, field_column(card, integer_text(2*point + merge(1, 0, at_z))))
     end if
   end subroutine read_outline_points
 

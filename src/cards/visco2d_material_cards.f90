@@ -279,7 +279,7 @@ contains
     type(material_t), intent(inout) :: material
     type(error_t), allocatable, intent(inout) :: error
     real(dp), allocatable :: shear(:), rate(:)
-    character(:), allocatable :: message
+    type(error_t), allocatable :: conversion
     integer, allocatable :: order(:)
     if (material%kind == material_kind_elastic) return
     if (material%kind == material_kind_uniaxial) then
@@ -287,10 +287,10 @@ contains
         call material_error('material '//material%id//' needs at least one PRONY E=.. ALPHA=.. card'); return
       end if
       call uniaxial_to_shear(material%uniaxial_young, material%uniaxial_rate, material%poisson, &
-                             material%bulk, shear, rate, message)
-      if (len(message) > 0) then
+                             material%bulk, shear, rate, conversion)
+      if (allocated(conversion)) then
         call material_error('material '//material%id//': the uniaxial series does not convert to shear: '// &
-                            message); return
+                            conversion%message); return
       end if
     else
       if (size(material%prony_shear) == 0) then

@@ -3,6 +3,7 @@
 !> curves, node and element tables, supports and loads, and the results.
 module visco2d_listing
   use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, geometry_name, total_steps, analysis_dynamic, formulation_name, &
                           initial_velocity, stop_name
@@ -22,12 +23,13 @@ module visco2d_listing
 
 contains
 
-  !> The legacy-style printed listing.
-  subroutine write_listing(path, case_name, deck, effects, record, message)
+  !> The legacy-style printed listing; `error` (the file and what failed) if
+  !> a write or the close failed.
+  subroutine write_listing(path, case_name, deck, effects, record, error)
     character(*), intent(in) :: path, case_name, effects
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
-    character(:), allocatable, intent(out) :: message
+    type(error_t), allocatable, intent(out) :: error
     type(text_file_t) :: out
     call text_open(out, path)
     call listing_control(out, deck, case_name, effects)
@@ -39,7 +41,7 @@ contains
     call listing_results(out, record)
     call text_put(out, rule)
     call text_close(out)
-    message = out%message
+    if (len(out%message) > 0) call set_error(error, out%message, file=path)
   end subroutine write_listing
 
   !> The banner, the input cards as read and the control data of the run.

@@ -1,13 +1,14 @@
 !> Output of one run into its case folder: `summary.txt` (`key = value`),
 !> `history.csv`, `pressure.csv` and `results.h5` (the legacy-style
 !> `listing.txt` is visco2d_listing). Names and keys here are an interface:
-!> tools parse them. Every writer returns '' or a message saying what
-!> failed: text files are written through visco2d_text_file, whose every
-!> write and close is checked.
+!> tools parse them. Every writer returns no error or an error_t (the file
+!> it wrote and a message saying what failed): text files are written
+!> through visco2d_text_file, whose every write and close is checked.
 module visco2d_output
   use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, table_real
   use visco2d_deck, only: deck_t, analysis_name, geometry_name
   use visco2d_record, only: record_t, summary_item_t, summary_item_text, record_real, unit_of, summary_unit, &
@@ -25,10 +26,10 @@ module visco2d_output
 contains
 
   !> summary.txt: one `key = value` per line.
-  subroutine write_summary(path, record, message)
+  subroutine write_summary(path, record, error)
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
-    character(:), allocatable, intent(out) :: message
+    type(error_t), allocatable, intent(out) :: error
     type(text_file_t) :: out
     integer :: i
     call text_open(out, path)
@@ -36,24 +37,28 @@ contains
       call text_put(out, trim(record%summary(i)%key)//' = '//summary_item_text(record%summary(i)))
     end do
     call text_close(out)
-    message = out%message
+    if (len(out%message) > 0) call set_error(error, out%message, file=path)
   end subroutine write_summary
 
   !> history.csv: a header row of column names (units in the names), then one row per output step.
-  subroutine write_history(path, record, message)
+  subroutine write_history(path, record, error)
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
-    character(:), allocatable, intent(out) :: message
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: message
     call write_csv(path, record%columns, record%history(:, 1:record%nrow), message)
+    if (len(message) > 0) call set_error(error, message, file=path)
   end subroutine write_history
 
   !> pressure.csv: the contact pressure over radius (record%pressure, visco2d_impact's
   !> pressure_table), a header row of column names (units in the names), one row per node.
-  subroutine write_pressure(path, record, message)
+  subroutine write_pressure(path, record, error)
     character(*), intent(in) :: path
     type(record_t), intent(in) :: record
-    character(:), allocatable, intent(out) :: message
+    type(error_t), allocatable, intent(out) :: error
+    character(:), allocatable :: message
     call write_csv(path, record%pressure%columns, record%pressure%values, message, integer_column='node')
+    if (len(message) > 0) call set_error(error, message, file=path)
   end subroutine write_pressure
 
   !> A CSV table: the header row of the column names, then one row per column
@@ -147,13 +152,13 @@ contains
   end function time_first_contact
 
   !> results.h5: /mesh, /summary/<key>, /history/<column>, /fields/<snapshot>/..., /xdmf/<snapshot>/...
-  !> HDF5 is closed (h5fclose, h5close) also after a failure; `message` says
-  !> what failed first ('' if all went well).
-  subroutine write_results_h5(path, case_name, deck, record, message)
+  !> HDF5 is closed (h5fclose, h5close) also after a failure; `error` says
+  !> what failed first (not allocated if all went well).
+  subroutine write_results_h5(path, case_name, deck, record, error)
     character(*), intent(in) :: path, case_name
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
-    character(:), allocatable, intent(out) :: message
+    type(error_t), allocatable, intent(out) :: error
     type(h5_writer_t) :: writer
     integer(hid_t) :: group, fields, snapshot
     integer :: i, k
@@ -237,6 +242,6 @@ contains
       call h5_close_group(writer, group)
     end if
     call h5_close_file(writer)
-    message = writer%failed
+    if (len(writer%failed) > 0) call set_error(error, writer%failed, file=path)
   end subroutine write_results_h5
 end module visco2d_output

@@ -25,6 +25,7 @@ module visco2d_xdmf
   use, intrinsic :: iso_fortran_env, only: int64
   use hdf5, only: hid_t
   use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text
   use visco2d_deck, only: deck_t
   use visco2d_record, only: record_t, snapshot_t
@@ -44,12 +45,13 @@ module visco2d_xdmf
 contains
 
   !> Write the XDMF file at `path` for the results.h5 written from the same
-  !> deck and record; `message` is '' or what failed.
-  subroutine write_results_xdmf(path, deck, record, message)
+  !> deck and record; `error` (the file and what failed) if a write or the
+  !> close failed.
+  subroutine write_results_xdmf(path, deck, record, error)
     character(*), intent(in) :: path
     type(deck_t), intent(in) :: deck
     type(record_t), intent(in) :: record
-    character(:), allocatable, intent(out) :: message
+    type(error_t), allocatable, intent(out) :: error
     type(text_file_t) :: out
     integer :: i
     call text_open(out, path)
@@ -66,7 +68,7 @@ contains
     call text_put(out, '  </Domain>')
     call text_put(out, '</Xdmf>')
     call text_close(out)
-    message = out%message
+    if (len(out%message) > 0) call set_error(error, out%message, file=path)
   end subroutine write_results_xdmf
 
   !> The view copies results.xmf points at, one group `/xdmf/<snapshot>` per

@@ -1,6 +1,6 @@
 !> Bodies of revolution from a measured outline (`MESH OUTLINE`): the
 !> profile given as points (r, z) from the contact (bottom) pole to the far
-!> (top) pole, both on the axis. The points are checked (`outline_problem`),
+!> (top) pole, both on the axis. The points are checked (`check_outline`),
 !> interpolated in polar form about the centre (the axis point halfway
 !> between the poles) by a cubic spline rho(phi), phi the polar angle from
 !> the contact pole's direction, with d rho/d phi = 0 at both poles (a smooth
@@ -8,13 +8,14 @@
 !> mapped radially onto the spline (`outline_grid`).
 module visco2d_outline_grid
   use visco2d_kinds, only: dp, pi
+  use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, message_real
   use visco2d_roots, only: increasing_root
   use visco2d_mesh_generator, only: sphere_grid, sphere_grid_contact, edge_set_outer
   implicit none
   private
 
-  public :: outline_t, outline_problem, make_outline, outline_radius, outline_grid, outline_volume
+  public :: outline_t, check_outline, make_outline, outline_radius, outline_grid, outline_volume
   public :: outline_pole_curvature_radius, outline_max_points
 
   !> Most points an outline may have (the crossing check on a refused
@@ -33,6 +34,20 @@ module visco2d_outline_grid
   end type outline_t
 
 contains
+
+  !> Check the points (r, z) as an outline: `error` (not allocated if they
+  !> make one) says the first problem (outline_problem's text; the caller
+  !> locates it at the card and the field of `point`, 0 for the outline as a
+  !> whole, its z if `at_z`).
+  subroutine check_outline(r, z, error, point, at_z)
+    real(dp), intent(in) :: r(:), z(:)
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(out) :: point
+    logical, intent(out) :: at_z
+    character(:), allocatable :: problem
+    call outline_problem(r, z, problem, point, at_z)
+    if (len(problem) > 0) call set_error(error, problem)
+  end subroutine check_outline
 
   !> The first problem of the points (r, z) as an outline, '' if none, and
   !> the index of the point it concerns (0 for the outline as a whole;

@@ -28,6 +28,7 @@
 !> d + (a_k - a_o) keeps full relative precision; no polynomial is formed.
 module visco2d_relaxation
   use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, short_real
   use visco2d_sorting, only: sorted_order
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
@@ -56,43 +57,50 @@ contains
   !> Uniaxial Prony series (E_i, alpha_i) (eq. [47]) and Poisson's ratio nu at
   !> t = 0 -> bulk modulus K = sum E_i/(3(1 - 2 nu)) (Table 3 footnote) and the
   !> exact shear series (G_m, beta_m) of eq. [49], sorted by increasing beta.
-  !> On failure `message` says what is wrong, `bulk` is 0 and the series are empty.
-  subroutine uniaxial_to_shear(young, alpha, poisson, bulk, shear, beta, message)
+  !> On failure `error` says what is wrong (the caller locates it), `bulk` is 0
+  !> and the series are empty.
+  subroutine uniaxial_to_shear(young, alpha, poisson, bulk, shear, beta, error)
     real(dp), intent(in) :: young(:)          !< E_i, Pa (> 0)
     real(dp), intent(in) :: alpha(:)          !< alpha_i, 1/s (>= 0)
     real(dp), intent(in) :: poisson           !< nu at t = 0, in (-1, 0.5)
     real(dp), intent(out) :: bulk             !< K, Pa
     real(dp), allocatable, intent(out) :: shear(:)  !< G_m, Pa
     real(dp), allocatable, intent(out) :: beta(:)   !< beta_m, 1/s
-    character(:), allocatable, intent(out) :: message  !< '' on success
+    type(error_t), allocatable, intent(out) :: error  !< not allocated on success
+    character(:), allocatable :: message
     real(dp) :: bulk_at_zero
     bulk = 0.0_dp
     allocate(shear(0), beta(0))
     call check_series(young, alpha, 'uniaxial', 'E', 'alpha', message)
-    if (len(message) > 0) return
+    if (len(message) > 0) then
+      call set_error(error, message)
+      return
+    end if
     if (.not. ieee_is_finite(poisson)) then
-      message = "Poisson's ratio nu is not a finite number"
+      call set_error(error, "Poisson's ratio nu is not a finite number")
       return
     end if
     if (poisson <= -1.0_dp .or. poisson >= 0.5_dp) then
-      message = "Poisson's ratio nu must be in (-1, 0.5), got "//short_real(poisson)
+      call set_error(error, "Poisson's ratio nu must be in (-1, 0.5), got "//short_real(poisson))
       return
     end if
     bulk_at_zero = sum(young)/(3.0_dp*(1.0_dp - 2.0_dp*poisson))      ! Table 3 footnote
-    call uniaxial_to_shear_with_bulk(young, alpha, bulk_at_zero, shear, beta, message)
-    if (len(message) == 0) bulk = bulk_at_zero
+    call uniaxial_to_shear_with_bulk(young, alpha, bulk_at_zero, shear, beta, error)
+    if (.not. allocated(error)) bulk = bulk_at_zero
   end subroutine uniaxial_to_shear
 
   !> Uniaxial Prony series (E_i, alpha_i) and the elastic bulk modulus K ->
   !> exact shear series (G_m, beta_m), sorted by increasing beta (eq. [48]).
-  !> Needs 9K > sum E_i (i.e. nu(0) > -1). On failure the series are empty.
-  subroutine uniaxial_to_shear_with_bulk(young, alpha, bulk, shear, beta, message)
+  !> Needs 9K > sum E_i (i.e. nu(0) > -1). On failure `error` says what is
+  !> wrong and the series are empty.
+  subroutine uniaxial_to_shear_with_bulk(young, alpha, bulk, shear, beta, error)
     real(dp), intent(in) :: young(:)          !< E_i, Pa (> 0)
     real(dp), intent(in) :: alpha(:)          !< alpha_i, 1/s (>= 0)
     real(dp), intent(in) :: bulk              !< K, Pa
     real(dp), allocatable, intent(out) :: shear(:)  !< G_m, Pa
     real(dp), allocatable, intent(out) :: beta(:)   !< beta_m, 1/s
-    character(:), allocatable, intent(out) :: message  !< '' on success
+    type(error_t), allocatable, intent(out) :: error  !< not allocated on success
+    character(:), allocatable :: message
     real(dp), allocatable :: coefficient(:), rate(:)
     call check_series(young, alpha, 'uniaxial', 'E', 'alpha', message)
     if (len(message) == 0) call check_bulk(bulk, message)
@@ -102,33 +110,39 @@ contains
     end if
     if (len(message) > 0) then
       allocate(shear(0), beta(0))
+      call set_error(error, message)
       return
     end if
     call merge_equal_rates(young, alpha, coefficient, rate)
     ! eq. [48]: Gbar = 3K S/(9K - s S)
     call invert_rational(coefficient, rate, 3.0_dp*bulk, 9.0_dp*bulk, shear, beta, message)
+    if (len(message) > 0) call set_error(error, message)
   end subroutine uniaxial_to_shear_with_bulk
 
   !> Inverse of eq. [48]: shear series (G_m, beta_m) and the bulk modulus K ->
   !> uniaxial series (E_i, alpha_i), sorted by increasing alpha, from
-  !> Ebar = 9K Gbar/(3K + s Gbar). On failure the series are empty.
-  subroutine shear_to_uniaxial(shear, beta, bulk, young, alpha, message)
+  !> Ebar = 9K Gbar/(3K + s Gbar). On failure `error` says what is wrong and
+  !> the series are empty.
+  subroutine shear_to_uniaxial(shear, beta, bulk, young, alpha, error)
     real(dp), intent(in) :: shear(:)          !< G_m, Pa (> 0)
     real(dp), intent(in) :: beta(:)           !< beta_m, 1/s (>= 0)
     real(dp), intent(in) :: bulk              !< K, Pa (> 0)
     real(dp), allocatable, intent(out) :: young(:)  !< E_i, Pa
     real(dp), allocatable, intent(out) :: alpha(:)  !< alpha_i, 1/s
-    character(:), allocatable, intent(out) :: message  !< '' on success
+    type(error_t), allocatable, intent(out) :: error  !< not allocated on success
+    character(:), allocatable :: message
     real(dp), allocatable :: coefficient(:), rate(:)
     call check_series(shear, beta, 'shear', 'G', 'beta', message)
     if (len(message) == 0) call check_bulk(bulk, message)
     if (len(message) > 0) then
       allocate(young(0), alpha(0))
+      call set_error(error, message)
       return
     end if
     call merge_equal_rates(shear, beta, coefficient, rate)
     ! Ebar = 9K Gbar/(3K + s Gbar) = (-9K) Gbar/((-3K) - s Gbar)
     call invert_rational(coefficient, rate, -9.0_dp*bulk, -3.0_dp*bulk, young, alpha, message)
+    if (len(message) > 0) call set_error(error, message)
   end subroutine shear_to_uniaxial
 
   !> Checks of a Prony series: terms present, sizes equal, finite values,
