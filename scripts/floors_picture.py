@@ -26,7 +26,7 @@ WHAT = {
     "mesh": "generators, outline grid, overlap tests",
     "cards": "the reader, the cards, the deck, the pad mesh",
     "base": "the legacy static program: element, assembly, factors, solution",
-    "plasticity": "J2 return mapping in series with the viscoelastic law",
+    "plasticity": "J2 return mapping, the static plastic Newton solve",
     "io": "summary, CSV, HDF5, XDMF, listing",
     "bruise": "bruise prediction from the fields",
     "contact": "the rigid plate, capacitance system, impact, pad",
