@@ -30,7 +30,7 @@ WHAT = {
     "io": "summary, CSV, HDF5, XDMF, listing",
     "bruise": "bruise prediction from the fields",
     "contact": "the rigid plate, capacitance system, impact, pad",
-    "dynamics": "Wilson-θ and its family, energy books",
+    "dynamics": "Wilson-θ and its family, the energy balance",
     "": "the driver: a deck through every stage",
 }
 

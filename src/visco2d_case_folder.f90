@@ -15,7 +15,8 @@ module visco2d_case_folder
   use visco2d_system, only: make_directory, rename_path, remove_file, remove_directory, process_id, &
                             directory_exists, path_exists, remove_tree, process_alive, matching_paths, path_t, &
                             interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm, &
-                            host_name, lock_take, lock_release, lock_close, interrupt_lock_arm, interrupt_lock_disarm
+                            host_name, lock_take, lock_release, lock_close, interrupt_lock_arm, interrupt_lock_disarm, &
+                            hold_interrupts
   implicit none
   private
 
@@ -224,12 +225,12 @@ contains
       return
     end if
     lock%path = out_root//'/.'//case_name//'.lock'
+    call hold_interrupts(.true.)                  ! no interrupt between the take and the arm: the file would stay
     call lock_take(lock%path, 'process '//integer_text(process_id())//' on host '//host_name(), lock%fd, status, holder, &
                    patient=.true.)
-    if (status == 0) then
-      call interrupt_lock_arm(lock%path)
-      return
-    end if
+    if (status == 0) call interrupt_lock_arm(lock%path)
+    call hold_interrupts(.false.)
+    if (status == 0) return
     lock%fd = -1
     if (status == 1) then
       if (len(holder) == 0) holder = 'a process that has not yet said which'
@@ -248,8 +249,10 @@ contains
   subroutine unlock_case(lock)
     type(case_lock_t), intent(inout) :: lock
     if (lock%fd >= 0) then
+      call hold_interrupts(.true.)                ! no interrupt between the disarm and the release
       call interrupt_lock_disarm()
       call lock_release(lock%fd, lock%path)
+      call hold_interrupts(.false.)
       lock%fd = -1
     end if
     call remove_created(lock)

@@ -8,6 +8,7 @@
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <string.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -82,6 +83,19 @@ void visco2d_lock_release(int fd, const char *path) {
 /* Close a lock file without removing it (a check of a lock another host's run may still name). */
 void visco2d_lock_close(int fd) {
     if (fd >= 0) close(fd);
+}
+
+/* Hold (hold != 0) or let through again (hold == 0) SIGINT and SIGTERM:
+ * while a lock is taken and armed for removal on an interrupt, or disarmed
+ * and released, an interrupt waits, so that it never ends the process
+ * between the two and leaves the lock file behind. Returns 0, or -1 when
+ * the signal mask cannot be changed. */
+int visco2d_hold_interrupts(int hold) {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    return sigprocmask(hold ? SIG_BLOCK : SIG_UNBLOCK, &set, NULL) == 0 ? 0 : -1;
 }
 
 /* The host name (gethostname), null-terminated; "" if unknown. */

@@ -16,7 +16,7 @@ module visco2d_system
   public :: path_t, get_argument
   public :: install_interrupt_cleanup, interrupt_cleanup_arm, interrupt_cleanup_restore, interrupt_cleanup_disarm
   public :: file_open_write, file_write, file_close
-  public :: host_name, lock_take, lock_release, lock_close, interrupt_lock_arm, interrupt_lock_disarm
+  public :: host_name, lock_take, lock_release, lock_close, interrupt_lock_arm, interrupt_lock_disarm, hold_interrupts
 
   !> One path of a list (`matching_paths`).
   type :: path_t
@@ -133,6 +133,10 @@ module visco2d_system
       import :: c_int
       integer(c_int), value :: fd
     end subroutine c_lock_close
+    integer(c_int) function c_hold_interrupts(hold) bind(c, name='visco2d_hold_interrupts')
+      import :: c_int
+      integer(c_int), value :: hold
+    end function c_hold_interrupts
     subroutine c_host_name(name, size) bind(c, name='visco2d_host_name')
       import :: c_int, c_char
       character(kind=c_char), intent(out) :: name(*)
@@ -288,6 +292,14 @@ contains
     cleanup_lock = c_text(path)
     cleanup_lock_armed = len(path) < cleanup_length
   end subroutine interrupt_lock_arm
+
+  !> Hold SIGINT and SIGTERM (hold = .true.) until they are let through again
+  !> (.false.): an interrupt that came meanwhile is then delivered.
+  subroutine hold_interrupts(hold)
+    logical, intent(in) :: hold
+    integer(c_int) :: status
+    status = c_hold_interrupts(merge(1_c_int, 0_c_int, hold))
+  end subroutine hold_interrupts
 
   !> No lock file to remove on an interrupt.
   subroutine interrupt_lock_disarm()
