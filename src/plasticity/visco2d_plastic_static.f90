@@ -44,7 +44,8 @@ module visco2d_plastic_static
                               scatter_add, nodal_field, nodal_average
   use visco2d_static, only: static_solution_t
   use visco2d_solve_errors, only: singular_error, not_finite_error
-  use visco2d_plasticity, only: return_result_t, radial_return, consistent_tangent, deviatoric_norm
+  use visco2d_plasticity, only: return_result_t, consistent_tangent, deviatoric_norm, viscoplastic_update
+  use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients
   use visco2d_record, only: record_t, record_put_integer, record_put_real
   implicit none
   private
@@ -98,6 +99,7 @@ contains
     real(dp), allocatable :: trial_stress(:, :, :), trial_strain(:, :, :), trial_ebar(:, :), plastic(:, :, :)
     real(dp), allocatable :: load(:), presc(:), u(:), u_start(:), du(:), rhs(:), force(:), force_start(:), r(:)
     real(dp), allocatable :: step_backward(:, :)
+    type(step_coefficients_t), allocatable :: instant(:)   !< per material at dt = 0: mu = G(0), K
     logical, allocatable :: fixed(:)
     type(band_matrix_t) :: stiffness
     type(factor_t) :: factor
@@ -106,6 +108,10 @@ contains
     logical :: converged
 
     nelem = mesh%nelem
+    allocate(instant(size(materials)))
+    do e = 1, size(materials)
+      instant(e) = step_coefficients(materials(e), 0.0_dp)
+    end do
     n = settings%increments
     max_iterations = settings%iterations
     allocate(b(4, 8, gauss_count, nelem), weight(gauss_count, nelem), tangent(4, 4, gauss_count, nelem))
@@ -267,7 +273,7 @@ contains
     subroutine evaluate(increment)
       real(dp), intent(in) :: increment(:)
       type(return_result_t) :: state
-      real(dp) :: local(8), de(4), trial(4), volumetric, mean, f(8)
+      real(dp) :: local(8), de(4), f(8), no_history(4, 0)
       integer :: el, gp
       force = 0.0_dp
       do el = 1, nelem
@@ -281,16 +287,11 @@ contains
             trial_stress(:, gp, el) = stress_from_strain(m%shear, m%bulk, trial_strain(:, gp, el))
             plastic(:, gp, el) = 0.0_dp
             step_backward(gp, el) = 0.0_dp
-          else
-            volumetric = de(1) + de(2) + de(3)
-            mean = sum(stress(1:3, gp, el))/3.0_dp + m%bulk*volumetric
-            trial = deviator(stress(:, gp, el))
-            trial(1:3) = trial(1:3) + 2.0_dp*m%shear*(de(1:3) - volumetric/3.0_dp)
-            trial(4) = trial(4) + m%shear*de(4)
-            state = radial_return(m%hardening, m%shear, trial, ebar(gp, el))
-            trial_stress(:, gp, el) = state%stress
-            trial_stress(1:3, gp, el) = trial_stress(1:3, gp, el) + mean
-            trial_ebar(gp, el) = state%equivalent_plastic
+          else                                      ! the kernel's update at dt = 0 (mu = G, no history)
+            trial_stress(:, gp, el) = stress(:, gp, el)
+            trial_ebar(gp, el) = ebar(gp, el)
+            call viscoplastic_update(m, instant(mesh%element_material(el)), m%hardening, de, trial_stress(:, gp, el), &
+                                     no_history, trial_ebar(gp, el), state)
             plastic(:, gp, el) = state%plastic_increment
             step_backward(gp, el) = state%dissipation
             tangent(:, :, gp, el) = consistent_tangent(m%bulk, m%shear, state)
