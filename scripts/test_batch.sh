@@ -44,10 +44,8 @@ batch() { "$tool" "$@" --exe "$exe"; }
 work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_batch.XXXXXX") || { fail mktemp "cannot create a temporary folder"; exit 0; }
 trap 'rm -rf "$work"' EXIT
 cd "$work" || { fail cd "cannot enter $work"; exit 0; }
-# visco2d-batch: the launcher `make build` writes beside the executable (python/launchers.py),
-# else one written here for this checkout's python/
-tool="$(dirname "$exe")/visco2d-batch"
-[ -x "$tool" ] || { python3 "$root/python/launchers.py" "$work/bin" > /dev/null; tool="$work/bin/visco2d-batch"; }
+source "$root/scripts/batch_tool.sh"
+tool=$(batch_tool "$exe" "$work")
 
 check launcher_checkout "$tool does not import the package of this checkout ($root/python)" \
   grep -qF "$root/python" "$tool"

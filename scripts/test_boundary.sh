@@ -32,10 +32,8 @@ batch() { "$tool" "$@" --exe "$exe"; }
 work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_boundary.XXXXXX") || { fail mktemp "cannot create a temporary folder"; exit 0; }
 trap 'rm -rf "$work"' EXIT
 cd "$work" || { fail cd "cannot enter $work"; exit 0; }
-# visco2d-batch: the launcher `make build` writes beside the executable (python/launchers.py),
-# else one written here for this checkout's python/
-tool="$(dirname "$exe")/visco2d-batch"
-[ -x "$tool" ] || { python3 "$root/python/launchers.py" "$work/bin" > /dev/null; tool="$work/bin/visco2d-batch"; }
+source "$root/scripts/batch_tool.sh"
+tool=$(batch_tool "$exe" "$work")
 
 installed="$(dirname "$exe")/visco2d_boundary.py"
 if [ -f "$installed" ]; then

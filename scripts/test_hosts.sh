@@ -36,10 +36,8 @@ work=$(mktemp -d "${TMPDIR:-/tmp}/visco2d_hosts.XXXXXX") || { fail mktemp "canno
 holders=()
 trap 'for p in "${holders[@]}"; do kill "$p" 2> /dev/null; done; rm -rf "$work"' EXIT
 cd "$work" || { fail cd "cannot enter $work"; exit 0; }
-# visco2d-batch: the launcher `make build` writes beside the executable (python/launchers.py),
-# else one written here for this checkout's python/
-tool="$(dirname "$exe")/visco2d-batch"
-[ -x "$tool" ] || { python3 "$root/python/launchers.py" "$work/bin" > /dev/null; tool="$work/bin/visco2d-batch"; }
+source "$root/scripts/batch_tool.sh"
+tool=$(batch_tool "$exe" "$work")
 
 sed -e 's/^MESH SPHERE R=0.03 LEVEL=3/MESH SPHERE R=0.03 LEVEL=1/' "$root/inputs/peach_drop.inp" > small.inp
 cp "$root/inputs/peach_drop.inp" slow.inp
