@@ -36,6 +36,7 @@ build: setup
 	  n=$$(grep -c 'done\.' build/build.log); \
 	  echo "visco2d: built $(EXE) ($$( [ $$n -gt 0 ] && echo "$$n files compiled" || echo "up to date" ), $$(( $$(date +%s) - start )) s)"
 	@python3 python/launchers.py $(PREFIX)/bin   # visco2d-batch, visco2d-diff, visco2d-report: doc/python.md
+	@python3 -m compileall -q python/visco2d > /dev/null || true   # their byte code once, not at each start: a sweep starts sooner
 
 run: build
 	@echo "visco2d: running $(words $(DECKS)) decks into out/"

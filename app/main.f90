@@ -1,6 +1,8 @@
 !> visco2d command line:
 !>   visco2d [options] DECK...     run decks into OUT/<deck stem>/
 !>   visco2d check DECK...         parse and check, print mesh statistics and effects
+!>   visco2d --decks-from LIST     the deck paths one per line in the file LIST; with LIST -,
+!>                                 read from standard input and each run as its line arrives
 !>   visco2d relax --nu NU E1 ALPHA1 [E2 ALPHA2 ...]
 !>                                 exact shear relaxation series of a uniaxial one (eq. [48])
 program visco2d
@@ -13,12 +15,15 @@ program visco2d
   use visco2d_case_folder, only: prepare_output_root
   use visco2d_system, only: ignore_file_size_signal, install_interrupt_cleanup, get_argument
   use visco2d_cards, only: parse_real
+  use visco2d_card_reader, only: read_line
+  use visco2d_driver, only: case_name_of
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_strings, only: integer_text
   use visco2d_timers, only: timers_enable
   use visco2d_progress, only: progress_configure, progress_auto, progress_on, progress_off
   use visco2d_budget, only: set_memory_limit, set_time_limit, read_limit_environment
   use, intrinsic :: iso_c_binding, only: c_int
+  use, intrinsic :: iso_fortran_env, only: iostat_end
   implicit none
   interface
     subroutine c_exit(status) bind(c, name='exit')
@@ -26,9 +31,9 @@ program visco2d
       integer(c_int), value :: status
     end subroutine c_exit
   end interface
-  character(:), allocatable :: out_root, argument, message
+  character(:), allocatable :: out_root, argument, message, list
   character(len=:), allocatable :: decks(:)
-  integer :: i, count, failed, missed, length
+  integer :: i, count, failed, missed, length, streamed
   logical :: quiet, checking, progress
   type(error_t), allocatable :: error
 
@@ -38,6 +43,7 @@ program visco2d
   quiet = .false.
   progress = .false.
   checking = .false.
+  list = ''
   if (command_argument_count() >= 1) then
     call get_argument(1, argument)
     if (argument == 'relax') call run_relax()
@@ -64,6 +70,12 @@ program visco2d
       progress = .true.
     case ('--timing')
       call timers_enable(.true.)
+    case ('--decks-from')
+      if (i == command_argument_count()) call usage_error('option '//argument//' needs a file of deck paths, or - for stdin')
+      if (len(list) > 0) call usage_error('option --decks-from is given twice')
+      i = i + 1
+      call get_argument(i, list)
+      if (len(list) == 0) call usage_error('the file given with --decks-from is empty: give a file of deck paths, or -')
     case ('--max-memory')
       if (i == command_argument_count()) call usage_error('option '//argument//' needs a size (e.g. 8G)')
       i = i + 1
@@ -92,7 +104,13 @@ program visco2d
   end do
   call read_limit_environment(message)      ! a bad VISCO2D_MAX_MEMORY / VISCO2D_MAX_TIME: as a bad option
   if (len(message) > 0) call usage_error(message)
-  if (count == 0) call usage_error('no deck given')
+  if (list == '-') then
+    if (count > 0) call usage_error('with --decks-from - the decks come from standard input only: '// &
+      'give no deck on the command line')
+  else if (len(list) > 0) then
+    call read_deck_list(list)
+  end if
+  if (count == 0 .and. list /= '-') call usage_error('no deck given')
   if (.not. checking) then
     message = duplicate_case_message(decks(1:count), out_root)    ! no silent overwrite of a case folder
     if (len(message) > 0) call usage_error(message)
@@ -102,19 +120,15 @@ program visco2d
 
   failed = 0
   missed = 0
-  do i = 1, count
-    length = len_trim(decks(i))
-    if (checking) then
-      call check_deck(decks(i)(1:length), error)
-    else
-      call run_one(decks(i)(1:length), error)
-    end if
-    if (allocated(error)) then
-      failed = failed + 1
-      write(0, '(a)') 'visco2d: error: '//error_text(error)
-      deallocate(error)
-    end if
-  end do
+  if (list == '-') then
+    call run_streamed()
+    count = streamed
+  else
+    do i = 1, count
+      length = len_trim(decks(i))
+      call run_or_check(decks(i)(1:length))
+    end do
+  end if
   if (count > 1 .and. failed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', failed, ' of ', count, ' decks failed'
   if (count > 1 .and. missed > 0) write(0, '(a, i0, a, i0, a)') 'visco2d: ', missed, ' of ', count, &
     ' decks missed their own EXPECT cards (their results are written)'
@@ -127,6 +141,117 @@ program visco2d
   if (missed > 0) call c_exit(int(expect_missed_status, c_int))     ! every deck ran; an EXPECT card missed
 
 contains
+
+  !> One deck, checked or run; a failure is counted and printed as "visco2d: error: ..." on stderr.
+  subroutine run_or_check(path)
+    character(*), intent(in) :: path
+    if (checking) then
+      call check_deck(path, error)
+    else
+      call run_one(path, error)
+    end if
+    if (allocated(error)) then
+      failed = failed + 1
+      write(0, '(a)') 'visco2d: error: '//error_text(error)
+      deallocate(error)
+    end if
+    flush(6)
+    flush(0)
+  end subroutine run_or_check
+
+  !> --decks-from FILE: its deck paths, one per line (blank lines and lines
+  !> starting with # skipped), after those of the command line. A file that
+  !> cannot be read is a usage error (exit status 2), before any deck runs.
+  subroutine read_deck_list(path)
+    character(*), intent(in) :: path
+    character(:), allocatable :: line
+    character(len=512) :: reason
+    character(len=:), allocatable :: bigger(:)
+    integer :: unit, ios, number
+    open(newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=reason)
+    if (ios /= 0) call usage_error('--decks-from '//path//': cannot open it: '//trim(reason))
+    number = 0
+    do
+      call read_line(unit, line, ios, reason)
+      if (ios /= 0) exit
+      number = number + 1
+      line = deck_path_of(line)
+      if (len(line) == 0) cycle
+      if (len(line) > len(decks)) call usage_error(path//':'//integer_text(number)// &
+        ': a deck path longer than '//integer_text(len(decks))//' characters')
+      if (count == size(decks)) then
+        allocate(character(len=len(decks)) :: bigger(max(16, 2*size(decks))))
+        bigger(1:count) = decks(1:count)
+        call move_alloc(bigger, decks)
+      end if
+      count = count + 1
+      decks(count) = line
+    end do
+    if (ios /= iostat_end) call usage_error(path//':'//integer_text(number + 1)//': cannot read it: '//trim(reason))
+    close(unit)
+  end subroutine read_deck_list
+
+  !> --decks-from -: each line of standard input a deck, run (or checked) as
+  !> soon as its line is read, so a program can keep one visco2d process busy
+  !> with the decks of a sweep (visco2d-batch does: doc/batch.md). Two decks
+  !> with one case name: the second is refused (an error of that deck) rather
+  !> than replacing the first one's folder.
+  subroutine run_streamed()
+    character(:), allocatable :: line, name
+    character(len=512) :: reason
+    character(len=:), allocatable :: names(:), bigger(:)
+    integer :: ios, k
+    logical :: seen
+    streamed = 0
+    allocate(character(len=256) :: names(64))
+    do
+      call read_line(5, line, ios, reason)
+      if (ios /= 0) exit
+      line = deck_path_of(line)
+      if (len(line) == 0) cycle
+      streamed = streamed + 1
+      name = case_name_of(line)
+      seen = .false.
+      do k = 1, streamed - 1
+        if (names(k) == name) seen = .true.
+      end do
+      if (seen) then
+        failed = failed + 1
+        write(0, '(a)') 'visco2d: error: '//line//': the case name "'//name//'" was run earlier in this batch: '// &
+          'its folder '//out_root//'/'//name//'/ would be replaced; give each deck once, with its own name'
+        flush(0)
+        cycle
+      end if
+      if (streamed > size(names) .or. len(name) > len(names)) then
+        allocate(character(len=max(len(names), len(name))) :: bigger(max(size(names), 2*streamed)))
+        bigger(1:streamed - 1) = names(1:streamed - 1)
+        call move_alloc(bigger, names)
+      end if
+      names(streamed) = name
+      call run_or_check(line)
+    end do
+    if (ios /= iostat_end) then
+      write(0, '(a)') 'visco2d: error: standard input (--decks-from -): cannot read it: '//trim(reason)
+      failed = failed + 1
+    end if
+  end subroutine run_streamed
+
+  !> A line of a deck list as a path: without a trailing carriage return and
+  !> blanks; '' for a blank line or a # comment.
+  function deck_path_of(line) result(path)
+    character(*), intent(in) :: line
+    character(:), allocatable :: path
+    path = line
+    if (len(path) > 0) then
+      if (path(len(path):len(path)) == achar(13)) path = path(1:len(path) - 1)
+    end if
+    path = trim(path)
+    if (len(adjustl(path)) == 0) then
+      path = ''
+    else if (path(1:1) == '#') then
+      path = ''
+    end if
+  end function deck_path_of
 
   !> Run a deck; print its one-line result unless quiet (the record is freed on return).
   subroutine run_one(path, error)
@@ -302,6 +427,11 @@ contains
     print '(a)', '                  it shows only when stderr is a terminal. The delay before'
     print '(a)', '                  the first line: VISCO2D_PROGRESS_DELAY=<seconds> (default 2)'
     print '(a)', '  --timing        print the time of each phase of each run (make bench)'
+    print '(a)', '  --decks-from LIST'
+    print '(a)', '                  the deck paths one per line in the file LIST (blank lines and'
+    print '(a)', '                  # comments skipped), after those of the command line; with'
+    print '(a)', '                  LIST = -, read from standard input, each deck run as soon as'
+    print '(a)', '                  its line arrives (one process kept busy by a program feeding it)'
     print '(a)', '  --max-memory SIZE'
     print '(a)', '                  refuse a deck whose run is estimated to need more memory than'
     print '(a)', '                  SIZE (e.g. 8G, 512M; K, M, G, T are powers of 1024). Also'

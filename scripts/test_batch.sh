@@ -273,11 +273,16 @@ check expect_miss_results_written "expects/pressure__uz=2.0e-3/summary.txt is mi
 check expect_miss_reported "expects.log: no 'MISSED pressure__uz=2.0e-3: ...: EXPECT: probe_pole_uz_m' line" \
   grep -q '^MISSED pressure__uz=2.0e-3: .*:23:[0-9]*: EXPECT: probe_pole_uz_m = ' expects.log
 
-# 12. Batches of decks in one visco2d process (python/visco2d/workers.py): a stand-in visco2d logs each
-#     process's decks and runs them through the real one, one process for all; a 16-case sweep whose 6th
-#     case fails and whose 11th misses its EXPECT card takes fewer processes than cases, every case
-#     keeps its own result, error or miss and its result line, and the table is that of one process a case.
-printf '#!/bin/bash\necho "$(($# - 2)) ${*:3}" >> "%s/processes.log"\nexec "%s" "$@"\n' "$work" "$exe" > logging_visco2d
+# 12. The decks of a sweep fed to one visco2d process a worker (python/visco2d/workers.py, visco2d
+#     --decks-from -): a stand-in visco2d logs each process and each deck it is fed and passes them to
+#     the real one; a 16-case sweep on -j 2 whose 6th case fails and whose 11th misses its EXPECT card
+#     takes one process a worker, every deck fed once, every case keeps its own result, error or miss
+#     and its result line, and the table is that of one process a case.
+cat > logging_visco2d <<STANDIN
+#!/bin/bash
+echo "process \$*" >> "$work/processes.log"
+while IFS= read -r deck; do echo "deck \$deck" >> "$work/processes.log"; echo "\$deck"; done | exec "$exe" "\$@"
+STANDIN
 chmod +x logging_visco2d
 sed -e 's/NU=0.35/NU=${nu}/' -e 's/^END$/EXPECT alpha_max_mm ${alpha} RTOL=1e-3\nEND/' peach.inp > peach_mixed.inp
 : > mixed_rows.csv
@@ -290,11 +295,11 @@ for k in $(seq 1 16); do
 done
 python3 "$tool" run peach_mixed.inp --table mixed_rows.csv -j 2 --exe "$work/logging_visco2d" -o mixed > mixed.log 2>&1
 check_rc batched_status_1 1 $?
-processes=$(wc -l < processes.log)
-check batched_fewer_processes "$processes processes for 16 cases: $(tr '\n' '|' < processes.log | head -c 300)" \
-  test "$processes" -lt 16
-check batched_several_decks_a_process "no process ran more than one deck: $(tr '\n' '|' < processes.log | head -c 300)" \
-  test "$(cut -d' ' -f1 processes.log | sort -n | tail -1)" -gt 1
+processes=$(grep -c '^process ' processes.log)
+check batched_one_process_a_worker "$processes processes for 16 cases on -j 2: $(tr '\n' '|' < processes.log | head -c 300)" \
+  test "$processes" -le 2 -a "$(grep -c '^process -o mixed/* --decks-from -$' processes.log)" = "$processes"
+check batched_every_deck_fed_once "processes.log: $(grep -c '^deck ' processes.log) decks fed, $(grep '^deck ' processes.log | sort -u | wc -l) distinct, expected 16" \
+  test "$(grep -c '^deck ' processes.log)" = 16 -a "$(grep '^deck ' processes.log | sort -u | wc -l)" = 16
 check batched_failed_case "mixed/table.csv: mixed_6 is not failed with MATERIAL's located error: $(grep '^mixed_6,' mixed/table.csv)" \
   grep -q '^mixed_6,failed,.*decks/mixed_6.inp:12:[0-9]*: MATERIAL: NU must be' mixed/table.csv
 check batched_missed_case "mixed/table.csv: mixed_11 is not missed: $(grep '^mixed_11,' mixed/table.csv)" \
@@ -320,23 +325,38 @@ for k in (1, 16):
 PY
 check batched_same_results "mixed_1 or mixed_16: alpha_max_mm differs from the case run alone" test "$summaries_equal" = yes
 
-# A process killed in a deck (the stand-in kills itself at the 5th deck of the first batch that has
-# one): that deck fails
-# with the signal, the decks after it run in another process, all others end.
-printf '#!/bin/bash\necho "$(($# - 2)) ${*:3}" >> "%s/killed_processes.log"\nroot=$2; shift 2; n=0\nfor deck in "$@"; do\n  n=$((n + 1)); [ $n = 5 ] && mkdir "%s/killed.once" 2> /dev/null && kill -KILL $$\n  "%s" -o "$root" "$deck" 2>&1\ndone\n' \
-  "$work" "$work" "$exe" > killing_visco2d
+# A process killed in a deck (the stand-in, fed as visco2d is with --decks-from -, kills itself at
+# the 5th deck it reads, once): that deck fails with the signal, the decks written to it after that
+# one go back on the queue and run in a new process, first in line; all others end.
+cat > killing_visco2d <<STANDIN
+#!/bin/bash
+echo "process" >> "$work/killed_processes.log"
+root=\$2; n=0
+while IFS= read -r deck; do
+  n=\$((n + 1)); echo "deck \$deck" >> "$work/killed_processes.log"
+  [ \$n = 5 ] && mkdir "$work/killed.once" 2> /dev/null && kill -KILL \$\$
+  "$exe" -o "\$root" "\$deck" 2>&1
+done
+STANDIN
 chmod +x killing_visco2d
 python3 "$tool" run peach.inp --param height=0.05:0.2:12 --param radius=0.03 -j 1 --exe "$work/killing_visco2d" -q \
   -o killed_batch > killed_batch.log 2>&1
 check_rc killed_batch_status_1 1 $?
 killed=$(grep ',failed,' killed_batch/table.csv | cut -d, -f1)
-check killed_batch_one_failed "killed_batch/table.csv: failed: '$killed' (expected the 5th deck of a batch, stopped by signal 9)" \
+check killed_batch_one_failed "killed_batch/table.csv: failed: '$killed' (expected the 5th deck of the process, stopped by signal 9)" \
   bash -c 'test "$(grep -c ",failed,.*stopped by signal 9" killed_batch/table.csv)" = 1'
 check killed_batch_others_ok "killed_batch/table.csv: $(grep -c ',ok,' killed_batch/table.csv) ok rows, expected 11" \
   test "$(grep -c ',ok,' killed_batch/table.csv)" = 11
 check killed_batch_rest_rerun "killed_processes.log: the process after the killed one does not start with the deck after its 5th: $(tr '\n' '|' < killed_processes.log | head -c 400)" \
   python3 -c '
-import sys
-lines = [line.split() for line in open("killed_processes.log")]
-killed = next(k for k, line in enumerate(lines) if int(line[0]) >= 5)
-assert lines[killed + 1][1] == lines[killed][1 + 5], lines'
+import os
+processes = []
+for line in open("killed_processes.log"):
+    if line.strip() == "process":
+        processes.append([])
+    else:
+        processes[-1].append(os.path.basename(line.split(" ", 1)[1].strip())[:-len(".inp")])
+order = [line.split(",")[0] for line in open("killed_batch/table.csv")][1:]
+first, second = processes[0], processes[1]
+assert len(first) == 5 and first == order[:5], (first, order)
+assert second[0] == order[5] and second == order[5:], (second, order)

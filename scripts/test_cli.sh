@@ -1326,4 +1326,26 @@ check duplicate_same_deck_named "stderr: $(first_lines twin2.err)" grep -q "twin
 "$exe" check twin_a/twin.inp twin_b/twin.inp > twin3.out 2> twin3.err
 check_rc duplicate_case_check_allowed 0 $?
 
+# --decks-from: a list file (blank lines, # comments and a CRLF skipped) and standard input, each
+# deck of the stream run as its line arrives; the results are those of the same decks as arguments.
+printf 'decks/first.inp\r\n\n# a comment\ndecks/last.inp\n' > list.txt
+"$exe" -o from_list --decks-from list.txt > from_list.out 2> from_list.err
+check_rc decks_from_file_exit_0 0 $?
+check decks_from_file_both_run "stdout: $(first_lines from_list.out)" \
+  sh -c 'test "$(grep -c " nodes, " from_list.out)" = 2 && test -f from_list/first/summary.txt && test -f from_list/last/summary.txt'
+"$exe" -o from_args decks/first.inp decks/last.inp > from_args.out 2>&1
+check decks_from_file_same_results "the summaries differ from the same decks given as arguments" \
+  bash -c 'for c in first last; do diff <(grep -v "^cpu_s\|^wall_s\|^date\|_path\|^output" from_list/$c/summary.txt) <(grep -v "^cpu_s\|^wall_s\|^date\|_path\|^output" from_args/$c/summary.txt) > /dev/null || exit 1; done'
+printf 'decks/first.inp\ndecks/last.inp\ntwin_a/twin.inp\ntwin_b/twin.inp\n' | "$exe" -o from_stdin --decks-from - > from_stdin.out 2> from_stdin.err
+check_rc decks_from_stdin_twin_exit_1 1 $?
+check decks_from_stdin_three_run "stdout: $(first_lines from_stdin.out)" test "$(grep -c ' nodes, ' from_stdin.out)" = 3
+check decks_from_stdin_twin_refused "stderr: $(first_lines from_stdin.err)" \
+  grep -q 'twin_b/twin.inp: the case name "twin" was run earlier in this batch' from_stdin.err
+"$exe" -o from_bad --decks-from no_such_list.txt > from_bad.out 2> from_bad.err
+check_rc decks_from_missing_file_exit_2 2 $?
+check decks_from_missing_file_named "stderr: $(first_lines from_bad.err)" \
+  sh -c 'grep -q "no_such_list.txt: cannot open it" from_bad.err && test ! -e from_bad'
+"$exe" -o from_both --decks-from - decks/first.inp < /dev/null > from_both.out 2> from_both.err
+check_rc decks_from_stdin_and_arguments_exit_2 2 $?
+
 exit 0

@@ -111,7 +111,7 @@ kill_a_worker() {
   local batch=$1 out=$2 i child
   wait_for "$out/$first_case/summary.txt" || return 1
   for i in $(seq 1 2000); do
-    child=$(pgrep -f -- "-o $out/*[^ ]* .*decks/drop__height" | head -1)
+    child=$(pgrep -f -- "-o $out/*[^ ]* (--decks-from -|.*decks/drop__height)" | head -1)
     [ -n "$child" ] && { kill -KILL "$child"; return 0; }
     sleep 0.005
   done

@@ -8,7 +8,7 @@ One package, one job per module (doc/python.md lists them and what stays hand-wr
   hertz       Hertz's impact of a sphere on a rigid plate (the paper's eqs. [43]-[46])
   batch       visco2d-batch: sweeps, threshold searches, the task farm, the results table
   boundary    visco2d-batch boundary: the damage boundary of fruits x surfaces, its chart
-  workers     the local workers: batches of decks to one visco2d process each
+  workers     the local workers: one visco2d process each, fed the decks
   diff        visco2d-diff: a run against archived reference outputs
   report      visco2d-report: one picture per case
   figures     the paper's figures; paper_table, study, bench, integrators, convergence: the

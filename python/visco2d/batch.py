@@ -425,7 +425,7 @@ def clear_case(out, case):
 
 
 def run_local(cases, out, exe, jobs, progress, stage=None):
-    """The cases on `jobs` local workers, each handing batches of decks to one `visco2d -o ROOT DECK...`
+    """The cases on `jobs` local workers, each feeding the decks to one `visco2d -o ROOT --decks-from -`
     process (python/visco2d/workers.py: a process start costs more than a small case). With `stage`,
     into that root and then moved into OUT/ (shards on several hosts never see each other's temporary
     folders). Each case ends on its own (its folder, its error, the progress line). On SIGINT (Ctrl-C)

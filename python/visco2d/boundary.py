@@ -6,7 +6,7 @@
 Every point of the fruit grid (the product of the --param lists) on every surface is one
 threshold search of the searched parameter (the one given as LOW:HIGH), the same bisection
 (k-section) as `visco2d-batch threshold`; the searches run side by side on one set of -j workers
-(scripts/visco2d.workers.py), each search's next round queued as soon as its last has ended.
+(python/visco2d/workers.py), each search's next round queued as soon as its last has ended.
 A surface is the card text put in the template's line holding ${surface} alone (`none`:
 nothing, no PAD card; `@FILE`: the cards of a file; `;` separates cards on the command line; a
 ${surface} elsewhere, in the TITLE say, is the surface's name) or a named set of parameter
@@ -343,7 +343,7 @@ def boundary(options):
 
 
 def run_searches(searches, condition, options):
-    """Every search on one set of workers (scripts/visco2d.workers.py): a search's next round starts
+    """Every search on one set of workers (python/visco2d/workers.py): a search's next round starts
     as soon as its last one has ended, so the cores stay busy while any search is left. The names
     of the runs, in the order they were made."""
     exe = batch.find_program(options.exe, 'VISCO2D', 'visco2d', 'build/install/bin/visco2d')

@@ -1,64 +1,48 @@
-"""The local runs of visco2d-batch: `jobs` workers, each handing batches of decks to one visco2d process.
+"""The local runs of visco2d-batch: `jobs` workers, each feeding the decks to one visco2d process.
 
 A visco2d process costs some 25 ms of CPU to start (its libraries, its output root) and
 visco2d-batch a few more to start and wait for it: for small cases that is most of a core. So each
-worker takes a batch of decks off one queue and runs them in one `visco2d -o ROOT DECK...`
-(which runs them one after the other, each into its own folder, exactly as alone: doc/command_line.md).
-The batch is sized from the wall time a case has taken so far: 1/(2 jobs) of the decks left (so
-the workers end together), but at least MIN_SECONDS of work and at most BATCH_SECONDS, and
-never more than an equal share of what is left; the first batch of a worker is one deck. Each case is still its own: its result line (visco2d's stdout and stderr,
-unbuffered, read as they come) ends it, its folder is finished and the progress line updated
-then; its error is its own `visco2d: error:` line. When the process dies in a deck (a signal:
-SIGKILL, a crash) that deck fails with the signal and the decks after it go back on the queue;
-on Ctrl-C the running processes are sent SIGINT and what had not ended is `not run`.
+worker keeps one `visco2d -o ROOT --decks-from -` process for the whole sweep and writes the deck
+paths to its standard input, one at a time as decks end (AHEAD of them written before their turn,
+so the process never waits for the next); visco2d runs each one as its line arrives, exactly as
+alone (doc/command_line.md). The queue is one, so the workers end together (within a case).
+Each case is still its own: its result line (visco2d's stdout and stderr, unbuffered, read as
+they come) ends it, its folder is finished and the progress line updated then; its error is its
+own `visco2d: error:` line. When the process dies in a deck (a signal: SIGKILL, a crash) that
+deck fails with the signal, the decks written after it go back on the queue and the worker
+starts a new process; on Ctrl-C the running processes are sent SIGINT and what had not ended is
+`not run`.
 
 This module is imported by batch.py (`batch`, set by it: finish_case, located_error, ...).
 """
 
 import collections
 import concurrent.futures
-import math
 import os
 import re
 import signal
 import subprocess
 import threading
-import time
 
 from . import batch
 
-BATCH_SECONDS = 5.0     # the wall time of work a batch of decks is sized to, once a case's time is known
-MIN_SECONDS = 1.0       # ... and at least this much (a process start is some 30 ms), within an equal share
-MAX_DECKS = 500         # and never more decks than this in one process
+AHEAD = 2               # decks written to a process before their turn: one running, one waiting in its pipe
 RESULT = re.compile(r'\d+ nodes, \d+ elements')    # visco2d's one-line result: "<case>: N nodes, M elements, ..."
+EXPECTS = re.compile(r'; EXPECT (\d+)/(\d+) within RTOL')   # ... its EXPECT cards: within / count
 ERROR = 'visco2d: error: '
 
 
 class Queue:
-    """The cases left, and the wall time the ended ones took (to size a batch)."""
+    """The cases left, one queue for every worker."""
 
-    def __init__(self, cases, jobs):
+    def __init__(self, cases):
         self.cases = collections.deque(cases)
-        self.jobs = max(1, jobs)
         self.lock = threading.Lock()
-        self.seconds = 0.0
-        self.ended = 0
 
-    def take(self, first):
-        """The next batch: one deck as a worker's first; else about BATCH_SECONDS of work."""
+    def take(self):
+        """The next case, or None."""
         with self.lock:
-            left = len(self.cases)
-            if not left:
-                return []
-            if first or not self.ended:
-                size = 1
-            else:
-                mean = max(self.seconds / self.ended, 1e-6)
-                share = math.ceil(left / (2 * self.jobs))      # shrinking as the queue empties: the workers end together
-                size = max(share, math.ceil(MIN_SECONDS / mean))                # not too short for a process
-                size = min(size, math.ceil(BATCH_SECONDS / mean), math.ceil(left / self.jobs), MAX_DECKS)
-                size = max(1, size)
-            return [self.cases.popleft() for _ in range(size)]
+            return self.cases.popleft() if self.cases else None
 
     def give_back(self, cases):
         """Decks a dead process did not start: first in line again."""
@@ -71,10 +55,11 @@ class Queue:
             self.cases.clear()
             return left
 
-    def took(self, seconds, count):
-        with self.lock:
-            self.seconds += seconds
-            self.ended += count
+
+def misses_of(line):
+    """How many EXPECT cards a result line says missed their RTOL (their lines follow it)."""
+    match = EXPECTS.search(line)
+    return int(match.group(2)) - int(match.group(1)) if match else 0
 
 
 def complete(folder):
@@ -82,7 +67,7 @@ def complete(folder):
 
 
 class Workers:
-    """`jobs` worker threads running the cases added to them (`add`), batches of decks a process.
+    """`jobs` worker threads running the cases added to them (`add`), one visco2d process each.
     A case that ends (its result, error or not_run) is announced to `ended()`; `close()` lets the
     workers end once the queue is empty; `interrupt()` (Ctrl-C) stops them: no further process
     starts, the running ones are sent SIGINT, what had not ended is `not_run`."""
@@ -90,7 +75,7 @@ class Workers:
     def __init__(self, out, exe, jobs, progress, stage=None):
         self.out, self.exe, self.progress, self.stage = out, exe, progress, stage
         self.root = stage or out
-        self.queue = Queue([], jobs)
+        self.queue = Queue([])
         self.stop = threading.Event()
         self.running = set()
         self.guard = threading.Lock()
@@ -142,20 +127,25 @@ class Workers:
         for case in self.queue.drain():       # given back by a process that died meanwhile
             case.not_run = True
 
+    def next_case(self):
+        """The next case to run, waiting for one to be added; None once the queue is closed and
+        empty, or on an interrupt."""
+        with self.changed:
+            while not self.stop.is_set():
+                case = self.queue.take()
+                if case is not None:
+                    return case
+                if self.closed:
+                    return None
+                self.changed.wait(0.2)
+            return None
+
     def worker(self):
-        first = True
         while not self.stop.is_set():
-            decks = self.queue.take(first)
-            if not decks:
-                with self.changed:
-                    if self.closed or self.stop.is_set():
-                        if not self.queue.cases:
-                            return
-                        continue
-                    self.changed.wait(0.2)
-                continue
-            first = False
-            self.queue.give_back(self.run_batch(decks))
+            case = self.next_case()
+            if case is None:
+                return
+            self.queue.give_back(self.run_process(case))
 
     def end(self, case, line):
         """A case has ended: its folder finished (moved from the stage), the progress line, ended()."""
@@ -169,41 +159,59 @@ class Workers:
             self.done.append(case)
             self.changed.notify_all()
 
-    def run_batch(self, decks):
-        """One visco2d process for `decks`; returns the decks it did not start (to run again)."""
+    def start(self):
+        """A `visco2d --decks-from -` process (None and the message if it cannot start)."""
         with self.guard:
             if self.stop.is_set():
-                for case in decks:
-                    case.not_run = True
-                    self.end(case, '')
-                return []
+                return None, None
             try:
-                process = subprocess.Popen([self.exe, '-o', self.root] + [case.deck for case in decks],
-                                           stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                           env=self.environment)
+                process = subprocess.Popen([self.exe, '-o', self.root, '--decks-from', '-'],
+                                           stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                           stderr=subprocess.STDOUT, text=True, env=self.environment)
             except OSError as error:
-                process = None
-                message = f'cannot run {self.exe}: {error.strerror}'
-            else:
-                self.running.add(process)
+                return None, f'cannot run {self.exe}: {error.strerror}'
+            self.running.add(process)
+            return process, None
+
+    def run_process(self, first):
+        """One visco2d process, fed `first` and then the queue's cases until it is closed and empty
+        (or an interrupt); returns the cases it was given but did not start (to run again)."""
+        process, message = self.start()
         if process is None:
-            for case in decks:
-                case.error = message
-                self.end(case, '')
+            if message is None:
+                first.not_run = True
+            else:
+                first.error = message
+            self.end(first, '')
             return []
-        k = 0                    # the deck running: the first that has not ended
-        own = []                 # its lines so far (warnings, notes)
-        missed = None            # (case, result line, misses to come, their lines): a deck that missed EXPECTs
-        start = time.monotonic()
-        ended_at = start
+        flight = collections.deque()     # the decks written to it that have not ended; the first is running
+        own = []                         # the running deck's lines so far (warnings, notes)
+        missed = None                    # (case, result line, misses to come, their lines): a deck that missed EXPECTs
 
-        def ended(count=1):
-            nonlocal ended_at
-            now = time.monotonic()
-            self.queue.took(now - ended_at, count)
-            ended_at = now
+        def send(case):
+            flight.append(case)
+            try:
+                process.stdin.write(case.deck + '\n')
+                process.stdin.flush()
+            except OSError:              # it has died: its output ends, and the case goes back
+                pass
 
-        for line in process.stdout:
+        send(first)
+        while True:
+            while len(flight) < AHEAD and not self.stop.is_set():
+                case = self.queue.take()
+                if case is None:
+                    break
+                send(case)
+            if not flight and missed is None:
+                case = self.next_case()      # idle until a case is added, or the end
+                if case is None:
+                    break
+                send(case)
+                continue
+            line = process.stdout.readline()
+            if not line:
+                break                        # the process has ended: died, or interrupted
             line = line.rstrip('\n')
             if missed is not None:
                 case, result, left, lines = missed
@@ -219,27 +227,27 @@ class Workers:
                 missed = None
                 if line is None:
                     continue
-            if k < len(decks) and line.startswith(decks[k].name + ': ') and \
-                    RESULT.match(line[len(decks[k].name) + 2:]):
-                case = decks[k]
-                k += 1
+            if flight and line.startswith(flight[0].name + ': ') and RESULT.match(line[len(flight[0].name) + 2:]):
+                case = flight.popleft()
                 own = []
-                ended()
-                summary = os.path.join(self.root, case.name, 'summary.txt')
-                misses = batch.missed_expectations(batch.read_summary(summary)) if os.path.isfile(summary) else []
+                misses = misses_of(line)
                 if misses:
-                    missed = (case, line, len(misses), [])
+                    missed = (case, line, misses, [])
                 else:
                     self.end(case, line)
-            elif k < len(decks) and line.startswith(ERROR):
-                case = decks[k]
-                k += 1
+            elif flight and line.startswith(ERROR):
+                case = flight.popleft()
                 case.error = batch.located_error('\n'.join(own + [line]))
                 own = []
-                ended()
                 self.end(case, '')
             else:
                 own.append(line)
+        try:
+            process.stdin.close()            # no more decks: it ends after the last
+        except OSError:
+            pass
+        for line in process.stdout:          # its closing lines ("N of M decks failed")
+            own.append(line.rstrip('\n'))
         status = process.wait()
         with self.guard:
             self.running.discard(process)
@@ -247,16 +255,15 @@ class Workers:
             case, result, _, lines = missed
             case.missed = batch.located_error('\n'.join(lines)) if lines else 'outside the RTOL of its EXPECT card(s)'
             self.end(case, result)
-        left = decks[k:]
-        if not left:
+        if not flight:
             return []
         if status == 2:                  # a usage error or an unusable root, before any deck ran: every deck's
             message = batch.located_error('\n'.join(own))
-            for case in left:
+            for case in flight:
                 case.error = message
                 self.end(case, '')
             return []
-        case, rest = left[0], left[1:]
+        case, rest = flight[0], list(flight)[1:]
         folder = os.path.join(self.root, case.name)
         interrupted = self.stop.is_set() or status == -signal.SIGINT
         if complete(folder) and case.error is None:

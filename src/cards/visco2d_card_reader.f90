@@ -12,7 +12,7 @@ module visco2d_card_reader
   private
 
   public :: token_t, card_t, card_deck_t
-  public :: read_cards, max_line_length
+  public :: read_cards, max_line_length, read_line
 
   !> Longest line a deck may have (an error beyond, never a cut).
   integer, parameter :: max_line_length = 1000000
