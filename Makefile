@@ -97,13 +97,13 @@ study-fast: build
 bench: build
 	@python3 -m visco2d.bench $(BENCH_ARGS)
 
-# make bench-sweep  sweep throughput: 200 level-2 peach impacts by visco2d-batch run -j (all cores) against
+# make bench-sweep  sweep throughput: 200 level-1 peach impacts by visco2d-batch run -j (all cores) against
 #                  the per-case compute (all 200 decks in one visco2d process): cases/s achieved, ideal
-#                  (cores / per-case compute), efficiency; into out/bench-sweep/ (python/visco2d/bench_sweep.py;
-#                  BENCH_SWEEP_ARGS="--cases 400 --level 1 -j 2 --repeat 3").
+#                  (cores / per-case compute), efficiency, the least of 3 runs each; into out/bench-sweep/
+#                  (python/visco2d/bench_sweep.py; BENCH_SWEEP_ARGS="--cases 400 --level 2 -j 2 --repeat 5").
 .PHONY: bench-sweep
 bench-sweep: build
-	@python3 -m visco2d.bench_sweep $(BENCH_SWEEP_ARGS)
+	@python3 -m visco2d.bench_sweep $(or $(BENCH_SWEEP_ARGS),--repeat 3)
 
 # make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
 #                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);

@@ -267,6 +267,7 @@ class Case:
         self.error = None
         self.missed = None        # the located EXPECT misses of a run that exited 3 (its results are written)
         self.not_run = False      # interrupted before it ran or while it ran: no result, no error
+        self.recorded = False     # its OUT/decks/<case>.json written by this run
 
 
 def deck_stem(path):
@@ -325,22 +326,39 @@ def expand(decks, points, out):
 
 def write_decks(cases, out, total):
     """OUT/decks/<case>.inp (a template's expansion or a copy of a plain deck) and <case>.json."""
+    for case in cases:
+        write_deck(case, out)
+    write_records(cases, out, total)
+
+
+def write_deck(case, out):
+    """OUT/decks/<case>.inp, the deck a case runs (and no .error of an earlier run beside it)."""
+    folder = os.path.join(out, DECKS_DIR)
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, case.name + '.inp')
+    if case.text is not None:
+        with open(path, 'w') as handle:
+            handle.write(case.text)
+    elif os.path.abspath(case.deck) != os.path.abspath(path):
+        shutil.copyfile(case.deck, path)
+    stale = os.path.join(folder, case.name + '.error')
+    if os.path.exists(stale):
+        os.remove(stale)
+
+
+def write_records(cases, out, total):
+    """OUT/decks/<case>.json (the case's index, source and parameters: the table's rows) of the
+    cases that have none from this run yet."""
     folder = os.path.join(out, DECKS_DIR)
     os.makedirs(folder, exist_ok=True)
     for case in cases:
-        path = os.path.join(folder, case.name + '.inp')
-        if case.text is not None:
-            with open(path, 'w') as handle:
-                handle.write(case.text)
-        elif os.path.abspath(case.deck) != os.path.abspath(path):
-            shutil.copyfile(case.deck, path)
+        if case.recorded:
+            continue
         record = {'case': case.name, 'index': case.index, 'total': total, 'source': case.source,
                   'params': case.params}
         with open(os.path.join(folder, case.name + '.json'), 'w') as handle:
             json.dump(record, handle, indent=1)
-        stale = os.path.join(folder, case.name + '.error')
-        if os.path.exists(stale):
-            os.remove(stale)
+        case.recorded = True
 
 
 # ---------------------------------------------------------------- running
@@ -424,14 +442,16 @@ def clear_case(out, case):
         shutil.rmtree(folder)
 
 
-def run_local(cases, out, exe, jobs, progress, stage=None):
+def run_local(cases, out, exe, jobs, progress, stage=None, prepare=None, records=None):
     """The cases on `jobs` local workers, each feeding the decks to one `visco2d -o ROOT --decks-from -`
     process (python/visco2d/workers.py: a process start costs more than a small case). With `stage`,
     into that root and then moved into OUT/ (shards on several hosts never see each other's temporary
-    folders). Each case ends on its own (its folder, its error, the progress line). On SIGINT (Ctrl-C)
-    or SIGTERM no further case starts, the running processes are sent SIGINT (visco2d removes what it
-    was writing), and Interrupted is raised once they have ended."""
-    workers_module().run_local(cases, out, exe, jobs, progress, stage)
+    folders). `prepare(case)` (its deck written) is called for each case before it is queued, and
+    `records()` once all are, while the first cases run. Each case ends on its own (its folder, its
+    error, the progress line). On SIGINT (Ctrl-C) or SIGTERM no further case starts, the running
+    processes are sent SIGINT (visco2d removes what it was writing), and Interrupted is raised once
+    they have ended; a case that was never queued is `not_run`."""
+    workers_module().run_local(cases, out, exe, jobs, progress, stage, prepare, records)
 
 
 def workers_module():
@@ -547,10 +567,22 @@ def execute(cases, out, options):
         if not options.quiet:
             print(f'{PROGRAM}: --resume: {len(cases) - len(todo)} of {len(cases)} cases have a complete, '
                   f'verified result in {out}; running the other {len(todo)}', flush=True)
-    write_decks(cases, out, total)
-    for case in todo:
-        clear_case(out, case)
     progress = Progress(len(todo), options.quiet)
+    prepare = records = None
+    if options.mpi or not todo:
+        write_decks(cases, out, total)
+        for case in todo:
+            clear_case(out, case)
+    else:                                # locally: the first cases run while the others are written
+        running = set(id(case) for case in todo)
+        write_decks([case for case in cases if id(case) not in running], out, total)
+
+        def prepare(case):
+            write_deck(case, out)
+            clear_case(out, case)
+
+        def records():
+            write_records(cases, out, total)
     try:
         if not todo:
             pass
@@ -560,13 +592,14 @@ def execute(cases, out, options):
             stage = os.path.join(out, '.shard-%d-of-%d' % parse_shard(options.shard))
             os.makedirs(stage, exist_ok=True)
             try:
-                run_local(todo, out, exe, options.jobs, progress, stage)
+                run_local(todo, out, exe, options.jobs, progress, stage, prepare, records)
             finally:
                 shutil.rmtree(stage, ignore_errors=True)
         else:
-            run_local(todo, out, exe, options.jobs, progress)
+            run_local(todo, out, exe, options.jobs, progress, prepare=prepare, records=records)
     except Interrupted:
         progress.finish()
+        write_records(cases, out, total)         # the table's rows of the cases that did not run too
         raise Interrupted(cases) from None
     progress.finish()
     return cases

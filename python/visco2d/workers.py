@@ -284,16 +284,28 @@ class Workers:
         return rest                          # not started: they run again, in another process
 
 
-def run_local(cases, out, exe, jobs, progress, stage=None):
+def run_local(cases, out, exe, jobs, progress, stage=None, prepare=None, records=None):
     """The cases on `jobs` workers (batch.run_local's contract): each case ends with its
     folder in OUT (moved there from `stage`, a shard's own root), or its error, or `not_run`
-    after an interrupt, which raises batch.Interrupted once the running processes have ended."""
+    after an interrupt, which raises batch.Interrupted once the running processes have ended.
+    Each case is queued once `prepare(case)` has written its deck, so the first ones run while
+    the rest are written; then `records()`."""
     workers = Workers(out, exe, min(jobs, max(1, len(cases))), progress, stage)
-    workers.add(cases)
-    workers.close()
+    queued = 0
     try:
         with batch.interrupts_raised():
+            for case in cases:
+                if prepare is not None:
+                    prepare(case)
+                workers.add([case])
+                queued += 1
+            workers.close()
+            if records is not None:
+                records()
             workers.join()
     except KeyboardInterrupt:
+        for case in cases[queued:]:
+            case.not_run = True
+        workers.close()
         workers.interrupt()
         raise batch.Interrupted(cases) from None
