@@ -218,8 +218,17 @@ contains
           call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
                           integer_text(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
         end if
+      else if (word == 'DYNAMIC') then             ! the equilibrium iterations of a step with plasticity
+        reading%increments_given = has_field(card, 'ITERATIONS')
+        call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, default=50)
+        if (allocated(error)) return
+        if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
+          call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
+                          integer_text(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
+        end if
       end if
-      call check_fields_used(cards, card, error, 'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC')
+      call check_fields_used(cards, card, error, &
+        'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC [ITERATIONS=n]')
       if (allocated(error)) return
       select case (word)
       case ('STATIC')
@@ -377,9 +386,10 @@ contains
     follows = any(deck%cards%cards(k - 1)%keyword == keywords)
   end function follows
 
-  !> Plasticity is solved by ANALYSIS STATIC alone so far, without a PLATE
-  !> or PAD: elsewhere a PLASTIC card is an error (not an elastic run). An
-  !> INCREMENTS= on a deck without plasticity is a warning (one linear solve).
+  !> Plasticity is solved by ANALYSIS STATIC (without a PLATE or PAD) and by
+  !> ANALYSIS DYNAMIC (with or without the rigid PLATE, not on a PAD) so far:
+  !> elsewhere a PLASTIC card is an error (not an elastic run). An
+  !> INCREMENTS= or ITERATIONS= on a deck without plasticity is a warning.
   subroutine check_plastic_analysis(deck, reading, error)
     type(deck_t), intent(inout) :: deck
     type(reading_t), intent(in) :: reading
@@ -393,20 +403,29 @@ contains
       end if
     end do
     if (m == 0) then
-      if (reading%increments_given) call add_warning(deck, reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and '// &
-        'ITERATIONS= are for plastic materials (a PLASTIC card); this deck has none and is solved in one linear step')
+      if (reading%increments_given .and. deck%analysis == analysis_static) call add_warning(deck, &
+        reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and ITERATIONS= are for plastic materials (a PLASTIC card); '// &
+        'this deck has none and is solved in one linear step')
+      if (reading%increments_given .and. deck%analysis /= analysis_static) call add_warning(deck, &
+        reading%analysis_line, 'ANALYSIS', 'ITERATIONS= is for plastic materials (a PLASTIC card); this deck has '// &
+        'none and each step is one linear solve')
       return
     end if
     k = card_at_line(deck, deck%materials(m)%plastic_line)
-    if (deck%analysis /= analysis_static) then
+    if (deck%analysis == analysis_static) then
+      if (deck%plate%line > 0 .or. deck%pad%line > 0) then
+        call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
+          deck%materials(m)%id//') in ANALYSIS STATIC is not available with PLATE or PAD contact yet (line '// &
+          integer_text(max(deck%plate%line, deck%pad%line))//'); ANALYSIS DYNAMIC has it with the PLATE'); return
+      end if
+    else if (deck%analysis /= analysis_dynamic) then
       call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
-        deck%materials(m)%id//') is available for ANALYSIS STATIC only so far; this deck is ANALYSIS '// &
+        deck%materials(m)%id//') is available for ANALYSIS STATIC and DYNAMIC only so far; this deck is ANALYSIS '// &
         analysis_name(deck%analysis)//' (line '//integer_text(reading%analysis_line)//')'); return
-    end if
-    if (deck%plate%line > 0 .or. deck%pad%line > 0) then
+    else if (deck%pad%line > 0) then
       call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
-        deck%materials(m)%id//') is not available with PLATE or PAD contact yet (line '// &
-        integer_text(max(deck%plate%line, deck%pad%line))//')'); return
+        deck%materials(m)%id//') is not available with a PAD yet (line '//integer_text(deck%pad%line)// &
+        '); a plastic fruit on the rigid PLATE is'); return
     end if
   end subroutine check_plastic_analysis
 

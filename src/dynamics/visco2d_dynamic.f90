@@ -183,6 +183,11 @@ contains
     allocate(state%stress(4, gauss_count, deck%mesh%nelem), state%strain(4, gauss_count, deck%mesh%nelem))
     state%stress = 0.0_dp
     state%strain = 0.0_dp
+    if (stepper%plastic) then
+      allocate(state%ebar(gauss_count, deck%mesh%nelem), state%plastic_strain(4, gauss_count, deck%mesh%nelem))
+      state%ebar = 0.0_dp
+      state%plastic_strain = 0.0_dp
+    end if
     allocate(state%u(n), state%v(n))
     state%t = 0.0_dp
     state%u = 0.0_dp
@@ -481,6 +486,7 @@ contains
       end if
     end if
     call bruise_report(measures%bruise, deck, record)
+    if (stepper%plastic) call put_plastic_summary(stepper, record, state, log%basis_factor)
     ! Beyond the small-strain model: the largest principal strain at the end
     ! and at maximum deformation, and the approach against the radius.
     associate (body => body_elements(deck))
@@ -517,4 +523,22 @@ contains
     end do
     end associate
   end subroutine put_summary
+
+  !> The keys of a run with a PLASTIC material (doc/outputs.md): the
+  !> equilibrium iterations, the plastic dissipation (the trapezoidal
+  !> 1/2 (s_n + s_n+1) : de_p over the steps), the largest equivalent plastic
+  !> strain and the yielded volume (the Gauss points' volumes with ebar > 0),
+  !> energies and volumes times `factor` (the whole body in axisymmetry).
+  subroutine put_plastic_summary(stepper, record, state, factor)
+    type(stepper_t), intent(in) :: stepper
+    type(record_t), intent(inout) :: record
+    type(dynamic_state_t), intent(in) :: state
+    real(dp), intent(in) :: factor
+    call record_put_integer(record, 'equilibrium_iterations', stepper%iterations)
+    call record_put_integer(record, 'equilibrium_iterations_max', stepper%iterations_max)
+    call record_put_integer(record, 'plastic_solves', stepper%iterated_solves)
+    call record_put_real(record, 'plastic_dissipation_J', factor*stepper%plastic_dissipation)
+    call record_put_real(record, 'equivalent_plastic_strain_max', maxval(state%ebar))
+    call record_put_real(record, 'yielded_volume_m3', factor*sum(stepper%operators%weight, mask=state%ebar > 0.0_dp))
+  end subroutine put_plastic_summary
 end module visco2d_dynamic

@@ -261,6 +261,7 @@ contains
     type(dynamic_state_t), intent(in) :: state
     logical, intent(in) :: memory
     real(dp), parameter :: no_history(4, 0) = 0.0_dp
+    real(dp) :: elastic(4)
     integer :: e, g, nterm, slot
     energy = 0.0_dp
     do e = 1, deck%mesh%nelem
@@ -268,11 +269,13 @@ contains
       nterm = 0
       if (memory) nterm = element_terms(state%history, e)
       do g = 1, gauss_count
+        elastic = state%strain(:, g, e)                 ! less the plastic strain of a PLASTIC material
+        if (allocated(state%plastic_strain)) elastic = elastic - state%plastic_strain(:, g, e)
         if (nterm == 0) then
-          energy = energy + operators%weight(g, e)*stored_energy_density(material, state%strain(:, g, e), no_history)
+          energy = energy + operators%weight(g, e)*stored_energy_density(material, elastic, no_history)
         else
           slot = state%history%first(e) + (g - 1)*nterm
-          energy = energy + operators%weight(g, e)*stored_energy_density(material, state%strain(:, g, e), &
+          energy = energy + operators%weight(g, e)*stored_energy_density(material, elastic, &
                                                                          state%history%history(:, slot:slot + nterm - 1))
         end if
       end do

@@ -21,5 +21,9 @@ module visco2d_dynamic_state
     real(dp), allocatable :: internal(:)            !< internal force F(sigma_t) = sum B^T sigma |J| r
     real(dp), allocatable :: reaction(:)            !< support reactions M a + F - R - G (0 off the supports)
     real(dp), allocatable :: target(:)              !< the prescribed (FIX) displacements at t
+    !> With a PLASTIC material only (visco2d_plastic_step): the equivalent
+    !> plastic strain ebar (gauss_count, nelem) and the plastic strain
+    !> (4, gauss_count, nelem, engineering shear), both 0 off the plastic materials.
+    real(dp), allocatable :: ebar(:, :), plastic_strain(:, :, :)
   end type dynamic_state_t
 end module visco2d_dynamic_state

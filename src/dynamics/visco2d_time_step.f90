@@ -9,7 +9,9 @@
 !>   contact_repeat        the plate's conditions on dU (capacitance system), the
 !>                         update to the sub-step's end (eqs. [37]-[39]) and the
 !>                         trial stresses (eqs. [13], [14], [23]), repeated while the
-!>                         contact set changes
+!>                         contact set changes; with a PLASTIC material each solve is
+!>                         iterated to equilibrium at the solve point first
+!>                         (equilibrium_iterations: modified Newton on the factored S~)
 !>   commit_substep        strains, stresses, histories (eq. [24]) and
 !>                         U, U', U'' (eqs. [40]-[42]) at the sub-step's end
 !> The right side of eq. [36] is written in residual form: with F(sigma_t)
@@ -34,6 +36,8 @@ module visco2d_time_step
   use visco2d_strings, only: integer_text
   use visco2d_deck, only: deck_t
   use visco2d_material, only: has_memory
+  use visco2d_strings, only: short_real
+  use visco2d_plastic_step, only: plastic_trial_stress, plastic_work, yield_limits
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_constrain_rhs
@@ -58,6 +62,15 @@ module visco2d_time_step
 
   public :: stepper_t, solve_point_t, contact_hold_t, stepper_create, effective_stiffness, factor_effective, &
             effective_load, solve_supports, contact_repeat, commit_substep, hold_contact, solve_point_state
+  public :: dynamic_force_tolerance, dynamic_energy_tolerance
+
+  !> A step with plasticity has converged when the force residual on the free
+  !> equations is at most dynamic_force_tolerance of the largest of the
+  !> step's force vectors (R~ with the forces of the start state, c M dU,
+  !> F(sigma)) and the energy of the next correction |dU_next . r| at most
+  !> dynamic_energy_tolerance of the first solve's |dU_1 . R~|.
+  real(dp), parameter :: dynamic_force_tolerance = 1.0e-5_dp
+  real(dp), parameter :: dynamic_energy_tolerance = 1.0e-10_dp
 
   !> The solve point of one row: its intervals, S~ and its factor, the
   !> capacitance system of the held equations on that factor, and the step
@@ -113,6 +126,18 @@ module visco2d_time_step
     !> The state at the solve point t + h when h is not the sub-step (Wilson-theta; solve_point_state).
     real(dp), allocatable :: stress_solve(:, :, :), strain_solve(:, :, :), increments_solve(:, :, :), internal_solve(:)
     type(viscoelastic_state_t) :: history_solve
+    !> With a PLASTIC material (plastic): ebar and de_p of the sub-step's
+    !> trial stresses and of the solve point's; the residual at the solve
+    !> point (its held rows are the plate's reactions); the iteration counts.
+    logical :: plastic = .false.
+    integer :: iterations_allowed = 50             !< ITERATIONS= of ANALYSIS DYNAMIC
+    real(dp), allocatable :: trial_ebar(:, :), plastic_increments(:, :, :), ebar_solve(:, :), plastic_solve(:, :, :)
+    real(dp), allocatable :: yield_limit(:, :)     !< (2/3) sigma_y(ebar)^2 of the state (yield_limits)
+    real(dp), allocatable :: residual(:), correction(:), no_values(:)
+    integer :: iterations = 0                      !< equilibrium iterations, all sub-steps
+    integer :: iterations_max = 0                  !< the most in one solve
+    integer :: iterated_solves = 0                 !< solves in which a Gauss point yielded
+    real(dp) :: plastic_dissipation = 0.0_dp       !< sum of plastic_work over the sub-steps, J per radian
   end type stepper_t
 
 contains
@@ -139,6 +164,18 @@ contains
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
     end do
     stepper%contact_on = deck%plate%line > 0
+    do k = 1, nmat
+      if (materials(k)%plastic .and. any(mesh%element_material == k)) stepper%plastic = .true.
+    end do
+    if (stepper%plastic) then
+      stepper%iterations_allowed = deck%settings%iterations
+      allocate(stepper%trial_ebar(gauss_count, mesh%nelem), stepper%ebar_solve(gauss_count, mesh%nelem), &
+               stepper%plastic_increments(4, gauss_count, mesh%nelem), stepper%plastic_solve(4, gauss_count, mesh%nelem), &
+               stepper%residual(n), stepper%correction(n), stepper%no_values(n), stepper%yield_limit(gauss_count, mesh%nelem))
+      stepper%no_values = 0.0_dp
+      stepper%trial_ebar = 0.0_dp
+      call yield_limits(materials, mesh%element_material, stepper%trial_ebar, stepper%yield_limit)
+    end if
     allocate(stepper%points(size(stepper%integrator%rows)))
     do k = 1, size(stepper%points)
       stepper%points(k)%row = stepper%integrator%rows(k)
@@ -406,6 +443,8 @@ contains
       if (stepper%contact_on) call adjusted_displacements(stepper, deck, state%u, row%theta)
       call solve_held(stepper, r, error)
       if (allocated(error)) return
+      if (stepper%plastic) call equilibrium_iterations(stepper, deck, r, state, error)
+      if (allocated(error)) return
       if (stepper%contact_on) call solve_point_reactions(stepper, r, state, start)
       call update_kinematics(row, point%length, stepper%solution, state%u, state%v, state%a, start%u, start%v, &
                              stepper%du, stepper%dv, stepper%da)                       ! eqs. [37]-[39]
@@ -418,7 +457,7 @@ contains
         finite = .false.
         return
       end if
-      call trial_stresses(stepper, point, state)
+      call trial_stresses(stepper, deck, point, state)
       stepper%reaction_next = merge(stepper%mass*(state%a + stepper%da) + stepper%internal_next - stepper%load_next &
                                     - stepper%gravity, 0.0_dp, rigid_reactions(stepper))
       if (.not. stepper%contact_on) exit
@@ -556,7 +595,11 @@ contains
     associate (point => stepper%points(r), p => stepper%held_rows)
     inertia = solve_point_inertia(point%row, point%h, stepper%solution, state%u, state%v, state%a, start%u, start%v)
     stepper%reaction_solve = 0.0_dp
-    stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%effective_load(p)
+    if (stepper%plastic) then                       ! the residual of the converged iteration
+      stepper%reaction_solve(p) = -stepper%residual(p)
+    else
+      stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%effective_load(p)
+    end if
     do i = 1, size(p)                               ! less the inertia relative to the surface under the node
       stepper%reaction_solve(p(i)) = stepper%reaction_solve(p(i)) &
                                      - stepper%mass(p(i))*(inertia(p(i)) - partner_sum(stepper, inertia, p(i)))
@@ -566,12 +609,25 @@ contains
 
   !> The trial stresses over the sub-step (eqs. [13], [14] with the history
   !> stress of eq. [23]) from the increment du, and their internal force.
-  subroutine trial_stresses(stepper, point, state)
+  subroutine trial_stresses(stepper, deck, point, state)
     type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
     type(solve_point_t), intent(in) :: point
     type(dynamic_state_t), intent(in) :: state
+    integer :: yielded
     call timer_start(phase_constitutive)
-    if (stepper%memory) then
+    if (stepper%plastic .and. stepper%memory) then            ! the return mapping at the sub-step's end
+      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                stepper%du, point%shear, &
+                                point%bulk, state%stress, state%ebar, stepper%increments, stepper%trial, &
+                                stepper%internal_next, stepper%trial_ebar, stepper%plastic_increments, yielded, &
+                                stepper%history_length)
+    else if (stepper%plastic) then
+      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                stepper%du, point%shear, &
+                                point%bulk, state%stress, state%ebar, stepper%increments, stepper%trial, &
+                                stepper%internal_next, stepper%trial_ebar, stepper%plastic_increments, yielded)
+    else if (stepper%memory) then
       call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &
                                   stepper%increments, stepper%trial, stepper%internal_next, stepper%history_length)
     else
@@ -603,6 +659,123 @@ contains
     end associate
   end subroutine adjusted_displacements
 
+  !> With a PLASTIC material: the solution dU of eq. [34] (the linear one on
+  !> entry, with the supports and the held equations imposed) iterated to
+  !> equilibrium at the solve point t + h by modified Newton on the factored
+  !> S~ (the factor of the TIME stage: no new factorization). The residual
+  !>   r(dU) = R~ + (1 - alpha_f)(F(sigma_t) + F(s0_h)) - c M dU - (1 - alpha_f) F(sigma_h(dU))
+  !> is R~ - S~ dU where every Gauss point stays elastic, so an elastic solve
+  !> ends at once; sigma_h(dU) is the return mapping over h from the step's
+  !> start (plastic_solve_point). Each correction S~ d = r keeps the
+  !> supports and the held equations where they are (the capacitance system
+  !> with zero values). Converged: the force and energy criteria of
+  !> dynamic_force_tolerance and dynamic_energy_tolerance; otherwise, after
+  !> ITERATIONS= corrections, an error (located at the TIME card by the caller).
+  subroutine equilibrium_iterations(stepper, deck, r, state, error)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: r
+    type(dynamic_state_t), intent(in) :: state
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp), allocatable :: base(:), previous(:), difference(:)
+    logical, allocatable :: free(:)
+    real(dp) :: c, kept, energy_first, energy, force_ratio, scale, relaxation, denominator
+    integer :: iteration, yielded, e, status
+    associate (point => stepper%points(r), row => stepper%points(r)%row)
+    c = mass_coefficient(row, point%h)
+    kept = 1.0_dp - row%alpha_f
+    free = .not. (stepper%supports .or. stepper%held)
+    base = stepper%effective_load + kept*state%internal            ! + (1 - alpha_f) F(s0_h), the history pseudo-load
+    if (stepper%memory) then
+      do e = 1, deck%mesh%nelem
+        if (element_terms(state%history, e) == 0) cycle
+        call scatter_add(deck%mesh, e, kept*operators_element_force(stepper%operators, e, stepper%history_h(:, :, e)), base)
+      end do
+    end if
+    energy_first = abs(sum(stepper%solution*stepper%effective_load, mask=free))
+    relaxation = 1.0_dp
+    do iteration = 1, stepper%iterations_allowed
+      call timer_start(phase_constitutive)
+      call plastic_solve_point(stepper, deck, point, state, yielded)
+      call timer_stop(phase_constitutive)
+      stepper%residual = base - c*stepper%mass*stepper%solution - kept*stepper%internal_solve
+      if (iteration == 1 .and. yielded == 0) exit                  ! elastic: the linear solve is the answer
+      scale = max(norm2(merge(base, 0.0_dp, free)), norm2(merge(kept*stepper%internal_solve, 0.0_dp, free)), &
+                  norm2(merge(c*stepper%mass*stepper%solution, 0.0_dp, free)), tiny(1.0_dp))
+      force_ratio = norm2(merge(stepper%residual, 0.0_dp, free))/scale
+      stepper%correction = stepper%residual
+      call band_constrain_rhs(point%effective, stepper%supports, stepper%no_values, stepper%correction)
+      call timer_start(phase_solve)
+      call factor_solve(point%factor, stepper%correction, status)
+      call timer_stop(phase_solve)
+      if (status /= 0) then
+        call set_error(error, solve_failure_text(status))
+        return
+      end if
+      if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%no_values, stepper%correction)
+      energy = abs(sum(stepper%correction*stepper%residual, mask=free))
+      if (.not. (ieee_is_finite(force_ratio) .and. ieee_is_finite(energy))) then
+        call set_error(error, 'the equilibrium iteration of the plastic step diverged (iteration '// &
+          integer_text(iteration)//': the residual is not finite); use a smaller DT')
+        return
+      end if
+      if (force_ratio <= dynamic_force_tolerance .and. energy <= dynamic_energy_tolerance*max(energy_first, tiny(1.0_dp))) &
+        exit
+      if (iteration == stepper%iterations_allowed) then
+        call set_error(error, 'the equilibrium iteration of the plastic step did not converge: after '// &
+          integer_text(iteration)//' iterations the force residual is '//short_real(force_ratio)// &
+          ' of the step''s forces (tolerance '//short_real(dynamic_force_tolerance)//') and the energy norm '// &
+          short_real(energy/max(energy_first, tiny(1.0_dp)))//' of the first solve''s (tolerance '// &
+          short_real(dynamic_energy_tolerance)//'); use a smaller DT, or more ITERATIONS= on the ANALYSIS card')
+        return
+      end if
+      if (iteration > 1) then                        ! Aitken's acceleration (Irons and Tuck 1969)
+        difference = stepper%correction - previous
+        denominator = dot_product(difference, difference)
+        if (denominator > 0.0_dp) relaxation = -relaxation*dot_product(previous, difference)/denominator
+      end if
+      previous = stepper%correction
+      stepper%solution = stepper%solution + relaxation*stepper%correction
+    end do
+    if (yielded > 0) then
+      stepper%iterations = stepper%iterations + iteration
+      stepper%iterations_max = max(stepper%iterations_max, iteration)
+      stepper%iterated_solves = stepper%iterated_solves + 1
+    end if
+    end associate
+  end subroutine equilibrium_iterations
+
+  !> The stresses at the solve point t + h from the start state and dU
+  !> (stepper%solution) with the moduli and history stress over h, the
+  !> plastic points returned (visco2d_plastic_step): into stress_solve,
+  !> increments_solve, internal_solve, ebar_solve, plastic_solve; `yielded`
+  !> the Gauss points that yielded.
+  subroutine plastic_solve_point(stepper, deck, point, state, yielded)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    type(solve_point_t), intent(in) :: point
+    type(dynamic_state_t), intent(in) :: state
+    integer, intent(out), optional :: yielded
+    integer :: count
+    if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
+                                                        stepper%increments_solve, mold=state%stress)
+    if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
+    if (stepper%memory) then
+      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                stepper%solution, &
+                                point%shear_h, point%bulk_h, state%stress, state%ebar, stepper%increments_solve, &
+                                stepper%stress_solve, stepper%internal_solve, stepper%ebar_solve, stepper%plastic_solve, &
+                                count, stepper%history_h)
+    else
+      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                stepper%solution, &
+                                point%shear_h, point%bulk_h, state%stress, state%ebar, stepper%increments_solve, &
+                                stepper%stress_solve, stepper%internal_solve, stepper%ebar_solve, stepper%plastic_solve, &
+                                count)
+    end if
+    if (present(yielded)) yielded = count
+  end subroutine plastic_solve_point
+
   !> The stresses, strains and (with memory) histories at the solve point
   !> t + h of row r, from the start state and the solution dU_h with the
   !> moduli and the history stress over h (eqs. [13], [14], [23], [24]):
@@ -625,7 +798,12 @@ contains
     if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
-    if (stepper%memory) then
+    if (stepper%plastic) then
+      call plastic_solve_point(stepper, deck, point, state)
+      stepper%history_solve = state%history
+      if (stepper%memory) call commit_history(deck%mesh%element_material, stepper%history_solve, point%over_h, &
+                                              stepper%increments_solve - stepper%plastic_solve)
+    else if (stepper%memory) then
       call operators_trial_stress(stepper%operators, stepper%solution, point%shear_h, point%bulk_h, state%stress, &
                                   stepper%increments_solve, stepper%stress_solve, stepper%internal_solve, &
                                   stepper%history_h)
@@ -649,8 +827,18 @@ contains
     type(dynamic_state_t), intent(inout) :: state
     real(dp), intent(in) :: t_next
     state%strain = state%strain + stepper%increments
-    if (stepper%memory) call commit_history(deck%mesh%element_material, state%history, &
-                                            stepper%points(r)%over_length, stepper%increments)
+    if (stepper%plastic) then                       ! the histories take the elastic part de - de_p (eq. [24])
+      stepper%plastic_dissipation = stepper%plastic_dissipation + &
+                                    plastic_work(stepper%operators, state%stress, stepper%trial, stepper%plastic_increments)
+      if (any(stepper%trial_ebar /= state%ebar)) &
+        call yield_limits(deck%materials, deck%mesh%element_material, stepper%trial_ebar, stepper%yield_limit)
+      state%ebar = stepper%trial_ebar
+      state%plastic_strain = state%plastic_strain + stepper%plastic_increments
+      if (stepper%memory) call commit_history(deck%mesh%element_material, state%history, &
+                                              stepper%points(r)%over_length, stepper%increments - stepper%plastic_increments)
+    else if (stepper%memory) then
+      call commit_history(deck%mesh%element_material, state%history, stepper%points(r)%over_length, stepper%increments)
+    end if
     state%stress = stepper%trial
     state%a = state%a + stepper%da                                    ! eqs. [40]-[42]
     state%v = state%v + stepper%dv

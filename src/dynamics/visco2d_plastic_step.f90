@@ -1,0 +1,138 @@
+!> The constitutive pass of a time step with a PLASTIC material: the pass of
+!> visco2d_operators (strain increments B du, eq. [4]; stresses; internal
+!> forces) with the Gauss points of plastic materials returned to the
+!> yield surface (visco2d_plasticity, radial return with the step's shear
+!> modulus mu_n in series with the Prony law, eqs. [13], [14], [21]-[23]).
+!> Elastic materials get exactly operators_trial_stress's stresses.
+!>
+!> At a plastic Gauss point over an interval (the solve interval h or the
+!> sub-step) the deviatoric trial stress is
+!>   s_trial = dev(sigma_n) + 2 mu_n dev(de) + s0        (eqs. [13], [21], [23])
+!> s0 the history stress of the interval (precomputed, as for the elastic
+!> pass), the mean stress p_n + K tr(de) (eq. [14]), and
+!> s = radial_return(s_trial). The plastic strain increment de_p goes back to
+!> the caller, which updates the Prony histories with de - de_p (eq. [24]):
+!> the springs and dashpots see only the strain the slider did not take.
+module visco2d_plastic_step
+  use visco2d_kinds, only: dp
+  use visco2d_material, only: material_t
+  use visco2d_element, only: gauss_count
+  use visco2d_operators, only: operators_t, operators_element_force
+  use visco2d_plasticity, only: return_result_t, radial_return, yield_stress
+  implicit none
+  private
+
+  public :: plastic_trial_stress, plastic_work, yield_limits
+
+contains
+
+  !> The elastic limit of every Gauss point at the equivalent plastic strain
+  !> ebar: (2/3) sigma_y(ebar)^2, the largest |s|^2 an elastic step may reach
+  !> (von Mises: |s| <= sqrt(2/3) sigma_y); -1 at the points of materials
+  !> without plasticity. Computed when ebar changes, so the pass compares.
+  pure subroutine yield_limits(materials, element_material, ebar, limit)
+    type(material_t), intent(in) :: materials(:)
+    integer, intent(in) :: element_material(:)
+    real(dp), intent(in) :: ebar(:, :)
+    real(dp), intent(out) :: limit(:, :)
+    integer :: e, g
+    do e = 1, size(element_material)
+      associate (material => materials(element_material(e)))
+      do g = 1, gauss_count
+        if (material%plastic) then
+          limit(g, e) = 2.0_dp/3.0_dp*yield_stress(material%hardening, ebar(g, e))**2
+        else
+          limit(g, e) = -1.0_dp
+        end if
+      end do
+      end associate
+    end do
+  end subroutine yield_limits
+
+  !> The pass over the elements for the increment du: strain increments,
+  !> stresses (returned where a plastic material yields: `limit` from
+  !> yield_limits at the interval's start), internal forces; for each Gauss
+  !> point ebar after the interval (from `ebar`, at its start) and the
+  !> plastic strain increment de_p (engineering shear). `yielded`: the
+  !> number of Gauss points that yielded in the interval.
+  pure subroutine plastic_trial_stress(operators, materials, element_material, limit, du, shear, bulk, stress, ebar, &
+                                       increments, trial, force, ebar_next, plastic_increments, yielded, history)
+    type(operators_t), intent(in) :: operators
+    type(material_t), intent(in) :: materials(:)
+    integer, intent(in) :: element_material(:)
+    real(dp), intent(in) :: limit(:, :)                       !< (gauss_count, nelem) yield_limits
+    real(dp), intent(in) :: du(:)
+    real(dp), intent(in) :: shear(:), bulk(:)                 !< (nelem) moduli over the interval
+    real(dp), intent(in) :: stress(:, :, :)                   !< (4, gauss_count, nelem) at its start
+    real(dp), intent(in) :: ebar(:, :)                        !< (gauss_count, nelem) at its start
+    real(dp), intent(out) :: increments(:, :, :), trial(:, :, :)
+    real(dp), intent(out) :: force(:)
+    real(dp), intent(out) :: ebar_next(:, :), plastic_increments(:, :, :)
+    integer, intent(out) :: yielded
+    real(dp), intent(in), optional :: history(:, :, :)       !< (4, gauss_count, nelem) s0 of the interval
+    type(return_result_t) :: state
+    real(dp) :: local(8), increment(4), sigma(4), volumetric, mean, deviatoric(4), element_force(8)
+    integer :: e, g, j
+    force = 0.0_dp
+    yielded = 0
+    do e = 1, operators%nelem
+      local = du(operators%dofs(:, e))
+      do g = 1, gauss_count
+        increment = 0.0_dp
+        do j = 1, 8
+          increment = increment + operators%b(:, j, g, e)*local(j)
+        end do
+        volumetric = increment(1) + increment(2) + increment(3)
+        plastic_increments(:, g, e) = 0.0_dp
+        ebar_next(g, e) = ebar(g, e)
+        if (limit(g, e) < 0.0_dp) then              ! no plasticity: as operators_trial_stress, eqs. [13], [14]
+          sigma(1:3) = stress(1:3, g, e) + bulk(e)*volumetric + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
+          sigma(4) = stress(4, g, e) + shear(e)*increment(4)
+          if (present(history)) sigma = sigma + history(:, g, e)
+        else
+          mean = sum(stress(1:3, g, e))/3.0_dp
+          deviatoric(1:3) = stress(1:3, g, e) - mean + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
+          deviatoric(4) = stress(4, g, e) + shear(e)*increment(4)
+          if (present(history)) deviatoric = deviatoric + history(:, g, e)
+          if (deviatoric(1)**2 + deviatoric(2)**2 + deviatoric(3)**2 + 2.0_dp*deviatoric(4)**2 <= limit(g, e)) then
+            sigma = deviatoric                      ! inside the yield surface: elastic (radial_return's first test)
+          else
+            state = radial_return(materials(element_material(e))%hardening, shear(e), deviatoric, ebar(g, e))
+            sigma = state%stress
+            if (state%yielded) then
+              yielded = yielded + 1
+              plastic_increments(:, g, e) = state%plastic_increment
+              ebar_next(g, e) = state%equivalent_plastic
+            end if
+          end if
+          sigma(1:3) = sigma(1:3) + mean + bulk(e)*volumetric
+        end if
+        increments(:, g, e) = increment
+        trial(:, g, e) = sigma
+      end do
+      element_force = operators_element_force(operators, e, trial(:, :, e))
+      do j = 1, 8
+        force(operators%dofs(j, e)) = force(operators%dofs(j, e)) + element_force(j)
+      end do
+    end do
+  end subroutine plastic_trial_stress
+
+  !> The plastic work of an interval, sum over the Gauss points of
+  !> 1/2 (s_start + s_end) : de_p |J| r (the trapezoid, as the energy books
+  !> take the internal force's work; per radian in axisymmetry), J.
+  pure real(dp) function plastic_work(operators, stress_start, stress_end, plastic_increments) result(work)
+    type(operators_t), intent(in) :: operators
+    real(dp), intent(in) :: stress_start(:, :, :), stress_end(:, :, :), plastic_increments(:, :, :)
+    real(dp) :: s(4)
+    integer :: e, g
+    work = 0.0_dp
+    do e = 1, operators%nelem
+      do g = 1, gauss_count
+        if (all(plastic_increments(:, g, e) == 0.0_dp)) cycle
+        s = 0.5_dp*(stress_start(:, g, e) + stress_end(:, g, e))
+        s(1:3) = s(1:3) - sum(s(1:3))/3.0_dp
+        work = work + operators%weight(g, e)*dot_product(s, plastic_increments(:, g, e))
+      end do
+    end do
+  end function plastic_work
+end module visco2d_plastic_step
