@@ -1,0 +1,221 @@
+!> ANALYSIS DYNAMIC with plasticity (visco2d_plastic_step, the equilibrium
+!> iterations of visco2d_time_step), against closed forms and the elastic run:
+!>  1. A one-element bar (a solid cylinder, r free, u_z prescribed top and
+!>     bottom) driven slowly (2 s against a wave crossing of 9 us: inertia
+!>     is nil) through tension to eps_a and back to -eps_a, bilinear
+!>     isotropic hardening (Y, E_t): sigma_a = Y + E_t (eps_a - Y/E) at the
+!>     turn, sigma_end = -(sigma_a + E_t (2 eps_a - 2 sigma_a/E)) at the end;
+!>     ebar_end = (eps_a - sigma_a/E) + (2 eps_a - 2 sigma_a/E - (|sigma_end| -
+!>     sigma_a)/E); the plastic work the trapezoid of sigma over ebar on the
+!>     two straight segments; the work of the supports = stored + plastic
+!>     energy to the run's balance error. Perfectly plastic (E_t = 0): sigma = Y.
+!>  2. A sphere dropped on the plate with a yield stress far above its
+!>     stresses: the elastic run's results (the plastic pass's dev/mean split
+!>     rounds differently: 1e-10) and no iteration.
+!>  3. The same sphere yielding: restitution below the elastic one, falling
+!>     with the yield stress; the books close with the plastic dissipation
+!>     (elastic flesh: the internal work less the stored energy is the plastic
+!>     work, to round-off); a viscoelastic flesh (PRONY) yields too.
+!>  4. ITERATIONS=1 on a yielding step: a located error at the TIME card,
+!>     no result folder; a PAD with a PLASTIC card refused.
+program test_plastic_dynamic
+  use visco2d_kinds, only: dp
+  use visco2d_error, only: error_t, error_text
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, summary_real
+  use visco2d_driver, only: run_deck
+  use visco2d_record, only: record_t
+  use visco2d_test_decks, only: deck_line_length, try_read_deck, check_error_location
+  implicit none
+
+  character(*), parameter :: folder = 'build/test_decks/plastic_dynamic'
+  character(*), parameter :: out_root = folder//'/out'
+  real(dp), parameter :: pi = acos(-1.0_dp)
+
+  call execute_command_line('rm -rf '//out_root//' && mkdir -p '//out_root)
+  call cyclic_bar()
+  call perfectly_plastic_bar()
+  call high_yield_is_elastic()
+  call yielding_impacts()
+  call bad_decks()
+  call test_summary('test_plastic_dynamic')
+
+contains
+
+  !> The bar deck: E = 1 MPa, nu = 0.3, R = H = 0.01 m, u_z(top) = u_top times the curve `path`.
+  function bar(plastic, u_top, path, tend) result(lines)
+    character(*), intent(in) :: plastic, u_top, path, tend
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = [character(len=deck_line_length) :: &
+      'TITLE uniaxial bar, dynamic', 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
+      'MATERIAL m ELASTIC E=1e6 NU=0.3 RHO=1000', plastic, 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=1 NZ=1', &
+      'FIX BOTTOM Z', 'FIX TOP Z UZ='//u_top//' CURVE=path', 'CURVE path '//path, 'WILSON THETA=1.4', &
+      'TIME DT=1e-2 TEND='//tend, 'END']
+  end function bar
+
+  subroutine run(name, lines, record, ok)
+    character(*), intent(in) :: name
+    character(*), intent(in) :: lines(:)
+    type(record_t), intent(out) :: record
+    logical, intent(out) :: ok
+    type(error_t), allocatable :: error
+    call write_deck(folder//'/'//name//'.inp', lines)
+    call run_deck(folder//'/'//name//'.inp', out_root, record, error)
+    ok = .not. allocated(error)
+    call check(name//': runs', ok)
+    if (.not. ok) print '(a)', '  '//error_text(error)
+  end subroutine run
+
+  subroutine cyclic_bar()
+    real(dp), parameter :: young = 1.0e6_dp, y0 = 1.0e4_dp, et = 2.0e5_dp, eps_a = 0.04_dp
+    real(dp), parameter :: hardening = young*et/(young - et)
+    real(dp), parameter :: volume = pi*0.01_dp**2*0.01_dp
+    real(dp) :: sigma_a, sigma_end, ebar_a, ebar_end, work, stored, dissipated
+    type(record_t) :: record
+    logical :: ok
+    sigma_a = y0 + et*(eps_a - y0/young)
+    sigma_end = sigma_a + et*(2.0_dp*eps_a - 2.0_dp*sigma_a/young)
+    ebar_a = eps_a - sigma_a/young
+    ebar_end = ebar_a + (2.0_dp*eps_a - 2.0_dp*sigma_a/young - (sigma_end - sigma_a)/young)
+    call check_close('cyclic bar: the closed form, ebar_end from the hardening modulus too', &
+                     ebar_end, ebar_a + (sigma_end - sigma_a)/hardening, 1.0e-12_dp)
+    call run('cyclic_bar', bar('PLASTIC YIELD=1e4 TANGENT=2e5', '4e-4', '0 0 1 1 2 -1', '2'), record, ok)
+    if (.not. ok) return
+    ! The iteration stops at a force residual of 1e-5 of the step's forces: 1e-6 on the stress is its
+    ! bound here (measured: exact to 10 digits).
+    call check_close('cyclic bar: |sigma_z| at -eps_a = sigma_a + E_t (2 eps_a - 2 sigma_a/E)', &
+                     summary_real(record, 'von_mises_max_Pa'), sigma_end, 1.0e-6_dp)
+    call check_close('cyclic bar: ebar at the end', summary_real(record, 'equivalent_plastic_strain_max'), ebar_end, &
+                     1.0e-6_dp)
+    work = volume*(0.5_dp*(y0 + sigma_a)*ebar_a + 0.5_dp*(sigma_a + sigma_end)*(ebar_end - ebar_a))
+    ! The plastic work is the trapezoid of each step: exact on the straight segments, off by a part of
+    ! a step's at the three steps that cross the yield surface (measured 4.5e-6 of the total).
+    call check_close('cyclic bar: plastic_dissipation_J = the integral of sigma d ebar (1e-5)', &
+                     summary_real(record, 'plastic_dissipation_J'), work, 1.0e-5_dp)
+    call check_close('cyclic bar: yielded_volume_m3 = the bar', summary_real(record, 'yielded_volume_m3'), volume, &
+                     1.0e-12_dp)
+    stored = summary_real(record, 'strain_energy_J')
+    dissipated = summary_real(record, 'plastic_dissipation_J')
+    call check_close('cyclic bar: strain_energy_J = sigma_end^2/(2E) V', stored, sigma_end**2/(2.0_dp*young)*volume, &
+                     2.0e-6_dp)
+    ! The books close to the run's own balance error (Wilson-theta's, in the supports' reactions), and
+    ! that is small against the work.
+    call check_close('cyclic bar: the supports'' work = stored + plastic, to the balance error', &
+                     summary_real(record, 'external_work_J'), stored + dissipated + summary_real(record, 'kinetic_J'), &
+                     0.0_dp, abs(summary_real(record, 'balance_error_J')) + 1.0e-15_dp)
+    call check('cyclic bar: the balance error below 1e-5 of the work', &
+               summary_real(record, 'balance_error_max_J') < 1.0e-5_dp*summary_real(record, 'external_work_J'))
+    call check('cyclic bar: iterations counted, at most 5 in a solve', &
+               summary_real(record, 'equilibrium_iterations') > summary_real(record, 'plastic_solves') .and. &
+               summary_real(record, 'equilibrium_iterations_max') <= 5.0_dp)
+  end subroutine cyclic_bar
+
+  subroutine perfectly_plastic_bar()
+    type(record_t) :: record
+    logical :: ok
+    call run('perfect_bar', bar('PLASTIC YIELD=1e4 TANGENT=0', '5e-4', '0 0 1 1', '1'), record, ok)
+    if (.not. ok) return
+    call check_close('perfectly plastic bar: sigma_z = Y', summary_real(record, 'von_mises_max_Pa'), 1.0e4_dp, 1.0e-6_dp)
+    call check_close('perfectly plastic bar: ebar = eps - Y/E', summary_real(record, 'equivalent_plastic_strain_max'), &
+                     0.05_dp - 0.01_dp, 1.0e-6_dp)
+  end subroutine perfectly_plastic_bar
+
+  !> A sphere of R 0.03 m (E 4 MPa, nu 0.32, rho 845) dropped on the plate from `height`, through the rebound.
+  function drop(plastic, height, extra) result(lines)
+    character(*), intent(in) :: plastic, height, extra
+    character(len=deck_line_length), allocatable :: lines(:)
+    lines = [character(len=deck_line_length) :: &
+      'TITLE dropped sphere', 'ANALYSIS DYNAMIC', 'GEOMETRY AXISYMMETRIC', &
+      'MATERIAL flesh ELASTIC E=4e6 NU=0.32 RHO=845', plastic, extra, 'MESH SPHERE R=0.03 LEVEL=1', &
+      'DROP HEIGHT='//height, 'WILSON THETA=1.4', 'TIME DT=2e-5 TEND=15e-3', 'PLATE Z=0 SLIP RELEASE=YES', &
+      'STOP AT=SEPARATION', 'END']
+  end function drop
+
+  subroutine high_yield_is_elastic()
+    type(record_t) :: elastic, plastic
+    logical :: ok
+    character(len=32), parameter :: keys(4) = [character(len=32) :: 'alpha_max_mm', 'q_max_MPa', &
+      'coefficient_of_restitution', 'strain_energy_J']
+    integer :: k
+    call run('drop_elastic', drop('', '0.2', ''), elastic, ok)
+    if (.not. ok) return
+    call run('drop_high_yield', drop('PLASTIC YIELD=1e9 TANGENT=0', '0.2', ''), plastic, ok)
+    if (.not. ok) return
+    do k = 1, size(keys)
+      call check_close('high yield: '//trim(keys(k))//' of the elastic run (1e-10)', summary_real(plastic, trim(keys(k))), &
+                       summary_real(elastic, trim(keys(k))), 1.0e-10_dp)
+    end do
+    call check_close('high yield: no iteration', summary_real(plastic, 'equilibrium_iterations'), 0.0_dp, 0.0_dp)
+    call check_close('high yield: no plastic work', summary_real(plastic, 'plastic_dissipation_J'), 0.0_dp, 0.0_dp)
+  end subroutine high_yield_is_elastic
+
+  subroutine yielding_impacts()
+    type(record_t) :: elastic, record
+    character(len=8), parameter :: yields(3) = [character(len=8) :: '0.6e6', '0.4e6', '0.25e6']
+    real(dp) :: restitution(0:3), internal
+    character(len=deck_line_length), allocatable :: lines(:)
+    logical :: ok
+    integer :: k
+    call run('impact_elastic', drop('', '0.3', ''), elastic, ok)
+    if (.not. ok) return
+    restitution(0) = summary_real(elastic, 'coefficient_of_restitution')
+    do k = 1, 3
+      call run('impact_yield_'//trim(yields(k)), drop('PLASTIC YIELD='//trim(yields(k))//' TANGENT=0.4e6', '0.3', ''), &
+               record, ok)
+      if (.not. ok) return
+      restitution(k) = summary_real(record, 'coefficient_of_restitution')
+      print '(a, es12.4, a, es12.4, a, i0)', '  Y = '//trim(yields(k))//': restitution ', restitution(k), &
+        ', plastic work ', summary_real(record, 'plastic_dissipation_J'), ' J, iterations ', &
+        nint(summary_real(record, 'equilibrium_iterations'))
+      call check('impact Y = '//trim(yields(k))//': restitution below the last one', restitution(k) < restitution(k - 1))
+      ! Elastic flesh: the internal work (dissipated_J is it less the stored energy) is stored + plastic work.
+      internal = summary_real(record, 'dissipated_J')
+      call check_close('impact Y = '//trim(yields(k))//': dissipated_J = plastic_dissipation_J (1e-9)', internal, &
+                       summary_real(record, 'plastic_dissipation_J'), 1.0e-9_dp)
+      ! The balance error is the elastic run's size (1.1e-3 of the input here, the impact's time
+      ! discretization): plasticity adds none (measured 0.85-1.16 times the elastic one).
+      call check('impact Y = '//trim(yields(k))//': the balance error within 1.25 times the elastic run''s', &
+                 summary_real(record, 'balance_error_max_rel') < 1.25_dp*summary_real(elastic, 'balance_error_max_rel'))
+      call check('impact Y = '//trim(yields(k))//': yielded volume > 0', summary_real(record, 'yielded_volume_m3') > 0)
+    end do
+    ! A Prony flesh yields in series with its viscoelastic law, and dissipates more than its plastic work.
+    lines = drop('PRONY G=0.5e6 BETA=100', '0.3', 'PLASTIC YIELD=0.25e6 TANGENT=0.4e6')
+    lines(4) = 'MATERIAL flesh VISCOELASTIC K=3.7e6 RHO=845'
+    lines = [lines(1:4), [character(len=deck_line_length) :: 'PRONY G=1.0e6 BETA=0'], lines(5:)]
+    call run('impact_prony', lines, record, ok)
+    if (.not. ok) return
+    call check('impact Prony: plastic work > 0', summary_real(record, 'plastic_dissipation_J') > 0)
+    call check('impact Prony: dissipated_J > plastic_dissipation_J (the dashpots)', &
+               summary_real(record, 'dissipated_J') > summary_real(record, 'plastic_dissipation_J'))
+  end subroutine yielding_impacts
+
+  subroutine bad_decks()
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(:), allocatable :: path, text
+    character(len=deck_line_length), allocatable :: lines(:)
+    logical :: refused, exists
+    path = folder//'/one_iteration.inp'
+    lines = drop('PLASTIC YIELD=0.25e6 TANGENT=0', '0.3', '')
+    lines(2) = 'ANALYSIS DYNAMIC ITERATIONS=1'
+    call write_deck(path, lines)
+    call run_deck(path, out_root, record, error)
+    call check('ITERATIONS=1: the run fails', allocated(error))
+    if (allocated(error)) then
+      text = error_text(error)
+      print '(a)', '  '//text
+      call check_text_contains('ITERATIONS=1: located at the TIME card', text, 'one_iteration.inp:10:')
+      call check_text_contains('ITERATIONS=1: says what', text, 'did not converge: after 1 iterations')
+      call check_text_contains('ITERATIONS=1: says what to do', text, 'more ITERATIONS= on the ANALYSIS card')
+    end if
+    inquire(file=out_root//'/one_iteration/summary.txt', exist=exists)
+    call check('ITERATIONS=1: no result folder', .not. exists)
+    path = folder//'/plastic_pad.inp'
+    lines = drop('PLASTIC YIELD=0.25e6 TANGENT=0', '0.3', '')
+    lines = [lines(1:11), [character(len=deck_line_length) :: 'MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100', &
+             'PAD THICKNESS=0.01 MAT=foam'], lines(12:)]
+    call write_deck(path, lines)
+    call try_read_deck(path, refused, text, lines)
+    call check('PAD and PLASTIC: refused', refused, text)
+    if (refused) call check_text_contains('PAD and PLASTIC: the message', text, 'is not available with a PAD yet')
+  end subroutine bad_decks
+end program test_plastic_dynamic
