@@ -137,6 +137,7 @@ program visco2d
   deallocate(decks, out_root)                 ! everything freed before exit (valgrind: nothing lost)
   if (allocated(argument)) deallocate(argument)
   if (allocated(message)) deallocate(message)
+  if (allocated(list)) deallocate(list)
   if (failed > 0) call c_exit(1_c_int)
   if (missed > 0) call c_exit(int(expect_missed_status, c_int))     ! every deck ran; an EXPECT card missed
 
