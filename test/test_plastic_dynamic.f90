@@ -16,8 +16,11 @@
 !>     with the yield stress; the books close with the plastic dissipation
 !>     (elastic flesh: the internal work less the stored energy is the plastic
 !>     work, to round-off); a viscoelastic flesh (PRONY) yields too.
-!>  4. ITERATIONS=1 on a yielding step: a located error at the TIME card,
-!>     no result folder; a PAD with a PLASTIC card refused.
+!>  4. BRUISE CRITERION=PLASTIC: the bruise is the yielded volume, shrinking
+!>     with the thresholds; its susceptibility.
+!>  5. ITERATIONS=1 on a yielding step: a located error at the TIME card,
+!>     no result folder; a PAD with a PLASTIC card refused; CRITERION=PLASTIC
+!>     refused without a PLASTIC material, with STRESS= and in STATIC.
 program test_plastic_dynamic
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, error_text
@@ -36,6 +39,7 @@ program test_plastic_dynamic
   call perfectly_plastic_bar()
   call high_yield_is_elastic()
   call yielding_impacts()
+  call plastic_bruise()
   call bad_decks()
   call test_summary('test_plastic_dynamic')
 
@@ -188,6 +192,31 @@ contains
                summary_real(record, 'dissipated_J') > summary_real(record, 'plastic_dissipation_J'))
   end subroutine yielding_impacts
 
+  !> BRUISE CRITERION=PLASTIC: the bruise is the yielded region (STRAIN=0) and shrinks with the
+  !> thresholds; its susceptibility is its volume over the energy absorbed.
+  subroutine plastic_bruise()
+    type(record_t) :: record
+    character(len=deck_line_length), allocatable :: lines(:)
+    real(dp) :: volume
+    logical :: ok
+    lines = drop('PLASTIC YIELD=0.25e6 TANGENT=0.4e6', '0.3', 'BRUISE CRITERION=PLASTIC THRESHOLDS=0.01,0.05')
+    call run('plastic_bruise', lines, record, ok)
+    if (.not. ok) return
+    volume = summary_real(record, 'bruise_volume_cm3')
+    call check_close('plastic bruise: bruise_volume_cm3 = yielded_volume_m3 (1e-12)', volume, &
+                     1.0e6_dp*summary_real(record, 'yielded_volume_m3'), 1.0e-12_dp)
+    call check('plastic bruise: the volumes shrink with the thresholds 0 < 0.01 < 0.05', &
+               volume > summary_real(record, 'bruise_volume_threshold_1_cm3') .and. &
+               summary_real(record, 'bruise_volume_threshold_1_cm3') > summary_real(record, 'bruise_volume_threshold_2_cm3') &
+               .and. summary_real(record, 'bruise_volume_threshold_2_cm3') > 0.0_dp)
+    call check_close('plastic bruise: susceptibility = volume / energy absorbed', &
+                     summary_real(record, 'bruise_susceptibility_cm3_per_J'), &
+                     volume/summary_real(record, 'energy_absorbed_J'), 1.0e-9_dp)
+    call check('plastic bruise: under the surface, inside the contact region', &
+               summary_real(record, 'bruise_depth_top_mm') >= 0.0_dp .and. &
+               summary_real(record, 'bruise_radius_max_mm') < 30.0_dp)
+  end subroutine plastic_bruise
+
   subroutine bad_decks()
     type(record_t) :: record
     type(error_t), allocatable :: error
@@ -217,5 +246,25 @@ contains
     call try_read_deck(path, refused, text, lines)
     call check('PAD and PLASTIC: refused', refused, text)
     if (refused) call check_text_contains('PAD and PLASTIC: the message', text, 'is not available with a PAD yet')
+    ! CRITERION=PLASTIC: refused where nothing can yield, with a stress threshold, and in STATIC.
+    path = folder//'/plastic_bruise_elastic.inp'
+    call try_read_deck(path, refused, text, drop('', '0.3', 'BRUISE CRITERION=PLASTIC'))
+    call check('CRITERION=PLASTIC without a PLASTIC material: refused', refused, text)
+    if (refused) call check_error_location('criterion_plastic_elastic', text, path, 6, 1, 'BRUISE', &
+                                           'no material of this deck has a PLASTIC card')
+    path = folder//'/plastic_bruise_stress.inp'
+    call try_read_deck(path, refused, text, drop('PLASTIC YIELD=0.25e6 TANGENT=0', '0.3', &
+                                                 'BRUISE CRITERION=PLASTIC STRESS=1e5'))
+    call check('CRITERION=PLASTIC STRESS=: refused', refused, text)
+    if (refused) call check_text_contains('CRITERION=PLASTIC STRESS=: the message', text, &
+                                          'takes its threshold as STRAIN=')
+    path = folder//'/plastic_bruise_static.inp'
+    lines = [character(len=deck_line_length) :: 'TITLE static', 'ANALYSIS STATIC', 'GEOMETRY AXISYMMETRIC', &
+      'MATERIAL m ELASTIC E=1e6 NU=0.3', 'PLASTIC YIELD=1e4 TANGENT=0', 'MESH RECT R0=0 R1=0.01 Z0=0 Z1=0.01 NR=1 NZ=1', &
+      'FIX BOTTOM Z', 'FIX TOP Z UZ=-1e-4', 'BRUISE CRITERION=PLASTIC', 'END']
+    call try_read_deck(path, refused, text, lines)
+    call check('CRITERION=PLASTIC in STATIC: refused', refused, text)
+    if (refused) call check_error_location('criterion_plastic_static', text, path, 9, 1, 'BRUISE', &
+                                           'available in ANALYSIS DYNAMIC only so far')
   end subroutine bad_decks
 end program test_plastic_dynamic

@@ -11,7 +11,8 @@
 !>      G_inf e:e + sum_m G_m C_m:C_m (eq. [12]'s terms; 1/2 sigma:epsilon for
 !>      an elastic material), the density of the solver's strain_energy_J.
 !> A point is bruised when the envelope of its card's criterion reaches the
-!> threshold. Volumes are 2 pi sum |J| r over the bruised Gauss points (the
+!> threshold; with CRITERION=PLASTIC when its equivalent plastic strain (a
+!> PLASTIC material, which never decreases: its own envelope) exceeds it. Volumes are 2 pi sum |J| r over the bruised Gauss points (the
 !> element's own 2 x 2 rule, weights 1): whole body in axisymmetry, per metre
 !> of thickness in plane strain.
 !>
@@ -32,7 +33,7 @@ module visco2d_bruise
   use visco2d_element, only: gauss_count, element_b_matrices, element_gauss_points
   use visco2d_material, only: von_mises, max_shear
   use visco2d_viscoelastic, only: viscoelastic_state_t, element_terms, stored_energy_density
-  use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy
+  use visco2d_bruise_cards, only: criterion_name, criterion_unit, criterion_energy, criterion_plastic
   use visco2d_strings, only: integer_text
   use visco2d_pad_mesh, only: is_pad_element, body_nodes, body_elements
   implicit none
@@ -57,22 +58,26 @@ module visco2d_bruise
     real(dp), allocatable :: volume(:, :)        !< (gauss_count, nelem) m^3 (per metre in plane strain)
     real(dp), allocatable :: point(:, :, :)      !< (2, gauss_count, nelem) undeformed r, z of the Gauss points, m
     real(dp) :: pole_z = 0.0_dp                  !< z of the body's lowest node (the undeformed contact pole), m
+    real(dp), allocatable :: plastic(:, :)       !< (gauss_count, nelem) ebar at the last update (a PLASTIC material)
   end type bruise_t
 
 contains
 
   !> Update the envelopes with the stresses and strains standing at `time`
-  !> (a no-op unless envelopes_wanted). `state`: the viscoelastic history, if any.
-  subroutine bruise_update(bruise, deck, time, stress, strain, state)
+  !> (a no-op unless envelopes_wanted). `state`: the viscoelastic history, if
+  !> any; `plastic`: the equivalent plastic strain of a run with a PLASTIC material.
+  subroutine bruise_update(bruise, deck, time, stress, strain, state, plastic)
     type(bruise_t), intent(inout) :: bruise
     type(deck_t), intent(in) :: deck
     real(dp), intent(in) :: time
     real(dp), intent(in) :: stress(:, :, :), strain(:, :, :)   !< (4, gauss_count, nelem)
     type(viscoelastic_state_t), intent(in), optional :: state
+    real(dp), intent(in), optional :: plastic(:, :)            !< (gauss_count, nelem)
     real(dp) :: values(measure_count)
     integer :: e, g, m
     if (.not. envelopes_wanted(deck)) return
     if (.not. bruise%active) call bruise_start(bruise, deck)
+    if (present(plastic)) bruise%plastic = plastic
     do e = 1, deck%mesh%nelem
       do g = 1, gauss_count
         associate (s => stress(:, g, e))
@@ -89,7 +94,13 @@ contains
         end do
         if (bruise%rule(e) == 0 .or. bruise%failure_time(g, e) >= 0.0_dp) cycle
         associate (card => deck%bruises(bruise%rule(e)))
-        if (values(card%criterion) >= card%threshold) bruise%failure_time(g, e) = time
+        if (card%criterion == criterion_plastic) then
+          if (present(plastic)) then
+            if (plastic(g, e) > card%threshold) bruise%failure_time(g, e) = time
+          end if
+        else if (values(card%criterion) >= card%threshold) then
+          bruise%failure_time(g, e) = time
+        end if
         end associate
       end do
     end do
@@ -241,7 +252,13 @@ contains
         associate (card => deck%bruises(bruise%rule(e)))
         if (size(card%extra) < i) cycle
         do g = 1, gauss_count
-          if (bruise%envelope(card%criterion, g, e) >= card%extra(i)) total = total + bruise%volume(g, e)
+          if (card%criterion == criterion_plastic) then
+            if (allocated(bruise%plastic)) then
+              if (bruise%plastic(g, e) > card%extra(i)) total = total + bruise%volume(g, e)
+            end if
+          else if (bruise%envelope(card%criterion, g, e) >= card%extra(i)) then
+            total = total + bruise%volume(g, e)
+          end if
         end do
         end associate
       end do
@@ -263,12 +280,13 @@ contains
     end subroutine put_envelope_maximum
   end subroutine bruise_report
 
-  !> 'Pa' or 'J_m3' (a key's unit suffix) of a measure or criterion code.
+  !> 'Pa', 'J_m3' or 'strain' (a key's unit suffix) of a measure or criterion code.
   pure function unit_key(code) result(text)
     integer, intent(in) :: code
     character(:), allocatable :: text
     text = 'Pa'
     if (code == criterion_energy) text = 'J_m3'
+    if (code == criterion_plastic) text = 'strain'
   end function unit_key
 
   !> A number of the summary by key as summary.txt shows it (false if absent or
@@ -299,6 +317,7 @@ contains
              bruise%volume, .false.)
     call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
     call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
+    if (allocated(bruise%plastic)) call add('equivalent_plastic_strain', '1', bruise%plastic)
     if (size(deck%bruises) == 0) return                 ! OUTPUT ENVELOPES=YES alone: no threshold, no region
     allocate(threshold(gauss_count, deck%mesh%nelem))
     threshold = 0.0_dp

@@ -11,7 +11,7 @@ module visco2d_bruise_cards
   use visco2d_error, only: error_t, set_error
   use visco2d_material, only: material_t
   use visco2d_strings, only: short_real, integer_text
-  use visco2d_ranges, only: range_t, in_range, range_text, failure_stress_range, failure_energy_range
+  use visco2d_ranges, only: range_t, in_range, range_text, failure_stress_range, failure_energy_range, plastic_strain_range
   use visco2d_card_lists, only: read_increasing_list
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, has_field, &
                            check_fields_used, field_column, parse_real
@@ -19,18 +19,19 @@ module visco2d_bruise_cards
   private
 
   public :: bruise_card_t, read_bruise, check_bruise_cards, criterion_name, criterion_unit
-  public :: criterion_max_shear, criterion_mises, criterion_octahedral, criterion_energy
+  public :: criterion_max_shear, criterion_mises, criterion_octahedral, criterion_energy, criterion_plastic
 
   integer, parameter :: criterion_max_shear = 1   !< Tresca: (sigma_1 - sigma_3)/2, Pa
   integer, parameter :: criterion_mises = 2       !< von Mises equivalent stress, Pa
   integer, parameter :: criterion_octahedral = 3  !< octahedral shear stress sqrt(2)/3 sigma_Mises, Pa
   integer, parameter :: criterion_energy = 4      !< strain-energy density, J/m^3
+  integer, parameter :: criterion_plastic = 5     !< equivalent plastic strain (a PLASTIC material): failed flesh
 
   !> One BRUISE card: the flesh of material `material` (all materials if '')
   !> is bruised where the time envelope of the criterion reaches `threshold`.
   type :: bruise_card_t
     integer :: criterion = criterion_max_shear
-    real(dp) :: threshold = 0.0_dp             !< Pa (stress criteria) or J/m^3 (ENERGY)
+    real(dp) :: threshold = 0.0_dp             !< Pa (stress criteria), J/m^3 (ENERGY) or 1 (PLASTIC, exceeded)
     real(dp), allocatable :: extra(:)          !< THRESHOLDS=: more thresholds, same unit, increasing
     character(:), allocatable :: material      !< MAT= id (upper case); '' for every material
     integer :: line = 0
@@ -48,23 +49,28 @@ contains
     case (criterion_mises); name = 'MISES'
     case (criterion_octahedral); name = 'OCTAHEDRAL'
     case (criterion_energy); name = 'ENERGY'
+    case (criterion_plastic); name = 'PLASTIC'
     case default; name = 'MAXSHEAR'
     end select
   end function criterion_name
 
-  !> Unit of the criterion's value: 'Pa' or 'J/m^3'.
+  !> Unit of the criterion's value: 'Pa', 'J/m^3' or '1' (a strain).
   pure function criterion_unit(code) result(unit)
     integer, intent(in) :: code
     character(:), allocatable :: unit
     if (code == criterion_energy) then
       unit = 'J/m^3'
+    else if (code == criterion_plastic) then
+      unit = '1'
     else
       unit = 'Pa'
     end if
   end function criterion_unit
 
   !> BRUISE CRITERION=MAXSHEAR|MISES|OCTAHEDRAL STRESS=.. | CRITERION=ENERGY ENERGY=..
-  !> [MAT=id] [THRESHOLDS=v1,v2,...], appended to `bruises`.
+  !> | CRITERION=PLASTIC [STRAIN=0] [MAT=id] [THRESHOLDS=v1,v2,...], appended to `bruises`.
+  !> PLASTIC: the flesh is bruised (failed) where its equivalent plastic strain
+  !> exceeds STRAIN (default 0: wherever it yielded).
   subroutine read_bruise(cards, card, bruises, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -74,7 +80,7 @@ contains
     character(:), allocatable :: word, value_field
     type(range_t) :: range
     character(len=*), parameter :: form = 'BRUISE CRITERION=MAXSHEAR|MISES|OCTAHEDRAL STRESS=<Pa> '// &
-      '(or CRITERION=ENERGY ENERGY=<J/m^3>) [MAT=id] [THRESHOLDS=v1,v2,...]'
+      '(or CRITERION=ENERGY ENERGY=<J/m^3>, or CRITERION=PLASTIC [STRAIN=0]) [MAT=id] [THRESHOLDS=v1,v2,...]'
     if (.not. has_field(card, 'CRITERION')) then
       call card_error(error, cards, card, 'missing field CRITERION= (expected: '//form//')'); return
     end if
@@ -84,11 +90,20 @@ contains
     case ('MISES'); bruise%criterion = criterion_mises
     case ('OCTAHEDRAL'); bruise%criterion = criterion_octahedral
     case ('ENERGY'); bruise%criterion = criterion_energy
+    case ('PLASTIC'); bruise%criterion = criterion_plastic
     case default
-      call card_error(error, cards, card, 'CRITERION must be MAXSHEAR, MISES, OCTAHEDRAL or ENERGY, got "'// &
+      call card_error(error, cards, card, 'CRITERION must be MAXSHEAR, MISES, OCTAHEDRAL, ENERGY or PLASTIC, got "'// &
                       word//'"', field_column(card, 'CRITERION')); return
     end select
-    if (bruise%criterion == criterion_energy) then
+    if (bruise%criterion == criterion_plastic) then
+      value_field = 'STRAIN'
+      range = plastic_strain_range
+      if (has_field(card, 'STRESS') .or. has_field(card, 'ENERGY')) then
+        call card_error(error, cards, card, 'CRITERION=PLASTIC takes its threshold as STRAIN=<equivalent plastic '// &
+                        'strain> (default 0), not STRESS= or ENERGY=', max(field_column(card, 'STRESS'), &
+                        field_column(card, 'ENERGY'))); return
+      end if
+    else if (bruise%criterion == criterion_energy) then
       value_field = 'ENERGY'
       range = failure_energy_range
       if (has_field(card, 'STRESS')) then
@@ -103,11 +118,12 @@ contains
                         field_column(card, 'ENERGY')); return
       end if
     end if
-    if (.not. has_field(card, value_field)) then
+    if (.not. has_field(card, value_field) .and. bruise%criterion /= criterion_plastic) then
       call card_error(error, cards, card, 'missing field '//value_field//'= (the failure threshold in '// &
                       criterion_unit(bruise%criterion)//'; no default is assumed)'); return
     end if
-    call named_real(cards, card, value_field, bruise%threshold, error, range=range); if (allocated(error)) return
+    call named_real(cards, card, value_field, bruise%threshold, error, range=range, default=0.0_dp)
+    if (allocated(error)) return
     call named_word(cards, card, 'MAT', bruise%material, error, default=''); if (allocated(error)) return
     if (len(bruise%material) > 0) bruise%material_column = field_column(card, 'MAT')
     call named_word(cards, card, 'THRESHOLDS', word, error, default=''); if (allocated(error)) return

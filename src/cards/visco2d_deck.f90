@@ -21,7 +21,7 @@ module visco2d_deck
                                    read_integrator
   use visco2d_contact_cards, only: plate_t, pad_t, read_plate, read_pad, read_stop, stop_name, stop_at_tend, &
                                    stop_at_max_deformation, stop_at_separation
-  use visco2d_bruise_cards, only: read_bruise, check_bruise_cards
+  use visco2d_bruise_cards, only: read_bruise, check_bruise_cards, criterion_plastic
   use visco2d_mesh_cards, only: mesh_input_t, read_node_card, read_element_card, read_mesh_card
   use visco2d_mesh_build, only: build_mesh
   use visco2d_pad_mesh, only: append_pad
@@ -402,6 +402,8 @@ contains
         exit
       end if
     end do
+    call check_plastic_bruise(deck, m, error)
+    if (allocated(error)) return
     if (m == 0) then
       if (reading%increments_given .and. deck%analysis == analysis_static) call add_warning(deck, &
         reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and ITERATIONS= are for plastic materials (a PLASTIC card); '// &
@@ -428,6 +430,39 @@ contains
         '); a plastic fruit on the rigid PLATE is'); return
     end if
   end subroutine check_plastic_analysis
+
+  !> A BRUISE CRITERION=PLASTIC card reads the equivalent plastic strain of
+  !> an ANALYSIS DYNAMIC run: it needs that analysis and a PLASTIC material
+  !> (the one of its MAT=, if given); otherwise it would report no bruise
+  !> where nothing can yield, so it is an error at the card. `plastic`: the
+  !> first plastic material, 0 if none.
+  subroutine check_plastic_bruise(deck, plastic, error)
+    type(deck_t), intent(in) :: deck
+    integer, intent(in) :: plastic
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k, j
+    if (.not. allocated(deck%bruises)) return
+    do k = 1, size(deck%bruises)
+      associate (b => deck%bruises(k))
+      if (b%criterion /= criterion_plastic) cycle
+      if (plastic == 0) then
+        call set_error(error, 'CRITERION=PLASTIC reads the equivalent plastic strain, and no material of this deck '// &
+          'has a PLASTIC card', file=deck%cards%file, line=b%line, column=b%column, card='BRUISE'); return
+      end if
+      if (deck%analysis /= analysis_dynamic) then
+        call set_error(error, 'CRITERION=PLASTIC is available in ANALYSIS DYNAMIC only so far; this deck is ANALYSIS '// &
+          analysis_name(deck%analysis), file=deck%cards%file, line=b%line, column=b%column, card='BRUISE'); return
+      end if
+      if (len(b%material) == 0) cycle
+      do j = 1, size(deck%materials)
+        if (deck%materials(j)%id == b%material .and. .not. deck%materials(j)%plastic) then
+          call set_error(error, 'CRITERION=PLASTIC for material '//b%material//', which has no PLASTIC card', &
+            file=deck%cards%file, line=b%line, column=b%material_column, card='BRUISE'); return
+        end if
+      end do
+      end associate
+    end do
+  end subroutine check_plastic_bruise
 
   !> True if card k (a PRONY) directly follows a MATERIAL or PRONY card.
   logical function follows_material(deck, reading, k)

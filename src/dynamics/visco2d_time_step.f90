@@ -780,7 +780,9 @@ contains
   !> t + h of row r, from the start state and the solution dU_h with the
   !> moduli and the history stress over h (eqs. [13], [14], [23], [24]):
   !> the state in which the integrator holds equilibrium, the one the plate
-  !> reactions are taken in (solve_point_reactions). Call it before
+  !> reactions are taken in (solve_point_reactions); with a PLASTIC
+  !> material strain_solve is the elastic strain (less the plastic strain),
+  !> the one the stored energy reads. Call it before
   !> commit_substep (it reads the start state); into stepper%stress_solve,
   !> strain_solve, history_solve. For Wilson-theta this, not the state at
   !> t + dt, is free of the overshoot of the stiff modes that a node
@@ -814,6 +816,7 @@ contains
                                   stepper%increments_solve, stepper%stress_solve, stepper%internal_solve)
     end if
     stepper%strain_solve = state%strain + stepper%increments_solve
+    if (stepper%plastic) stepper%strain_solve = stepper%strain_solve - state%plastic_strain - stepper%plastic_solve
     end associate
   end subroutine solve_point_state
 
