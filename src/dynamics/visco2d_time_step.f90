@@ -800,8 +800,7 @@ contains
     if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
-    if (stepper%plastic) then
-      call plastic_solve_point(stepper, deck, point, state)
+    if (stepper%plastic) then                       ! the last evaluation of equilibrium_iterations is at this solution
       stepper%history_solve = state%history
       if (stepper%memory) call commit_history(deck%mesh%element_material, stepper%history_solve, point%over_h, &
                                               stepper%increments_solve - stepper%plastic_solve)
