@@ -8,7 +8,8 @@
 !>     ebar_end = (eps_a - sigma_a/E) + (2 eps_a - 2 sigma_a/E - (|sigma_end| -
 !>     sigma_a)/E); the plastic work the trapezoid of sigma over ebar on the
 !>     two straight segments; the work of the supports = stored + plastic
-!>     energy to the run's balance error. Perfectly plastic (E_t = 0): sigma = Y.
+!>     energy to the run's balance error; unloaded, the net plastic strain
+!>     times the height (residual_flattening_mm). Perfectly plastic: sigma = Y.
 !>  2. A sphere dropped on the plate with a yield stress far above its
 !>     stresses: the elastic run's results (the plastic pass's dev/mean split
 !>     rounds differently: 1e-10) and no iteration.
@@ -110,6 +111,12 @@ contains
                      0.0_dp, abs(summary_real(record, 'balance_error_J')) + 1.0e-15_dp)
     call check('cyclic bar: the balance error below 1e-5 of the work', &
                summary_real(record, 'balance_error_max_J') < 1.0e-5_dp*summary_real(record, 'external_work_J'))
+    ! Unloaded, the bar keeps its net plastic strain along z, ebar_a in tension less ebar_end - ebar_a
+    ! in compression, homogeneous, so the eigenstrain solve gives it exactly: a shortening of
+    ! (ebar_end - 2 ebar_a) H = 0.144 mm.
+    call check_close('cyclic bar: residual_flattening_mm = -(net plastic strain) H', &
+                     summary_real(record, 'residual_flattening_mm'), 1.0e3_dp*(ebar_end - 2.0_dp*ebar_a)*0.01_dp, &
+                     1.0e-9_dp)
     call check('cyclic bar: iterations counted, at most 5 in a solve', &
                summary_real(record, 'equilibrium_iterations') > summary_real(record, 'plastic_solves') .and. &
                summary_real(record, 'equilibrium_iterations_max') <= 5.0_dp)
@@ -214,6 +221,9 @@ contains
     call check_close('plastic bruise: susceptibility = volume / energy absorbed', &
                      summary_real(record, 'bruise_susceptibility_cm3_per_J'), &
                      volume/summary_real(record, 'energy_absorbed_J'), 1.0e-9_dp)
+    call check('plastic bruise: a residual flattening between 0 and alpha_m', &
+               summary_real(record, 'residual_flattening_mm') > 0.0_dp .and. &
+               summary_real(record, 'residual_flattening_mm') < summary_real(record, 'alpha_max_mm'))
     call check('plastic bruise: under the surface, inside the contact region', &
                summary_real(record, 'bruise_depth_top_mm') >= 0.0_dp .and. &
                summary_real(record, 'bruise_radius_max_mm') < 30.0_dp)

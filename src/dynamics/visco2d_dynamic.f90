@@ -65,6 +65,7 @@ module visco2d_dynamic
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_surface_stress
   use visco2d_integrators, only: mass_coefficient, energy_overshoot, stability_advice
   use visco2d_dynamic_state, only: dynamic_state_t
+  use visco2d_plastic_step, only: residual_flattening
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_time_step, only: stepper_t, contact_hold_t, stepper_create, effective_stiffness, factor_effective, &
                                effective_load, solve_supports, contact_repeat, commit_substep, solve_point_state
@@ -157,7 +158,8 @@ contains
     end if
     call log_snapshot(measures%log, deck, record, 'final', step_count, state)
     call warn_unwritten_fields(measures%log, deck, record, state%t)
-    call put_summary(stepper, deck, record, state, step_count, measures)
+    call put_summary(stepper, deck, record, state, step_count, measures, error)
+    if (allocated(error)) call locate_error(error, deck%cards%file, card='TIME', where=' (after the last step)')
   end subroutine solve_dynamic
 
   !> The body's nodal displacements (2, body nodes) of a vector in band order:
@@ -458,13 +460,14 @@ contains
   !> The summary keys of the run: counts, the end state and energies, the
   !> impact (with the snapshots at its maxima), envelopes, small-strain
   !> warnings, the field and probe keys.
-  subroutine put_summary(stepper, deck, record, state, step_count, measures)
+  subroutine put_summary(stepper, deck, record, state, step_count, measures, error)
     type(stepper_t), intent(in) :: stepper
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(dynamic_state_t), intent(in) :: state
     integer, intent(in) :: step_count
     type(measures_t), intent(in) :: measures
+    type(error_t), allocatable, intent(inout) :: error
     integer :: k, history_values
     associate (mesh => deck%mesh, at_alpha_max => measures%at_alpha_max, log => measures%log)
     call record_put_integer(record, 'steps', step_count)
@@ -492,7 +495,8 @@ contains
       end if
     end if
     call bruise_report(measures%bruise, deck, record)
-    if (stepper%plastic) call put_plastic_summary(stepper, record, state, log%basis_factor)
+    if (stepper%plastic) call put_plastic_summary(stepper, deck, record, state, log%basis_factor, error)
+    if (allocated(error)) return
     ! Beyond the small-strain model: the largest principal strain at the end
     ! and at maximum deformation, and the approach against the radius.
     associate (body => body_elements(deck))
@@ -534,17 +538,26 @@ contains
   !> equilibrium iterations, the plastic dissipation (the trapezoidal
   !> 1/2 (s_n + s_n+1) : de_p over the steps), the largest equivalent plastic
   !> strain and the yielded volume (the Gauss points' volumes with ebar > 0),
-  !> energies and volumes times `factor` (the whole body in axisymmetry).
-  subroutine put_plastic_summary(stepper, record, state, factor)
+  !> energies and volumes times `factor` (the whole body in axisymmetry); in
+  !> axisymmetry the residual flattening along the axis (visco2d_plastic_step).
+  subroutine put_plastic_summary(stepper, deck, record, state, factor, error)
     type(stepper_t), intent(in) :: stepper
+    type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
     type(dynamic_state_t), intent(in) :: state
     real(dp), intent(in) :: factor
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: shortening
+    logical :: found
     call record_put_integer(record, 'equilibrium_iterations', stepper%iterations)
     call record_put_integer(record, 'equilibrium_iterations_max', stepper%iterations_max)
     call record_put_integer(record, 'plastic_solves', stepper%iterated_solves)
     call record_put_real(record, 'plastic_dissipation_J', factor*stepper%plastic_dissipation)
     call record_put_real(record, 'equivalent_plastic_strain_max', maxval(state%ebar))
     call record_put_real(record, 'yielded_volume_m3', factor*sum(stepper%operators%weight, mask=state%ebar > 0.0_dp))
+    call residual_flattening(deck, stepper%operators%b, stepper%operators%weight, state%plastic_strain, shortening, &
+                             found, error)
+    if (allocated(error)) return
+    if (found) call record_put_real(record, 'residual_flattening_mm', 1.0e3_dp*shortening)
   end subroutine put_plastic_summary
 end module visco2d_dynamic

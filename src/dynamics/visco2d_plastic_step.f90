@@ -14,15 +14,22 @@
 !> the caller, which updates the Prony histories with de - de_p (eq. [24]):
 !> the springs and dashpots see only the strain the slider did not take.
 module visco2d_plastic_step
-  use visco2d_kinds, only: dp
-  use visco2d_material, only: material_t
+  use visco2d_kinds, only: dp, geometry_axisymmetric
+  use visco2d_error, only: error_t, set_error
+  use visco2d_deck, only: deck_t
+  use visco2d_material, only: material_t, elastic_matrix
+  use visco2d_strings, only: integer_text
   use visco2d_element, only: gauss_count
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
+  use visco2d_assembly, only: assemble_stiffness, node_dof, element_dofs
+  use visco2d_pad_mesh, only: body_nodes
   use visco2d_operators, only: operators_t, operators_element_force
   use visco2d_plasticity, only: return_result_t, radial_return, yield_stress
   implicit none
   private
 
-  public :: plastic_trial_stress, plastic_work, yield_limits
+  public :: plastic_trial_stress, plastic_work, yield_limits, residual_flattening
 
 contains
 
@@ -135,4 +142,77 @@ contains
       end do
     end do
   end function plastic_work
+
+  !> The permanent shortening of an axisymmetric body along its axis that its
+  !> plastic strain leaves once unloaded, m: the displacement u of the body
+  !> with the plastic strain as an eigenstrain, S u = sum B^T D eps_p |J| r
+  !> (the instantaneous elastic moduli G, K; the axis free in z but for the
+  !> far pole, u_r = 0 on the axis), and the shortening
+  !> u_z(contact pole) - u_z(far pole), the poles the body's lowest and
+  !> highest nodes on the axis. A homogeneous plastic strain gives it exactly
+  !> (-eps_p,z times the height); `found` is false for plane strain or a body
+  !> without a node of the axis at both poles.
+  subroutine residual_flattening(deck, b, weight, plastic_strain, shortening, found, error)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: b(:, :, :, :), weight(:, :)      !< B (4, 8, gauss, nelem) and |J| r (gauss, nelem)
+    real(dp), intent(in) :: plastic_strain(:, :, :)          !< (4, gauss_count, nelem)
+    real(dp), intent(out) :: shortening
+    logical, intent(out) :: found
+    type(error_t), allocatable, intent(inout) :: error
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
+    real(dp), allocatable :: shear(:), bulk(:), load(:), zeros(:)
+    logical, allocatable :: supports(:)
+    real(dp) :: d(4, 4), element_force(8)
+    integer :: e, g, node, bottom, top, info, status, dofs(8)
+    associate (mesh => deck%mesh)
+    shortening = 0.0_dp
+    found = .false.
+    if (deck%settings%geometry /= geometry_axisymmetric) return
+    bottom = 0
+    top = 0
+    allocate(supports(2*mesh%nnode), load(2*mesh%nnode), zeros(2*mesh%nnode))
+    supports = .false.
+    load = 0.0_dp
+    zeros = 0.0_dp
+    do node = 1, body_nodes(deck)
+      if (mesh%xy(1, node) /= 0.0_dp) cycle
+      supports(node_dof(mesh, node, 1)) = .true.
+      if (bottom == 0) bottom = node
+      if (top == 0) top = node
+      if (mesh%xy(2, node) < mesh%xy(2, bottom)) bottom = node
+      if (mesh%xy(2, node) > mesh%xy(2, top)) top = node
+    end do
+    if (bottom == 0 .or. top == bottom) return
+    supports(node_dof(mesh, top, 2)) = .true.
+    shear = deck%materials(mesh%element_material)%shear
+    bulk = deck%materials(mesh%element_material)%bulk
+    call assemble_stiffness(mesh, deck%settings, shear, bulk, stiffness)
+    do e = 1, mesh%nelem
+      if (all(plastic_strain(:, :, e) == 0.0_dp)) cycle
+      d = elastic_matrix(shear(e), bulk(e))
+      element_force = 0.0_dp
+      do g = 1, gauss_count
+        element_force = element_force + weight(g, e)*matmul(transpose(b(:, :, g, e)), matmul(d, plastic_strain(:, g, e)))
+      end do
+      dofs = element_dofs(mesh, e)
+      load(dofs) = load(dofs) + element_force
+    end do
+    call factor_compute(factor, stiffness, supports, info, solver_of_card(deck%settings%solver))
+    if (info /= 0) then
+      call set_error(error, 'the elastic stiffness of the unloaded body is singular at equation '// &
+        integer_text(info)//' (the residual deformation of the plastic strain)')
+      return
+    end if
+    call band_constrain_rhs(stiffness, supports, zeros, load)
+    call factor_solve(factor, load, status)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))
+      return
+    end if
+    shortening = load(node_dof(mesh, bottom, 2)) - load(node_dof(mesh, top, 2))
+    found = .true.
+    end associate
+  end subroutine residual_flattening
+
 end module visco2d_plastic_step
