@@ -29,7 +29,7 @@ module visco2d_plastic_step
   implicit none
   private
 
-  public :: plastic_trial_stress, plastic_active_update, plastic_work, yield_limits, residual_flattening
+  public :: plastic_trial_stress, plastic_work, yield_limits, residual_flattening
 
 contains
 
@@ -99,63 +99,6 @@ contains
       end do
     end do
   end subroutine plastic_trial_stress
-
-  !> The pass of plastic_trial_stress over the elements of `active` only,
-  !> after the solution moved by `step` (to `du`): their stresses, ebar and
-  !> de_p anew, and the residual's change on their equations,
-  !>   r += kept (K_e step_e - (F_e(new) - F_e(old))),
-  !> K_e step_e the elastic (linear) force of the step over the interval
-  !> (moduli shear, bulk; no history). An element that stays elastic over
-  !> the step changes its force by exactly K_e step_e, so the elements left
-  !> out add nothing to the residual of the free equations after a
-  !> correction d with S~ d = r: that residual is (1 - omega) r there plus
-  !> what this routine adds (the caller adds the first part). The caller
-  !> checks the result with a full pass (plastic_trial_stress) before it
-  !> accepts it: an element left out that yields is found there.
-  pure subroutine plastic_active_update(operators, materials, element_material, limit, active, du, step, kept, shear, &
-                                        bulk, stress, ebar, increments, trial, ebar_next, plastic_increments, residual, &
-                                        history)
-    type(operators_t), intent(in) :: operators
-    type(material_t), intent(in) :: materials(:)
-    integer, intent(in) :: element_material(:), active(:)
-    real(dp), intent(in) :: limit(:, :), du(:), step(:), kept, shear(:), bulk(:), stress(:, :, :), ebar(:, :)
-    real(dp), intent(inout) :: increments(:, :, :), trial(:, :, :), ebar_next(:, :), plastic_increments(:, :, :)
-    real(dp), intent(inout) :: residual(:)
-    real(dp), intent(in), optional :: history(:, :, :)
-    real(dp) :: old_force(8), new_force(8), linear_force(8), no_history(4, gauss_count), linear(4, gauss_count)
-    real(dp) :: local(8), increment(4), volumetric
-    integer :: k, e, g, j, count
-    no_history = 0.0_dp
-    do k = 1, size(active)
-      e = active(k)
-      old_force = operators_element_force(operators, e, trial(:, :, e))
-      if (present(history)) then
-        call element_stresses(operators, e, materials(element_material(e)), limit(:, e), du(operators%dofs(:, e)), &
-                              shear(e), bulk(e), stress(:, :, e), ebar(:, e), history(:, :, e), increments(:, :, e), &
-                              trial(:, :, e), ebar_next(:, e), plastic_increments(:, :, e), count)
-      else
-        call element_stresses(operators, e, materials(element_material(e)), limit(:, e), du(operators%dofs(:, e)), &
-                              shear(e), bulk(e), stress(:, :, e), ebar(:, e), no_history, increments(:, :, e), &
-                              trial(:, :, e), ebar_next(:, e), plastic_increments(:, :, e), count)
-      end if
-      new_force = operators_element_force(operators, e, trial(:, :, e))
-      local = step(operators%dofs(:, e))
-      do g = 1, gauss_count                          ! the elastic stress of the step: D B step (eqs. [13], [14])
-        increment = 0.0_dp
-        do j = 1, 8
-          increment = increment + operators%b(:, j, g, e)*local(j)
-        end do
-        volumetric = increment(1) + increment(2) + increment(3)
-        linear(1:3, g) = bulk(e)*volumetric + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
-        linear(4, g) = shear(e)*increment(4)
-      end do
-      linear_force = operators_element_force(operators, e, linear)
-      do j = 1, 8
-        residual(operators%dofs(j, e)) = residual(operators%dofs(j, e)) + kept*(linear_force(j) - (new_force(j) - &
-                                                                                                   old_force(j)))
-      end do
-    end do
-  end subroutine plastic_active_update
 
   !> One element's Gauss points over the interval: strain increments B du,
   !> the stresses (returned where the point's material yields), ebar and
