@@ -92,10 +92,12 @@ study-fast: build
 	@python3 -m visco2d.study --fast $(STUDY_ARGS)
 
 # make bench       seconds per phase (visco2d --timing) of the Table 1 impact at levels 1, 4, 5 into
-#                  out/bench/ (bench.md, bench.csv); BENCH_ARGS="--levels 1,2,3" for a quick one.
+#                  out/bench/ (bench.md, bench.csv); BENCH_ARGS="--levels 1,2,3" for a quick one; then
+#                  what plasticity costs (bench_plastic.md; BENCH_PLASTIC_ARGS="--level 2 --repeat 5").
 .PHONY: bench
 bench: build
 	@python3 -m visco2d.bench $(BENCH_ARGS)
+	@python3 -m visco2d.bench_plastic $(BENCH_PLASTIC_ARGS)   # what plasticity costs: python/visco2d/bench_plastic.py
 
 # make bench-sweep  sweep throughput: 200 level-1 peach impacts by visco2d-batch run -j (all cores) against
 #                  the per-case compute (all 200 decks in one visco2d process): cases/s achieved, ideal

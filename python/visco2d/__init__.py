@@ -11,8 +11,8 @@ One package, one job per module (doc/python.md lists them and what stays hand-wr
   workers     the local workers: one visco2d process each, fed the decks
   diff        visco2d-diff: a run against archived reference outputs
   report      visco2d-report: one picture per case
-  figures     the paper's figures; paper_table, study, bench, integrators, convergence: the
-              benchmark and verification studies; bless, fuzz: the maintainers' tools
+  figures     the paper's figures; paper_table, study, bench, bench_plastic, bench_sweep, integrators,
+              convergence: the benchmark and verification studies; bless, fuzz: the maintainers' tools
 """
 
 __version__ = "1.0"
