@@ -147,6 +147,14 @@ contains
           end do
         end if
       end if
+      if (m%plastic) then                           ! PLASTIC: the hardening curve as the solver reads it
+        call text_put(out, '     von Mises plasticity (PLASTIC), isotropic hardening sigma_y(ebar), piecewise linear:')
+        do i = 1, size(m%hardening%stress)
+          call text_put(out, '       ebar = '//real_field(m%hardening%plastic_strain(i), 16, 8)//'   sigma_y = '// &
+            real_field(m%hardening%stress(i), 16, 8)//' Pa')
+        end do
+        call text_put(out, '       slope beyond the last point '//real_field(m%hardening%final_slope, 16, 8)//' Pa')
+      end if
       end associate
     end do
     end associate
