@@ -254,8 +254,9 @@ def free_fall_times(dt):
 def ccx_sphere_deck(path, nodes, elements, ids, plastic, penalty, sigma_inf, t_end, dt, slave_z):
     """The CalculiX deck: visco2d's mesh lifted by the drop height, falling from rest under gravity.
 
-    CalculiX's *INITIAL CONDITIONS, TYPE=VELOCITY on the nodes of expanded (CAX4) elements gave no
-    motion (ccx 2.20: the velocity is printed, the displacements and ELKE stay 0), so the sphere falls
+    CalculiX's *INITIAL CONDITIONS, TYPE=VELOCITY on the nodes of expanded (CAX4, CAX8) elements gave
+    no motion (ccx 2.20: the velocity is printed, the displacements and ELKE stay 0; the same card moves
+    a C3D8 element), so the sphere falls
     the drop height instead: step 1 the free fall to 2 dt before contact (a uniform acceleration, which
     the alpha method integrates exactly, with no stress), step 2 the impact at the fixed dt, step 3
     one more increment that prints the Gauss-point fields.
