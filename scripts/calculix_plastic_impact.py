@@ -328,7 +328,7 @@ def ccx_sphere_deck(path, nodes, elements, ids, plastic, penalty, sigma_inf, t_e
               "*STEP, INC=1000000",
               "*DYNAMIC, DIRECT",
               f"{dt:.10g}, {t_end:.10g}",
-              "*NODE PRINT, NSET=NSPHERE, FREQUENCY=1", "U, V",
+              "*NODE PRINT, NSET=NSPHERE, FREQUENCY=1", "U",
               "*NODE PRINT, NSET=NPLATE, TOTALS=ONLY", "RF",
               "*EL PRINT, ELSET=ESPHERE, TOTALS=ONLY", "ELSE, ELKE",
               "*END STEP",
@@ -379,7 +379,6 @@ def ccx_sphere_results(folder, job, nodes, elements, ids, plastic, release_fract
         return int(round((t - t1) / dt))
 
     disp = {step_of(b[1]): b[2] for b in blocks if b[0].startswith("displacements") and b[0].endswith("NSPHERE")}
-    vel = {step_of(b[1]): b[2] for b in blocks if b[0].startswith("velocities") and b[0].endswith("NSPHERE")}
     frc = {step_of(b[1]): b[2][0] for b in blocks if b[0].endswith("NPLATE") and b[2]}
     ene = {}
     for b in blocks:
