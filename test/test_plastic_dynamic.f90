@@ -158,6 +158,9 @@ contains
                        summary_real(elastic, trim(keys(k))), 1.0e-10_dp)
     end do
     call check_close('high yield: no iteration', summary_real(plastic, 'equilibrium_iterations'), 0.0_dp, 0.0_dp)
+    call check('high yield: the equivalent plastic strain among the fields, without a BRUISE card', &
+               has_field(plastic, 'equivalent_plastic_strain'))
+    call check('elastic run: no plastic field', .not. has_field(elastic, 'equivalent_plastic_strain'))
     call check_close('high yield: no plastic work', summary_real(plastic, 'plastic_dissipation_J'), 0.0_dp, 0.0_dp)
   end subroutine high_yield_is_elastic
 
@@ -263,6 +266,18 @@ contains
                  abs(values(k, 5) - values(k, 2)) < abs(values(k, 3) - values(k, 2)))
     end do
   end subroutine convergence
+
+  !> True if the record's bruise fields (results.h5's /bruise) hold `name`.
+  logical function has_field(record, name)
+    type(record_t), intent(in) :: record
+    character(*), intent(in) :: name
+    integer :: k
+    has_field = .false.
+    if (.not. allocated(record%bruise_fields)) return
+    do k = 1, size(record%bruise_fields)
+      if (record%bruise_fields(k)%name == name) has_field = .true.
+    end do
+  end function has_field
 
   subroutine bad_decks()
     type(record_t) :: record

@@ -23,12 +23,12 @@
 !> node is arrested on the plate.
 !>
 !> The envelopes are also kept for a deck with OUTPUT ENVELOPES=YES and no
-!> BRUISE card: then the envelope maxima and fields are reported, and no
-!> bruise (threshold) measures. Nothing is allocated or computed for a deck
+!> BRUISE card, and for a dynamic deck with a PLASTIC material: then the
+!> envelope maxima and fields are reported, and no bruise (threshold) measures. Nothing is allocated or computed for a deck
 !> with neither.
 module visco2d_bruise
   use visco2d_kinds, only: dp, geometry_axisymmetric
-  use visco2d_deck, only: deck_t, stop_at_separation
+  use visco2d_deck, only: deck_t, stop_at_separation, analysis_dynamic
   use visco2d_record, only: record_t, gauss_field_t, record_put, record_put_real, record_put_integer, record_real
   use visco2d_element, only: gauss_count, element_b_matrices, element_gauss_points
   use visco2d_material, only: von_mises, max_shear
@@ -117,11 +117,19 @@ contains
     call bruise_report(bruise, deck, record)
   end subroutine bruise_static
 
-  !> True for a deck with a BRUISE card or OUTPUT ENVELOPES=YES.
+  !> True for a deck with a BRUISE card or OUTPUT ENVELOPES=YES, and for a
+  !> dynamic deck with a PLASTIC material (its equivalent plastic strain is
+  !> written with the bruise fields, a BRUISE card or not).
   logical function envelopes_wanted(deck) result(wanted)
     type(deck_t), intent(in) :: deck
+    integer :: k
     wanted = deck%output%envelopes
     if (allocated(deck%bruises)) wanted = wanted .or. size(deck%bruises) > 0   ! unallocated: a deck built in code
+    if (deck%analysis == analysis_dynamic) then
+      do k = 1, size(deck%materials)
+        if (deck%materials(k)%plastic) wanted = .true.
+      end do
+    end if
   end function envelopes_wanted
 
   !> Allocate the envelopes (zero), the rule of every element, the volume
