@@ -25,7 +25,7 @@ module visco2d_plastic_step
   use visco2d_assembly, only: assemble_stiffness, node_dof, element_dofs
   use visco2d_pad_mesh, only: body_nodes
   use visco2d_operators, only: operators_t, operators_element_force
-  use visco2d_plasticity, only: return_result_t, radial_return, yield_stress
+  use visco2d_plasticity, only: return_result_t, point_return, yield_stress
   implicit none
   private
 
@@ -114,7 +114,7 @@ contains
     real(dp), intent(out) :: plastic_increments(4, gauss_count)
     integer, intent(out) :: count
     type(return_result_t) :: state
-    real(dp) :: increment(4), sigma(4), volumetric, mean, deviatoric(4)
+    real(dp) :: increment(4), sigma(4), volumetric
     integer :: g, j
     count = 0
     do g = 1, gauss_count
@@ -130,22 +130,13 @@ contains
         sigma(4) = stress(4, g) + shear*increment(4)
         sigma = sigma + history(:, g)
       else
-        mean = sum(stress(1:3, g))/3.0_dp
-        deviatoric(1:3) = stress(1:3, g) - mean + 2.0_dp*shear*(increment(1:3) - volumetric/3.0_dp)
-        deviatoric(4) = stress(4, g) + shear*increment(4)
-        deviatoric = deviatoric + history(:, g)
-        if (deviatoric(1)**2 + deviatoric(2)**2 + deviatoric(3)**2 + 2.0_dp*deviatoric(4)**2 <= limit(g)) then
-          sigma = deviatoric                        ! inside the yield surface: elastic (radial_return's first test)
-        else
-          state = radial_return(material%hardening, shear, deviatoric, ebar(g))
-          sigma = state%stress
-          if (state%yielded) then
-            count = count + 1
-            plastic_increments(:, g) = state%plastic_increment
-            ebar_next(g) = state%equivalent_plastic
-          end if
+        call point_return(material%hardening, shear, bulk, stress(:, g), increment, history(:, g), limit(g), ebar(g), &
+                          sigma, state)
+        if (state%yielded) then
+          count = count + 1
+          plastic_increments(:, g) = state%plastic_increment
+          ebar_next(g) = state%equivalent_plastic
         end if
-        sigma(1:3) = sigma(1:3) + mean + bulk*volumetric
       end if
       increments(:, g) = increment
       trial(:, g) = sigma

@@ -31,13 +31,12 @@
 module visco2d_plasticity
   use visco2d_kinds, only: dp
   use visco2d_material, only: material_t, hardening_t, bilinear_hardening
-  use visco2d_viscoelastic, only: step_coefficients_t, deviatoric_part, deviatoric_stress, history_stress, &
-                                  update_history
+  use visco2d_viscoelastic, only: step_coefficients_t, deviatoric_part, history_stress, update_history
   implicit none
   private
 
   public :: hardening_t, bilinear_hardening, yield_stress, hardening_slope
-  public :: return_result_t, radial_return, consistent_tangent, deviatoric_norm, viscoplastic_update
+  public :: return_result_t, radial_return, consistent_tangent, deviatoric_norm, viscoplastic_update, point_return
 
   !> What the return mapping of one Gauss point gives.
   type :: return_result_t
@@ -173,8 +172,7 @@ contains
   !> coefficients of the material (mu_n, K, eqs. [21], [22]), its Prony
   !> histories `history` (4, nterm; updated with the elastic part of the
   !> deviatoric increment, eq. [24]) and the equivalent plastic strain
-  !> `ebar` (updated). The mean stress takes K d(theta) (eq. [14]); the
-  !> deviatoric stress the return of s + 2 mu_n de + s0 (eqs. [13], [23]).
+  !> `ebar` (updated): point_return with the history stress of eq. [23].
   pure subroutine viscoplastic_update(material, coefficients, hardening, increment, stress, history, ebar, state)
     type(material_t), intent(in) :: material
     type(step_coefficients_t), intent(in) :: coefficients
@@ -182,17 +180,42 @@ contains
     real(dp), intent(in) :: increment(4)
     real(dp), intent(inout) :: stress(4), history(:, :), ebar
     type(return_result_t), intent(out) :: state
-    real(dp) :: deviatoric(4), volumetric, mean, trial(4)
+    real(dp) :: deviatoric(4), volumetric, s0(4), start(4)
+    s0 = 0.0_dp
+    if (size(history, 2) > 0) s0 = history_stress(material, coefficients, history)
+    start = stress
+    call point_return(hardening, coefficients%shear, coefficients%bulk, start, increment, s0, &
+                      2.0_dp/3.0_dp*yield_stress(hardening, ebar)**2, ebar, stress, state)
     call deviatoric_part(increment, deviatoric, volumetric)
-    mean = sum(stress(1:3))/3.0_dp
-    trial = stress
-    trial(1:3) = trial(1:3) - mean
-    trial = trial + deviatoric_stress(coefficients%shear, deviatoric)
-    if (size(history, 2) > 0) trial = trial + history_stress(material, coefficients, history)
-    state = radial_return(hardening, coefficients%shear, trial, ebar)
-    stress = state%stress
-    stress(1:3) = stress(1:3) + mean + coefficients%bulk*volumetric
     if (size(history, 2) > 0) call update_history(coefficients, deviatoric - state%plastic_increment, history)
     ebar = state%equivalent_plastic
   end subroutine viscoplastic_update
+
+  !> The stress at the end of a step at one Gauss point: the mean stress
+  !> p_n + K tr(de) (eq. [14]) and the deviatoric trial
+  !> s_trial = dev(stress) + 2 mu dev(de) + s0 (eqs. [13], [21], [23]; s0 the
+  !> history stress of the step) returned to the yield surface
+  !> (radial_return) when |s_trial|^2 exceeds `limit` = (2/3) sigma_y(ebar)^2;
+  !> `state` the return's result (an elastic one inside the surface).
+  pure subroutine point_return(hardening, shear, bulk, stress, increment, s0, limit, ebar, sigma, state)
+    type(hardening_t), intent(in) :: hardening
+    real(dp), intent(in) :: shear, bulk, stress(4), increment(4), s0(4), limit, ebar
+    real(dp), intent(out) :: sigma(4)
+    type(return_result_t), intent(out) :: state
+    real(dp) :: mean, volumetric, trial(4)
+    volumetric = increment(1) + increment(2) + increment(3)
+    mean = sum(stress(1:3))/3.0_dp
+    trial(1:3) = stress(1:3) - mean + 2.0_dp*shear*(increment(1:3) - volumetric/3.0_dp)
+    trial(4) = stress(4) + shear*increment(4)
+    trial = trial + s0
+    if (trial(1)**2 + trial(2)**2 + trial(3)**2 + 2.0_dp*trial(4)**2 <= limit) then
+      sigma = trial                                 ! inside the yield surface: elastic (radial_return's first test)
+      state%stress = trial
+      state%equivalent_plastic = ebar
+    else
+      state = radial_return(hardening, shear, trial, ebar)
+      sigma = state%stress
+    end if
+    sigma(1:3) = sigma(1:3) + mean + bulk*volumetric
+  end subroutine point_return
 end module visco2d_plasticity
