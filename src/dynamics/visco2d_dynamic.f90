@@ -362,13 +362,10 @@ contains
     t_solve = state%t + stepper%points(r)%h
     if (at_solve_point) call solve_point_state(stepper, deck, r, state)
     call commit_substep(stepper, deck, r, state, t_end)                         ! eqs. [24], [40]-[42]
-    if (at_solve_point .and. stepper%plastic) then             ! the elastic strain, and ebar
+    if (at_solve_point) then              ! ebar_solve: absent (unallocated) without a PLASTIC material
       call bruise_update(measures%bruise, deck, t_solve, stepper%stress_solve, stepper%strain_solve, &
                          stepper%history_solve, stepper%ebar_solve)
-    else if (at_solve_point) then
-      call bruise_update(measures%bruise, deck, t_solve, stepper%stress_solve, stepper%strain_solve, &
-                         stepper%history_solve)
-    else if (stepper%plastic) then
+    else if (stepper%plastic) then        ! the elastic strain, and ebar
       call bruise_update(measures%bruise, deck, t_end, state%stress, state%strain - state%plastic_strain, &
                          state%history, state%ebar)
     else

@@ -33,10 +33,9 @@ module visco2d_time_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t, set_error
-  use visco2d_strings, only: integer_text
+  use visco2d_strings, only: integer_text, short_real
   use visco2d_deck, only: deck_t
   use visco2d_material, only: has_memory
-  use visco2d_strings, only: short_real
   use visco2d_plastic_step, only: plastic_trial_stress, plastic_work, yield_limits
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
@@ -616,17 +615,11 @@ contains
     type(dynamic_state_t), intent(in) :: state
     integer :: yielded
     call timer_start(phase_constitutive)
-    if (stepper%plastic .and. stepper%memory) then            ! the return mapping at the sub-step's end
+    if (stepper%plastic) then             ! the return mapping at the sub-step's end (history_length: absent without memory)
       call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
-                                stepper%du, point%shear, &
-                                point%bulk, state%stress, state%ebar, stepper%increments, stepper%trial, &
-                                stepper%internal_next, stepper%trial_ebar, stepper%plastic_increments, yielded, &
-                                stepper%history_length)
-    else if (stepper%plastic) then
-      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
-                                stepper%du, point%shear, &
-                                point%bulk, state%stress, state%ebar, stepper%increments, stepper%trial, &
-                                stepper%internal_next, stepper%trial_ebar, stepper%plastic_increments, yielded)
+                                stepper%du, point%shear, point%bulk, state%stress, state%ebar, stepper%increments, &
+                                stepper%trial, stepper%internal_next, stepper%trial_ebar, stepper%plastic_increments, &
+                                yielded, stepper%history_length)
     else if (stepper%memory) then
       call operators_trial_stress(stepper%operators, stepper%du, point%shear, point%bulk, state%stress, &
                                   stepper%increments, stepper%trial, stepper%internal_next, stepper%history_length)
@@ -700,9 +693,9 @@ contains
       call timer_stop(phase_constitutive)
       stepper%residual = base - c*stepper%mass*stepper%solution - kept*stepper%internal_solve
       if (iteration == 1 .and. yielded == 0) exit                  ! elastic: the linear solve is the answer
-      scale = max(norm2(merge(base, 0.0_dp, free)), norm2(merge(kept*stepper%internal_solve, 0.0_dp, free)), &
-                  norm2(merge(c*stepper%mass*stepper%solution, 0.0_dp, free)), tiny(1.0_dp))
-      force_ratio = norm2(merge(stepper%residual, 0.0_dp, free))/scale
+      scale = sqrt(max(sum(base**2, mask=free), kept**2*sum(stepper%internal_solve**2, mask=free), &
+                       c**2*sum((stepper%mass*stepper%solution)**2, mask=free), tiny(1.0_dp)))
+      force_ratio = sqrt(sum(stepper%residual**2, mask=free))/scale
       stepper%correction = stepper%residual
       call band_constrain_rhs(point%effective, stepper%supports, stepper%no_values, stepper%correction)
       call timer_start(phase_solve)
@@ -760,19 +753,10 @@ contains
     if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
-    if (stepper%memory) then
-      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
-                                stepper%solution, &
-                                point%shear_h, point%bulk_h, state%stress, state%ebar, stepper%increments_solve, &
-                                stepper%stress_solve, stepper%internal_solve, stepper%ebar_solve, stepper%plastic_solve, &
-                                count, stepper%history_h)
-    else
-      call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
-                                stepper%solution, &
-                                point%shear_h, point%bulk_h, state%stress, state%ebar, stepper%increments_solve, &
-                                stepper%stress_solve, stepper%internal_solve, stepper%ebar_solve, stepper%plastic_solve, &
-                                count)
-    end if
+    call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                              stepper%solution, point%shear_h, point%bulk_h, state%stress, state%ebar, &
+                              stepper%increments_solve, stepper%stress_solve, stepper%internal_solve, stepper%ebar_solve, &
+                              stepper%plastic_solve, count, stepper%history_h)   ! history_h: absent without memory
     if (present(yielded)) yielded = count
   end subroutine plastic_solve_point
 
