@@ -203,7 +203,7 @@ contains
       reading%analysis_line = card%line
       call positional_word(cards, card, 1, 'analysis kind (STATIC, QUASISTATIC or DYNAMIC)', word, error)
       if (allocated(error)) return
-      if (word == 'STATIC') then                   ! the load increments and Newton iterations of a plastic solve
+      if (word == 'STATIC') then                   ! the load increments of a plastic solve
         reading%increments_given = has_field(card, 'INCREMENTS')
         call named_integer(cards, card, 'INCREMENTS', deck%settings%increments, error, default=10)
         if (allocated(error)) return
@@ -211,16 +211,11 @@ contains
           call card_error(error, cards, card, 'INCREMENTS must be in [1, '//integer_text(max_increments)//'], got '// &
                           integer_text(deck%settings%increments), field_column(card, 'INCREMENTS')); return
         end if
+      end if
+      if (word == 'STATIC' .or. word == 'DYNAMIC') then   ! the Newton iterations of an increment, or of a step
         reading%increments_given = reading%increments_given .or. has_field(card, 'ITERATIONS')
-        call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, default=30)
-        if (allocated(error)) return
-        if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
-          call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
-                          integer_text(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
-        end if
-      else if (word == 'DYNAMIC') then             ! the equilibrium iterations of a step with plasticity
-        reading%increments_given = has_field(card, 'ITERATIONS')
-        call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, default=50)
+        call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, &
+                           default=merge(30, 50, word == 'STATIC'))
         if (allocated(error)) return
         if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
           call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
