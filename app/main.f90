@@ -201,10 +201,13 @@ contains
     character(:), allocatable :: line, name
     character(len=512) :: reason
     character(len=:), allocatable :: names(:), bigger(:)
-    integer :: ios, k
+    integer, allocatable :: lengths(:)
+    integer :: ios, k, remembered
     logical :: seen
     streamed = 0
+    remembered = 0                                  ! the case names run so far: names(1:remembered)
     allocate(character(len=256) :: names(64))
+    allocate(lengths(64))
     do
       call read_line(5, line, ios, reason)
       if (ios /= 0) exit
@@ -213,8 +216,12 @@ contains
       streamed = streamed + 1
       name = case_name_of(line)
       seen = .false.
-      do k = 1, streamed - 1
-        if (names(k) == name) seen = .true.
+      do k = 1, remembered                          ! the lengths first: most names differ there
+        if (lengths(k) /= len(name)) cycle
+        if (names(k)(1:lengths(k)) == name) then
+          seen = .true.
+          exit
+        end if
       end do
       if (seen) then
         failed = failed + 1
@@ -223,12 +230,15 @@ contains
         flush(0)
         cycle
       end if
-      if (streamed > size(names) .or. len(name) > len(names)) then
-        allocate(character(len=max(len(names), len(name))) :: bigger(max(size(names), 2*streamed)))
-        bigger(1:streamed - 1) = names(1:streamed - 1)
+      if (remembered == size(names) .or. len(name) > len(names)) then
+        allocate(character(len=max(len(names), len(name))) :: bigger(max(size(names), 2*remembered)))
+        bigger(1:remembered) = names(1:remembered)
         call move_alloc(bigger, names)
+        lengths = [lengths(1:remembered), (0, k = remembered + 1, size(names))]
       end if
-      names(streamed) = name
+      remembered = remembered + 1
+      names(remembered) = name
+      lengths(remembered) = len(name)
       call run_or_check(line)
     end do
     if (ios /= iostat_end) then
