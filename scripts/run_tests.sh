@@ -11,6 +11,15 @@ rm -rf "$log" && mkdir -p "$log"
 passed=0
 failed=0
 
+stage_start=$SECONDS
+stage() {  # end the running stage with its wall time, then print the next stage's title
+  [ -n "${stage_open:-}" ] && echo "   ($((SECONDS - stage_start)) s)"
+  stage_open=1
+  stage_start=$SECONDS
+  [ $# -gt 0 ] && echo "$1"
+  return 0
+}
+
 count() {  # count PASS/FAIL lines of a log; echo the FAIL lines
   local file=$1
   local p f
@@ -21,23 +30,23 @@ count() {  # count PASS/FAIL lines of a log; echo the FAIL lines
   grep '^FAIL ' "$file" || true
 }
 
-echo "== source floors (scripts/check_layers.py: no module uses one of a floor above it; the base modules' reach)"
+stage "== source floors (scripts/check_layers.py: no module uses one of a floor above it; the base modules' reach)"
 python3 scripts/check_layers.py src > "$log/layers.log" 2>&1
 count "$log/layers.log"
 echo "   $(grep -c '^PASS layers ' "$log/layers.log") files checked, $(grep -c '^PASS reach ' "$log/layers.log") base modules within their reach"
 
-echo "== documentation links (scripts/check_links.py: links, anchors, quoted paths, tables of README.md and doc/)"
+stage "== documentation links (scripts/check_links.py: links, anchors, quoted paths, tables of README.md and doc/)"
 python3 scripts/check_links.py > "$log/links.log" 2>&1
 count "$log/links.log"
 grep '^   ' "$log/links.log" || true
 echo "   $(grep -c '^PASS ' "$log/links.log") pages checked"
 
-echo "== walk-through (scripts/check_walkthrough.py: every line doc/walkthrough.md quotes is in the code, in order)"
+stage "== walk-through (scripts/check_walkthrough.py: every line doc/walkthrough.md quotes is in the code, in order)"
 python3 scripts/check_walkthrough.py doc/walkthrough.md > "$log/walkthrough.log" 2>&1
 count "$log/walkthrough.log"
 echo "   $(grep -c '^PASS ' "$log/walkthrough.log") quoted blocks match"
 
-echo "== Python package (pytest python/tests: the readers, runner, Hertz formulas, sweeps, launchers of python/visco2d/)"
+stage "== Python package (pytest python/tests: the readers, runner, Hertz formulas, sweeps, launchers of python/visco2d/)"
 # One PASS/FAIL line per test; a collection error (no test ran) is one FAIL.
 (cd python && python3 -m pytest -v -p no:cacheprovider tests) > "$log/pytest.log" 2>&1
 pytest_status=$?
@@ -62,8 +71,9 @@ for stamp in build/gfortran_*/visco2d_testing.mod; do
   fi
 done
 
-echo "== unit and verification tests (fpm test; one line per test program as it finishes)"
-fpm test --profile release 2>&1 | tee "$log/fpm-test.log" | grep --line-buffered -E '^[a-z_]+: [0-9]+ passed' | sed -u 's/^/   /'
+stage "== unit and verification tests (fpm test; one line per test program as it finishes)"
+fpm test --profile release 2>&1 | tee "$log/fpm-test.log" | grep --line-buffered -E '^[a-z_]+: [0-9]+ passed' \
+  | { last=$SECONDS; while IFS= read -r line; do echo "   $line   [$((SECONDS - last)) s]"; last=$SECONDS; done; }
 status=${PIPESTATUS[0]}
 count "$log/fpm-test.log"
 if [ $status -ne 0 ] && ! grep -q '^FAIL ' "$log/fpm-test.log"; then
@@ -72,61 +82,61 @@ if [ $status -ne 0 ] && ! grep -q '^FAIL ' "$log/fpm-test.log"; then
   failed=$((failed + 1))
 fi
 
-echo "== command-line tests"
+stage "== command-line tests"
 bash scripts/test_cli.sh "$exe" > "$log/cli.log" 2>&1
 count "$log/cli.log"
 echo "   $(grep -c '^PASS ' "$log/cli.log") checks passed"
 
-echo "== results.xmf in ParaView's readers (scripts/test_xdmf.sh: every field against results.h5, Warp By Vector)"
+stage "== results.xmf in ParaView's readers (scripts/test_xdmf.sh: every field against results.h5, Warp By Vector)"
 bash scripts/test_xdmf.sh "$exe" > "$log/xdmf.log" 2>&1
 count "$log/xdmf.log"
 grep '^SKIP ' "$log/xdmf.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/xdmf.log") checks passed"
 
-echo "== MPI task farm (2 ranks; built first: the batch stage runs --mpi through it)"
+stage "== MPI task farm (2 ranks; built first: the batch stage runs --mpi through it)"
 bash scripts/test_mpi.sh "$exe" > "$log/mpi.log" 2>&1
 count "$log/mpi.log"
 echo "   $(grep -c '^PASS ' "$log/mpi.log") checks passed; $(grep '^# ' "$log/mpi.log" | tr '\n' ' ')"
 
-echo "== memory estimate (scripts/test_estimate.sh: estimate / measured peak of a spread of decks, refusal over the limit)"
+stage "== memory estimate (scripts/test_estimate.sh: estimate / measured peak of a spread of decks, refusal over the limit)"
 bash scripts/test_estimate.sh "$exe" > "$log/estimate.log" 2>&1
 count "$log/estimate.log"
 echo "   $(grep -c '^PASS ' "$log/estimate.log") checks passed"
 
-echo "== batch runs and sweeps (scripts/test_batch.sh: visco2d-batch sweeps, -j, shards, collect, threshold, MPI)"
+stage "== batch runs and sweeps (scripts/test_batch.sh: visco2d-batch sweeps, -j, shards, collect, threshold, MPI)"
 bash scripts/test_batch.sh "$exe" > "$log/batch.log" 2>&1
 count "$log/batch.log"
 grep -E '^(NOTE|# )' "$log/batch.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/batch.log") checks passed"
 
-echo "== damage boundary (scripts/test_boundary.sh: visco2d-batch boundary against threshold, its table, chart, warnings)"
+stage "== damage boundary (scripts/test_boundary.sh: visco2d-batch boundary against threshold, its table, chart, warnings)"
 bash scripts/test_boundary.sh "$exe" > "$log/boundary.log" 2>&1
 count "$log/boundary.log"
 grep -E '^(NOTE|# )' "$log/boundary.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/boundary.log") checks passed"
 
-echo "== processes and hosts (scripts/test_hosts.sh: shared output roots, case locks; batch interrupt, resume, guards)"
+stage "== processes and hosts (scripts/test_hosts.sh: shared output roots, case locks; batch interrupt, resume, guards)"
 bash scripts/test_hosts.sh "$exe" > "$log/hosts.log" 2>&1
 count "$log/hosts.log"
 grep -E '^(NOTE|# )' "$log/hosts.log" | sed 's/^/   /' || true
 echo "   $(grep -c '^PASS ' "$log/hosts.log") checks passed"
 
-echo "== study (make study-fast)"
+stage "== study (make study-fast)"
 bash scripts/test_study.sh "$exe" > "$log/study.log" 2>&1
 count "$log/study.log"
 echo "   $(grep -c '^PASS ' "$log/study.log") checks passed"
 
-echo "== figures (make figures smoke check)"
+stage "== figures (make figures smoke check)"
 bash scripts/test_figures.sh "$exe" > "$log/figures.log" 2>&1
 count "$log/figures.log"
 echo "   $(grep -c '^PASS ' "$log/figures.log") checks passed"
 
-echo "== report (make report smoke check)"
+stage "== report (make report smoke check)"
 bash scripts/test_report.sh "$exe" > "$log/report.log" 2>&1
 count "$log/report.log"
 echo "   $(grep -c '^PASS ' "$log/report.log") checks passed"
 
-echo "== reference outputs (rtol 1e-6)"
+stage "== reference outputs (rtol 1e-6)"
 rm -rf build/reference-check && mkdir -p build/reference-check
 for deck in inputs/*.inp; do
   case_name=$(basename "$deck" .inp)
@@ -164,20 +174,22 @@ done
 count "$log/reference.log"
 echo "   $(grep -c '^PASS ' "$log/reference.log") files match"
 
-echo "== diff and bless (scripts/test_diff.sh: compare_outputs.py and bless.py on scratch copies)"
+stage "== diff and bless (scripts/test_diff.sh: compare_outputs.py and bless.py on scratch copies)"
 bash scripts/test_diff.sh "$exe" > "$log/diff.log" 2>&1
 count "$log/diff.log"
 echo "   $(grep -c '^PASS ' "$log/diff.log") checks passed"
 
-echo "== fuzz (python/visco2d/fuzz.py: mutated decks and the regression decks of test/fuzz/)"
+stage "== fuzz (python/visco2d/fuzz.py: mutated decks and the regression decks of test/fuzz/)"
 bash scripts/test_fuzz.sh "$exe" > "$log/fuzz.log" 2>&1
 count "$log/fuzz.log"
 echo "   $(grep -c '^PASS ' "$log/fuzz.log") checks passed; $(grep '^# ' "$log/fuzz.log" | tr '\n' ' ')"
 
-echo "== checked build (-fcheck=all, address and undefined-behaviour sanitizers)"
+stage "== checked build (-fcheck=all, address and undefined-behaviour sanitizers)"
 bash scripts/test_checked.sh > "$log/checked.log" 2>&1
 count "$log/checked.log"
 echo "   $(grep -c '^PASS ' "$log/checked.log") checks passed; $(grep '^# ' "$log/checked.log" | tr '\n' ' ')"
 
+stage
+echo "   (all stages: $((SECONDS / 60)) min $((SECONDS % 60)) s)"
 echo "${passed} passed, ${failed} failed"
 [ "$failed" -eq 0 ]
