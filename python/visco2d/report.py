@@ -37,6 +37,7 @@ from .figures import plt, mtri, MaxNLocator
 from matplotlib.collections import PolyCollection
 
 REPORT_NAME = "report.png"
+DOTS_MAX = 600           # bruised Gauss points drawn as dots in the zoom up to this many (more hide the field)
 TITLE_WIDTH = 140        # characters per title line (the figure is 17 inches wide at 11.5 pt)
 # the BRUISE criterion -> (the /bruise measure, its label, display unit, factor from the file's unit)
 MEASURES = {
@@ -44,6 +45,8 @@ MEASURES = {
     "MISES": ("von_mises", "von Mises stress", "MPa", 1e-6),
     "OCTAHEDRAL": ("octahedral", "octahedral shear stress", "MPa", 1e-6),
     "ENERGY": ("energy_density", "strain-energy density", "J/cm³", 1e-6),
+    # the failed flesh: the final equivalent plastic strain (its envelope: it never decreases)
+    "PLASTIC": ("equivalent_plastic_strain", "equivalent plastic strain ε̄p", "%", 100.0),
 }
 
 
@@ -187,21 +190,28 @@ def envelope_data(case):
     the bruised Gauss points and the envelope maximum (all positions in mm, undeformed)."""
     bruise = case["bruise"]
     criterion, measure, label, unit, factor, mixed = bruise_measure(case)
-    nodal_key, gauss_key = f"{measure}_envelope_nodal", f"{measure}_envelope"
+    plastic = criterion == "PLASTIC"
+    gauss_key = measure if plastic else f"{measure}_envelope"
+    nodal_key = f"{gauss_key}_nodal"
     if nodal_key not in bruise or gauss_key not in bruise:
         raise NotACase(f"{case['path']}: /bruise has no {nodal_key} or {gauss_key}")
     envelope = bruise[gauss_key]
     threshold = bruise.get("threshold", np.zeros_like(envelope))
-    assessed = threshold > 0.0
-    ratio = np.where(assessed, envelope / np.where(assessed, threshold, 1.0), 0.0)
+    if plastic:   # the strain threshold may be 0 (any plastic flow): the flesh assessed is /bruise/assessed
+        assessed = bruise.get("assessed", np.ones_like(envelope)) > 0.0
+        ratio = np.zeros_like(envelope)          # no ratio to outline: the bruised points are outlined
+    else:
+        assessed = threshold > 0.0
+        ratio = np.where(assessed, envelope / np.where(assessed, threshold, 1.0), 0.0)
     nnode = len(case["nodes"])
-    data = {"criterion": criterion, "measure": measure, "label": label, "unit": unit, "mixed": mixed,
+    data = {"criterion": criterion, "measure": measure, "label": label, "unit": unit, "mixed": mixed or plastic,
             "nodal": bruise[nodal_key] * factor,
             # the outline: envelope/threshold = 1 (the element's own threshold; with one criterion)
             "ratio": gauss_to_nodes(ratio, case["elements"], nnode),
             "bruised_nodal": gauss_to_nodes(bruise["bruised"].astype(float), case["elements"], nnode)
             if "bruised" in bruise else None,
-            "threshold": float(threshold[assessed].max()) * factor if assessed.any() else None,
+            "threshold": float(threshold[assessed].max()) * factor
+            if assessed.any() and threshold[assessed].max() > 0.0 else None,
             "uniform_threshold": assessed.any() and np.ptp(threshold[assessed]) == 0.0,
             # elements no BRUISE card assesses (a PAD's): drawn grey, not in the colour scale
             "outside": ~assessed.any(axis=1) if assessed.any() else np.zeros(len(envelope), bool),
@@ -221,6 +231,11 @@ def envelope_data(case):
         data["bruised_points"] = None
         data["peak"] = (case["nodes"][k, 0] * 1e3, case["nodes"][k, 1] * 1e3, data["nodal"][k])
     return data
+
+
+def dots_drawn(data):
+    """Whether the zoom marks the bruised Gauss points: some, and not so many that they hide the field."""
+    return data["bruised_points"] is not None and 0 < data["bruised_points"][0].size <= DOTS_MAX
 
 
 def zoom_box(case, data):
@@ -254,7 +269,7 @@ def envelope_panel(case, data, ax, box=None):
         outline = ax.tricontour(grid, data["ratio"], levels=[1.0], colors="r", linewidths=2.2)
     elif data["bruised_nodal"] is not None and data["bruised_nodal"].max() > 0.5 > data["bruised_nodal"].min():
         outline = ax.tricontour(grid, data["bruised_nodal"], levels=[0.5], colors="r", linewidths=2.2)
-    if box is not None and data["bruised_points"] is not None and data["bruised_points"][0].size:
+    if box is not None and dots_drawn(data):
         ax.plot(*data["bruised_points"], ".", color="r", ms=2.5, zorder=4)
     ax.plot([data["peak"][0]], [data["peak"][1]], "*", color="w", mec="k", mew=0.8, ms=16, zorder=6)
     plate = number(case, "plate_z_m")
@@ -306,7 +321,7 @@ def envelope_panels(case, data, fig, whole_spec, zoom_spec, bar_spec):
                           label=f"envelope maximum {data['peak'][2]:.3g} {data['unit']}")]
     if data["outside"].any():
         handles.append(plt.Rectangle((0, 0), 1, 1, fc="0.82", ec="0.6", label=data["outside_label"]))
-    if len(axes) > 1 and data["bruised_points"] is not None:
+    if len(axes) > 1 and dots_drawn(data):
         handles.insert(1, plt.Line2D([], [], ls="none", marker=".", color="r", ms=6, label="bruised Gauss points"))
     axes[-1].legend(handles=handles, loc="upper right", fontsize=8.5, framealpha=0.9)
 
@@ -337,6 +352,11 @@ def numbers_text(case, data):
                          f"{s('coefficient_of_restitution'):.3f}")
         if s("energy_absorbed_J") is not None:
             lines.append(f"energy absorbed {s('energy_absorbed_J') * 1e3:.4g} mJ")
+        if s("plastic_dissipation_J") is not None:          # a PLASTIC flesh (doc/plasticity.md)
+            lines.append(f"plastic work {s('plastic_dissipation_J') * 1e3:.4g} mJ, largest ε̄p "
+                         f"{100 * s('equivalent_plastic_strain_max'):.3g} %")
+        if s("residual_flattening_mm") is not None:
+            lines.append(f"residual flattening of the pole {s('residual_flattening_mm'):.3g} mm")
     elif s("force_N") is not None:                    # a static run on the plate
         lines.append(f"static, plate force {s('force_N'):.4g} N")
         for key, name, unit in (("alpha_mm", "approach α", "mm"), ("q_MPa", "pole pressure q", "MPa"),
@@ -351,7 +371,8 @@ def numbers_text(case, data):
         threshold = s("bruise_threshold_Pa")
         threshold_text = (f"{threshold * 1e-6:.3g} MPa" if threshold is not None else
                           f"{s('bruise_threshold_J_m3') * 1e-6:.3g} J/cm³" if s("bruise_threshold_J_m3") is not None
-                          else "per material")
+                          else f"ε̄p > {100 * s('bruise_threshold_strain'):.3g} %"
+                          if s("bruise_threshold_strain") is not None else "per material")
         lines.append(f"BRUISE {case['summary'].get('bruise_criterion', data['criterion'])}, threshold {threshold_text}")
         volume = s(f"bruise_volume_{key_suffix}")
         if volume is not None:
@@ -370,10 +391,12 @@ def numbers_text(case, data):
         if first is not None and has_contact(case):
             lines.append(f"first failure at {(first - s('time_first_contact_s')) * 1e3:.3g} ms after contact")
         index = 1
-        while s(f"bruise_threshold_{index}_Pa") is not None or s(f"bruise_threshold_{index}_J_m3") is not None:
+        while any(s(f"bruise_threshold_{index}_{unit}") is not None for unit in ("Pa", "J_m3", "strain")):
             value = s(f"bruise_threshold_{index}_Pa")
             text = (f"{value * 1e-6:.3g} MPa" if value is not None
-                    else f"{s(f'bruise_threshold_{index}_J_m3') * 1e-6:.3g} J/cm³")
+                    else f"{s(f'bruise_threshold_{index}_J_m3') * 1e-6:.3g} J/cm³"
+                    if s(f"bruise_threshold_{index}_J_m3") is not None
+                    else f"ε̄p > {100 * s(f'bruise_threshold_{index}_strain'):.3g} %")
             extra = s(f"bruise_volume_threshold_{index}_{key_suffix}")
             lines.append(f"  at {text}: {extra:.4g} {suffix}" if extra is not None else f"  at {text}")
             index += 1
