@@ -19,7 +19,7 @@ program test_mesh_guards
   use visco2d_overlap, only: overlap_t, check_edges, check_overlaps, edge_keys, overlap_none, wedges_overlap
   use visco2d_sorting, only: sorted_order
   use visco2d_budget, only: run_size_t, parse_memory_size, set_memory_limit, memory_limit, bytes_text, count_text, &
-                            seconds_text, sphere_mesh_counts, grid_mesh_counts, machine_memory
+                            seconds_text, sphere_mesh_counts, grid_mesh_counts, machine_memory, mesh_run_size
   use visco2d_estimate, only: estimate_run, check_run_size, long_run_note
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, read_lines
   use visco2d_strings, only: integer_text
@@ -390,7 +390,53 @@ contains
     lines = rect_deck(3000, 3000)
     call expect_error('rect_3000x3000_limit_named', lines, 4, 0, 'MESH', &
       'more than the limit of 8.00 GiB set by the test (a coarser mesh, or raise the limit with --max-memory')
+    call check_sparse_factor_counted()
   end subroutine check_mesh_refused_before_generation
+
+  !> The least memory of a generated mesh counts CHOLMOD's factor (the default
+  !> solver) before the grid is made: a ring whose band factor would fit the
+  !> limit but whose sparse factor would not is refused at its card, and runs
+  !> on with a SOLVER BAND card after it (a 3.2 million element ring had
+  !> been generated, numbered and checked for 9 s, 97 s under the sanitizers,
+  !> before the full estimate refused it).
+  subroutine check_sparse_factor_counted()
+    integer, parameter :: nr = 4999, nt = 8
+    integer(int64) :: nodes, elements, least_width
+    type(run_size_t) :: band, sparse
+    real(dp) :: limit
+    character(:), allocatable :: origin
+    logical :: raisable
+    call set_memory_limit('128M', 'the test', message)
+    call memory_limit(limit, origin, raisable)
+    call grid_mesh_counts(nr, nt, nodes, elements, least_width)
+    band = mesh_run_size(nodes, elements, least_width)
+    sparse = mesh_run_size(nodes, elements, least_width, sparse=.true.)
+    ! CHOLMOD's factor as run_size counts it: 80 bytes per n log2(n), n = 2 x nodes, one band copy.
+    call check_close('ring_sparse_factor', sparse%factor_bytes, &
+                     80.0_dp*(2*nodes)*log(2.0_dp*nodes)/log(2.0_dp), 1.0e-12_dp)
+    call check_close('ring_sparse_band', sparse%band_bytes, (2.0_dp*nodes)*(least_width + 1)*8, 1.0e-12_dp)
+    call check('ring_limit_between', band%total_bytes < limit .and. limit < sparse%total_bytes, &
+               bytes_text(band%total_bytes)//' < '//bytes_text(limit)//' < '//bytes_text(sparse%total_bytes))
+    lines = ring_deck(nr, nt, '')
+    call expect_error('ring_sparse_refused', lines, 4, 0, 'MESH', 'half-bandwidth at least '// &
+                      integer_text(int(least_width))//', factored by CHOLMOD), more than the limit of 128 MiB')
+    lines = ring_deck(nr, nt, 'SOLVER CHOLMOD')
+    call expect_error('ring_cholmod_refused', lines, 4, 0, 'MESH', 'factored by CHOLMOD')
+    lines = ring_deck(nr, nt, 'SOLVER BAND')
+    call expect_valid('ring_band_fits', lines)
+    lines = ring_deck(nr, nt, 'SOLVER NONE')          ! the SOLVER card's own error, not the memory
+    call expect_error('ring_bad_solver', lines, 8, 8, 'SOLVER', 'solver must be BAND')
+    call set_memory_limit('8G', 'the test', message)
+  end subroutine check_sparse_factor_counted
+
+  function ring_deck(nr, nt, solver_card) result(deck_lines)
+    integer, intent(in) :: nr, nt
+    character(*), intent(in) :: solver_card
+    character(len=deck_line_length), allocatable :: deck_lines(:)
+    deck_lines = [character(len=deck_line_length) :: 'TITLE ring', 'ANALYSIS STATIC', &
+      'MATERIAL m ELASTIC E=1e6 NU=0.3', 'MESH RING R0=0.1 R1=0.2 NR='//integer_text(nr)//' NT='//integer_text(nt), &
+      'FIX AXIS R', 'FIX BOTTOM Z', 'PRESSURE INNER P=1e3', solver_card, 'END']
+  end function ring_deck
 
   !> A small mesh over a million steps with a history row each: the history
   !> table alone needs ~330 MiB. Over a 100 MiB limit the run is refused at

@@ -6,7 +6,8 @@ module visco2d_generator_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_integer, named_word, &
-                           positional_real, positional_count, check_fields_used, field_column, has_field
+                           positional_real, positional_word, positional_count, check_fields_used, field_column, &
+                           has_field
   use visco2d_mesh_generator, only: spheroid_grid, rectangle_grid, ring_grid, sphere_default_grade, &
                                     sphere_default_core, sphere_grid_contact, sphere_grid_legacy, &
                                     spheroid_least_ratio, spheroid_largest_ratio
@@ -278,19 +279,42 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     type(run_size_t) :: least
     real(dp) :: limit
-    character(:), allocatable :: origin, what
+    character(:), allocatable :: origin, what, solver
     logical :: raisable
     what = 'MESH '//kind//' makes '//count_text(nodes)//' nodes and '//count_text(elements)//' elements'
     if (max(nodes, elements) > max_mesh_entities) then
       call card_error(error, deck, card, what//', more than '//count_text(max_mesh_entities), &
                       field_column(card, field)); return
     end if
-    least = mesh_run_size(nodes, elements, least_width)
+    least = mesh_run_size(nodes, elements, least_width, sparse=sparse_factor_declared(deck))
     call memory_limit(limit, origin, raisable)
     if (least%total_bytes <= limit) return
+    solver = ''
+    if (least%factor_bytes > 0.0_dp) solver = ', factored by CHOLMOD'
     call card_error(error, deck, card, what//': a run on it needs at least '//bytes_text(least%total_bytes)// &
-      ' (the stiffness and its factor alone take '//bytes_text(least%band_bytes)//': '//count_text(2*nodes)// &
-      ' equations, half-bandwidth at least '//count_text(least_width)//'), more than '//origin// &
-      raise_hint(raisable), field_column(card, field))
+      ' (the stiffness and its factor alone take '//bytes_text(least%band_bytes + least%factor_bytes)//': '// &
+      count_text(2*nodes)//' equations, half-bandwidth at least '//count_text(least_width)//solver// &
+      '), more than '//origin//raise_hint(raisable), field_column(card, field))
   end subroutine check_generated_size
+
+  !> Whether CHOLMOD will factor the matrix (no SOLVER card, or SOLVER
+  !> CHOLMOD), read ahead of the SOLVER card so that the least memory of a
+  !> generated mesh counts the sparse factor before the grid is made. A
+  !> SOLVER card naming no solver counts as BAND (the smaller need): its own
+  !> error comes when it is read.
+  logical function sparse_factor_declared(deck) result(sparse)
+    type(card_deck_t), intent(in) :: deck
+    type(card_t) :: card
+    type(error_t), allocatable :: ignored
+    character(:), allocatable :: word
+    integer :: k
+    sparse = .true.
+    do k = 1, deck%count
+      if (deck%cards(k)%keyword /= 'SOLVER') cycle
+      card = deck%cards(k)
+      call positional_word(deck, card, 1, 'solver', word, ignored)
+      sparse = .not. allocated(ignored) .and. word == 'CHOLMOD'
+      return
+    end do
+  end function sparse_factor_declared
 end module visco2d_generator_cards

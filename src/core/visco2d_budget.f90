@@ -178,14 +178,15 @@ contains
   end subroutine grid_mesh_counts
 
   !> The least any analysis of a mesh of this size needs: the mesh, the
-  !> stiffness and its factor (a STATIC run). Used to refuse a mesh before
-  !> it is generated.
-  pure function mesh_run_size(nodes, elements, half_bandwidth) result(size)
+  !> stiffness and its factor (a STATIC run; with `sparse`, CHOLMOD's factor
+  !> as run_size counts it). Used to refuse a mesh before it is generated.
+  pure function mesh_run_size(nodes, elements, half_bandwidth, sparse) result(size)
     integer(int64), intent(in) :: nodes, elements, half_bandwidth
+    logical, intent(in), optional :: sparse          !< CHOLMOD factors the matrix (default: a band factor)
     type(run_size_t) :: size
     size = run_size(budget_static, nodes, elements, half_bandwidth, steps=0_int64, stages=0, &
                     history_terms=0_int64, history_rows=1_int64, history_columns=0, snapshots=1, &
-                    contact_equations=0_int64)
+                    contact_equations=0_int64, sparse=sparse)
   end function mesh_run_size
 
   !> Memory and rough time of a run.
