@@ -17,7 +17,7 @@ module visco2d_driver
   use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_progress, only: progress_begin, progress_end
-  use visco2d_static_contact, only: solve_static_contact
+  use visco2d_static_contact, only: solve_static_contact, solve_plastic_static_contact
   use visco2d_bruise, only: bruise_static
   use visco2d_record, only: record_t, record_put, record_put_integer, record_put_real, record_warn, record_real
   use visco2d_advice, only: time_scales_t, time_scales, time_step_warnings, energy_balance_warning
@@ -215,7 +215,10 @@ contains
       select case (deck%analysis)
       case (analysis_static)
         call record_put_integer(record, 'steps', 1)
-        if (effects%contact) then
+        if (effects%contact .and. any_plastic(deck%materials)) then   ! Newton with the plate as an active set
+          call solve_plastic_static_contact(deck, record, error)
+          if (allocated(error)) return
+        else if (effects%contact) then
           call solve_static_contact(deck, record, error)
           if (allocated(error)) return
         else if (any_plastic(deck%materials)) then      ! load increments and Newton (visco2d_plastic_static)

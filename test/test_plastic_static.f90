@@ -57,6 +57,7 @@ program test_plastic_static
   call uniaxial_patches()
   call bad_decks()
   call through_the_driver()
+  call on_the_plate()
   call test_summary('test_plastic_static')
 
 contains
@@ -485,10 +486,13 @@ contains
       'ANALYSIS QUASISTATIC (line 2)')
     s = dynamic()                                      ! DYNAMIC has plasticity (test_plastic_dynamic)
     call expect_ok('plastic_dynamic', [s(1:4), [character(len=deck_line_length) :: 'PLASTIC YIELD=1e4 TANGENT=0'], s(5:)])
-    s = press()                                        ! a static deck on the PLATE: not yet
-    call expect_error('plastic_static_plate', [s(1:4), [character(len=deck_line_length) :: &
-      'PLASTIC YIELD=1e4 TANGENT=0'], s(5:)], 5, 1, 'PLASTIC', 'in ANALYSIS STATIC is not available with PLATE or PAD '// &
-      'contact yet (line 8); ANALYSIS DYNAMIC has it with the PLATE')
+    s = press()                                        ! a static deck on the PLATE SLIP: read (on_the_plate)
+    call expect_ok('plastic_static_plate', [s(1:4), [character(len=deck_line_length) :: 'PLASTIC YIELD=1e4 TANGENT=0'], &
+                   s(5:)])
+    s(7) = 'PLATE Z=0 STICK'                           ! with friction: not yet
+    call expect_error('plastic_static_plate_stick', [s(1:4), [character(len=deck_line_length) :: &
+      'PLASTIC YIELD=1e4 TANGENT=0'], s(5:)], 5, 1, 'PLASTIC', 'in ANALYSIS STATIC takes frictionless contact only '// &
+      'so far: give the PLATE card (line 8) SLIP')
     ! Above the collapse load 2 Y ln(b/a) of the perfectly plastic sphere: a located error, no result.
     call write_sphere(folder//'/hill_collapse.inp', 4, 1.05_dp*2.0_dp*yield*log(rb/ra), 4, 'BBAR', &
                       'PLASTIC YIELD=1e4 TANGENT=0')
@@ -585,6 +589,94 @@ contains
     end do
     call check('driver: INCREMENTS= without a PLASTIC card is warned about', warned)
   end subroutine through_the_driver
+
+  !> STATIC on the PLATE SLIP with a PLASTIC flesh (a sphere, R = 30 mm, E = 4 MPa,
+  !> nu = 0.32, pressed on the plate by GRAVITY G = 2000: 191 N, level 2, B-bar):
+  !>  - with a yield stress no point reaches (1e12 Pa) the incremented Newton
+  !>    solve with the plate as an active set ends in the contact set of the
+  !>    exact elastic path (visco2d_static_contact) and, the problem being
+  !>    linear once the set is known, in its force, approach, pole pressure
+  !>    and contact radius to round-off (1e-9: ten increments of solves, each
+  !>    to the 1e-8 force tolerance, of a system whose answer is linear in
+  !>    the load); one Newton iteration per increment (the predictor's set is
+  !>    the final one);
+  !>  - with Y = 0.3 MPa (the elastic pole pressure is 0.95 MPa) the body
+  !>    yields: the work of gravity is the stored energy plus the plastic
+  !>    dissipation to 1e-6 (the trapezoid's error at a node that touches
+  !>    within an increment, measured 1e-10 here), the approach and the contact radius
+  !>    larger and the pole pressure lower than the elastic body's;
+  !>  - with 3 increments of that load the contact set or Newton cannot follow:
+  !>    a located error at the ANALYSIS card, no result.
+  subroutine on_the_plate()
+    type(record_t) :: record
+    type(error_t), allocatable :: error
+    character(*), parameter :: out_root = folder//'/plate_out'
+    character(*), parameter :: keys(4) = [character(len=17) :: 'force_N', 'alpha_mm', 'q_MPa', 'contact_radius_mm']
+    real(dp) :: elastic(4), stiff(4), plastic(4)
+    integer :: k
+    call execute_command_line('rm -rf '//out_root//' && mkdir -p '//out_root)
+    call run_case('plate_elastic', '', 10, record, error)
+    if (allocated(error)) return
+    elastic = [(summary_real(record, trim(keys(k))), k = 1, 4)]
+    call check_close('plate: the elastic path holds contact_nodes = 11', summary_real(record, 'contact_nodes'), 11.0_dp, &
+                     0.0_dp)
+    call run_case('plate_stiff', 'PLASTIC YIELD=1e12 TANGENT=0', 10, record, error)
+    if (allocated(error)) return
+    stiff = [(summary_real(record, trim(keys(k))), k = 1, 4)]
+    do k = 1, 4
+      call check_close('plate: never yielding, '//trim(keys(k))//' = the exact path''s (1e-9)', stiff(k), elastic(k), &
+                       1.0e-9_dp)
+    end do
+    call check_close('plate: never yielding, contact_nodes = 11', summary_real(record, 'contact_nodes'), 11.0_dp, 0.0_dp)
+    call check_close('plate: never yielding, one Newton iteration per increment', &
+                     summary_real(record, 'newton_iterations'), 10.0_dp, 0.0_dp)
+    call check_close('plate: never yielding, no plastic work', summary_real(record, 'plastic_dissipation_J'), 0.0_dp, 0.0_dp)
+    call run_case('plate_plastic', 'PLASTIC YIELD=0.3e6 TANGENT=0.4e6', 10, record, error)
+    if (allocated(error)) return
+    plastic = [(summary_real(record, trim(keys(k))), k = 1, 4)]
+    call check('plate: it yields', summary_real(record, 'equivalent_plastic_strain_max') > 0.0_dp .and. &
+               summary_real(record, 'plastic_dissipation_J') > 0.0_dp)
+    call check_close('plate: external_work_J = strain_energy_J + plastic_dissipation_J (1e-6)', &
+                     summary_real(record, 'external_work_J'), &
+                     summary_real(record, 'strain_energy_J') + summary_real(record, 'plastic_dissipation_J'), 1.0e-6_dp)
+    call check_close('plate: the plate carries the weight (1e-9)', plastic(1), elastic(1), 1.0e-9_dp)
+    call check('plate: the plastic body sinks deeper, on a wider contact, at a lower pole pressure', &
+               plastic(2) > elastic(2) .and. plastic(4) > elastic(4) .and. plastic(3) < elastic(3), &
+               'alpha '//message_real(plastic(2))//' mm, radius '//message_real(plastic(4))//' mm, q '// &
+               message_real(plastic(3))//' MPa')
+    call run_case('plate_too_few_increments', 'PLASTIC YIELD=0.1e6 TANGENT=0.4e6', 3, record, error, refused=.true.)
+  end subroutine on_the_plate
+
+  !> A case of on_the_plate: its deck written and run through the driver
+  !> (into folder/plate_out); with `refused`, checked to fail at its ANALYSIS card.
+    subroutine run_case(name, plastic_card, increments, record, error, refused)
+      character(*), parameter :: out_root = folder//'/plate_out'
+      character(*), intent(in) :: name, plastic_card
+      integer, intent(in) :: increments
+      type(record_t), intent(out) :: record
+      type(error_t), allocatable, intent(out) :: error
+      logical, intent(in), optional :: refused
+      character(len=deck_line_length), allocatable :: lines(:)
+      character(:), allocatable :: analysis
+      analysis = 'ANALYSIS STATIC'
+      if (len(plastic_card) > 0) analysis = analysis//' INCREMENTS='//integer_text(increments)
+      lines = [character(len=deck_line_length) :: 'TITLE '//name, analysis, 'GEOMETRY AXISYMMETRIC', &
+        'MATERIAL fruit ELASTIC E=4e6 NU=0.32 RHO=845', plastic_card, 'MESH SPHERE R=0.03 LEVEL=2', 'PLATE Z=0 SLIP', &
+        'GRAVITY G=2000', 'FORMULATION BBAR', 'END']
+      call write_deck(folder//'/'//name//'.inp', lines)
+      call run_deck(folder//'/'//name//'.inp', out_root, record, error)
+      if (present(refused)) then
+        call check('plate: '//name//' is refused', allocated(error))
+        if (allocated(error)) then
+          call check_text_contains('plate: '//name//': at the ANALYSIS card', error_text(error), &
+                                   name//'.inp:2: ANALYSIS: the plastic static solve did not converge in load increment')
+          print '(a)', '  '//error_text(error)
+        end if
+        return
+      end if
+      call check('plate: '//name//' runs', .not. allocated(error))
+      if (allocated(error)) print '(a)', '  '//error_text(error)
+    end subroutine run_case
 
   subroutine expect_ok(name, lines)
     character(*), intent(in) :: name

@@ -410,10 +410,15 @@ contains
     end if
     k = card_at_line(deck, deck%materials(m)%plastic_line)
     if (deck%analysis == analysis_static) then
-      if (deck%plate%line > 0 .or. deck%pad%line > 0) then
+      if (deck%pad%line > 0) then
         call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
-          deck%materials(m)%id//') in ANALYSIS STATIC is not available with PLATE or PAD contact yet (line '// &
-          integer_text(max(deck%plate%line, deck%pad%line))//'); ANALYSIS DYNAMIC has it with the PLATE'); return
+          deck%materials(m)%id//') in ANALYSIS STATIC is not available on a PAD yet (line '// &
+          integer_text(deck%pad%line)//'); it is on the rigid PLATE with SLIP'); return
+      end if
+      if (deck%plate%line > 0 .and. deck%plate%stick) then
+        call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
+          deck%materials(m)%id//') in ANALYSIS STATIC takes frictionless contact only so far: give the PLATE '// &
+          'card (line '//integer_text(deck%plate%line)//') SLIP'); return
       end if
     else if (deck%analysis /= analysis_dynamic) then
       call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &

@@ -11,6 +11,7 @@ module visco2d_static_contact
   use visco2d_deck, only: deck_t
   use visco2d_assembly, only: node_dof, band_vector, support_mask, external_load, gravity_load, lumped_mass
   use visco2d_static, only: static_solution_t, solve_static, static_record
+  use visco2d_plastic_static, only: plastic_plate_t, plastic_summary_t, solve_plastic_static, plastic_record
   use visco2d_stress_recovery, only: node_stress
   use visco2d_record, only: record_t, record_put_real, record_put_integer
   use visco2d_bruise, only: bruise_static
@@ -22,7 +23,7 @@ module visco2d_static_contact
   implicit none
   private
 
-  public :: solve_static_contact
+  public :: solve_static_contact, solve_plastic_static_contact
 
   !> States of a node on the static contact path.
   integer, parameter :: node_free = 0      !< off the plate
@@ -84,10 +85,7 @@ contains
     type(contact_t) :: contact
     type(static_solution_t) :: solution
     type(static_path_t) :: path
-    real(dp), allocatable :: u(:), reaction(:), pressure(:), weight(:)
     logical, allocatable :: held(:)
-    real(dp) :: q, surface(4)
-    integer :: node
 
     associate (mesh => deck%mesh)
     call contact_create(deck, contact)
@@ -103,6 +101,61 @@ contains
         path%values)
     end if
     if (allocated(error)) return
+    call record_contact_state(deck, contact, solution, path%solves + 1, record, error, &
+                              sliding=count(path%state == node_sliding))
+    end associate
+  end subroutine solve_static_contact
+
+  !> STATIC with a PLATE and a PLASTIC material: the load-incremented Newton
+  !> solve of visco2d_plastic_static with the frictionless plate as an
+  !> active set in every increment (PLATE SLIP on the rigid plate; the deck
+  !> reader refuses STICK and a PAD with plasticity), then the checks and
+  !> keys of the elastic static contact (record_contact_state) and the
+  !> plastic keys.
+  subroutine solve_plastic_static_contact(deck, record, error)
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: error
+    type(contact_t) :: contact
+    type(plastic_plate_t) :: plate
+    type(static_solution_t) :: solution
+    type(plastic_summary_t) :: summary
+    integer :: i, node
+    call contact_create(deck, contact)
+    plate%z = contact%z_plate
+    plate%tolerance = contact%tolerance
+    plate%candidates = contact%candidates
+    plate%active = contact%active
+    do i = 1, size(contact%candidates)                 ! on the plate at the start, as on the elastic path
+      node = contact%candidates(i)
+      if (deck%mesh%xy(2, node) - contact%z_plate <= contact%tolerance) plate%active(node) = .true.
+    end do
+    call solve_plastic_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, solution, summary, &
+                              error, plate)
+    if (allocated(error)) return
+    contact%active = plate%active
+    contact%iterations = summary%contact_changes
+    call record_contact_state(deck, contact, solution, summary%iterations, record, error)
+    if (allocated(error)) return
+    call plastic_record(deck%settings, summary, record)
+  end subroutine solve_plastic_static_contact
+
+  !> The final static state on the plate (or the pad) checked (finite,
+  !> settled, the pad not pressed through, in equilibrium) and recorded: the
+  !> static keys and fields, the deformation warnings, the bruise, and the
+  !> contact keys (force, approach, pole pressure, contact radius).
+  subroutine record_contact_state(deck, contact, solution, factorizations, record, error, sliding)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(in) :: contact
+    type(static_solution_t), intent(in) :: solution
+    integer, intent(in) :: factorizations            !< matrix factorizations of the solve
+    type(record_t), intent(inout) :: record
+    type(error_t), allocatable, intent(out) :: error
+    integer, intent(in), optional :: sliding         !< STICK nodes that slide at the end (the elastic path's)
+    real(dp), allocatable :: u(:), reaction(:), pressure(:), weight(:)
+    real(dp) :: q, surface(4)
+    integer :: node
+    associate (mesh => deck%mesh)
     u = band_vector(mesh, solution%displacement)
     reaction = band_vector(mesh, solution%reaction)
     if (.not. (all(ieee_is_finite(u)) .and. all(ieee_is_finite(reaction)) .and. all(ieee_is_finite(solution%stress)))) then
@@ -131,10 +184,10 @@ contains
     allocate(pressure(mesh%nnode))
     call contact_pressure(deck, contact, reaction, pressure, q)
     weight = lumped_mass(deck%mesh, deck%settings, deck%materials, volume=.true.)
-    call record_put_integer(record, 'factorizations', path%solves + 1)
+    call record_put_integer(record, 'factorizations', factorizations)
     call record_put_integer(record, 'contact_iterations', contact%iterations)
     call record_put_integer(record, 'contact_nodes', contact_count(contact))
-    if (contact%stick) call record_put_integer(record, 'contact_sliding_nodes', count(path%state == node_sliding))
+    if (contact%stick .and. present(sliding)) call record_put_integer(record, 'contact_sliding_nodes', sliding)
     call record_put_real(record, 'force_N', contact_force(deck, contact, reaction))
     if (contact%pad) then                               ! the body's mean u_z, less the pad's compression
       do node = 1, mesh%nnode
@@ -149,7 +202,7 @@ contains
     call record_put_real(record, 'q_surface_MPa', -1.0e-6_dp*surface(2))
     call record_put_real(record, 'contact_radius_mm', 1.0e3_dp*contact_radius(deck, contact))
     end associate
-  end subroutine solve_static_contact
+  end subroutine record_contact_state
 
   !> The static contact path (solve_static_contact) from lambda = 0 to 1:
   !> the final contact set in contact%active and path%state, the held values in path%values.

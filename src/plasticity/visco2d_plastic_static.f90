@@ -38,10 +38,10 @@ module visco2d_plastic_static
   use visco2d_material, only: material_t, elastic_matrix, stress_from_strain
   use visco2d_model, only: settings_t, loads_t, source_t
   use visco2d_element, only: element_b_matrices, gauss_count
-  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs
+  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs, band_multiply
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
   use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
-                              scatter_add, nodal_field, nodal_average
+                              scatter_add, nodal_field, nodal_average, node_dof
   use visco2d_static, only: static_solution_t
   use visco2d_solve_errors, only: singular_error, not_finite_error
   use visco2d_plasticity, only: return_result_t, consistent_tangent, deviatoric_norm, viscoplastic_update
@@ -50,11 +50,22 @@ module visco2d_plastic_static
   implicit none
   private
 
-  public :: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
+  public :: plastic_summary_t, plastic_plate_t, solve_plastic_static, plastic_record, any_plastic
   public :: force_tolerance, energy_tolerance
 
   real(dp), parameter :: force_tolerance = 1.0e-8_dp    !< |r| relative to the load (and reactions)
   real(dp), parameter :: energy_tolerance = 1.0e-16_dp  !< |r . K^-1 r| relative to the first iteration's
+
+  !> A rigid plate under the body (ANALYSIS STATIC with a PLATE SLIP):
+  !> frictionless contact, a node on it held at u_z = Z - z, freed when its
+  !> reaction pulls. `active` holds the nodes on it at the start (those
+  !> within `tolerance`), and at the end on return.
+  type :: plastic_plate_t
+    real(dp) :: z = 0.0_dp                   !< the plate's height Z, m
+    real(dp) :: tolerance = 0.0_dp           !< a node through the plate by more than this is put on it, m
+    integer, allocatable :: candidates(:)    !< the nodes that may touch it
+    logical, allocatable :: active(:)        !< (nnode) on the plate
+  end type plastic_plate_t
 
   !> What a plastic static solve adds to the static solution.
   type :: plastic_summary_t
@@ -68,6 +79,7 @@ module visco2d_plastic_static
     real(dp) :: dissipation = 0.0_dp                !< plastic dissipation D (trapezoidal), J (per radian in axisymmetry)
     real(dp) :: dissipation_backward = 0.0_dp       !< sum s_k : de_p dV, J (the kernel's backward rule)
     real(dp) :: yielded_volume = 0.0_dp             !< int over the points with ebar > 0, m^3 (per radian in axisymmetry)
+    integer :: contact_changes = 0                  !< changes of the contact set (a PLATE), all increments
   end type plastic_summary_t
 
 contains
@@ -85,7 +97,19 @@ contains
   !> The load-incremented Newton solve of a static deck with plasticity
   !> (module comment): the static solution (displacement, reactions, Gauss
   !> strains and stresses, stored energy and external work) and the summary.
-  subroutine solve_plastic_static(mesh, materials, settings, loads, source, solution, summary, error)
+  !>
+  !> With a `plate`, each increment's Newton solve holds the contact nodes'
+  !> u_z at Z - z (an active set): once it has converged, the free
+  !> candidates through the plate by more than the tolerance are put on it
+  !> and the contact nodes whose reaction pulls (F_int - F_ext < 0 in z)
+  !> are freed, and Newton goes on from where it is (every Gauss point is
+  !> still returned from the increment's start, so the converged state is
+  !> that of the final set) until the set holds: no free node through the
+  !> plate, every contact node pushing. If the count of such nodes has not
+  !> fallen after 10 changes of whole blocks, the set changes by the one
+  !> worst node at a time (Judice and Pires); after 50 + 10 x candidates
+  !> changes in one increment, a located error.
+  subroutine solve_plastic_static(mesh, materials, settings, loads, source, solution, summary, error, plate)
     type(mesh_t), intent(in) :: mesh
     type(material_t), intent(in) :: materials(:)
     type(settings_t), intent(in) :: settings
@@ -94,18 +118,22 @@ contains
     type(static_solution_t), intent(out) :: solution
     type(plastic_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
+    type(plastic_plate_t), intent(inout), optional :: plate
     real(dp), allocatable :: b(:, :, :, :), weight(:, :), tangent(:, :, :, :)
     real(dp), allocatable :: stress(:, :, :), strain(:, :, :), ebar(:, :)          ! committed
     real(dp), allocatable :: trial_stress(:, :, :), trial_strain(:, :, :), trial_ebar(:, :), plastic(:, :, :)
     real(dp), allocatable :: load(:), presc(:), u(:), u_start(:), du(:), rhs(:), force(:), force_start(:), r(:)
     real(dp), allocatable :: step_backward(:, :)
     type(step_coefficients_t), allocatable :: instant(:)   !< per material at dt = 0: mu = G(0), K
-    logical, allocatable :: fixed(:)
+    logical, allocatable :: fixed(:), supports(:)
+    logical, allocatable :: freed(:)                 !< (candidates) freed from the plate in this increment
+    real(dp), allocatable :: target(:)
     type(band_matrix_t) :: stiffness
     type(factor_t) :: factor
     real(dp) :: lambda, energy_first, energy_next, force_ratio, scale
-    integer :: nelem, e, k, iteration, info, n, max_iterations
-    logical :: converged
+    integer :: nelem, e, k, iteration, info, n, max_iterations, changes, strikes, best_violations, violations
+    integer :: increment_iterations
+    logical :: converged, first
 
     nelem = mesh%nelem
     allocate(instant(size(materials)))
@@ -133,7 +161,8 @@ contains
     trial_strain = strain
     trial_ebar = ebar
     load = external_load(mesh, settings, loads, 0.0_dp) + gravity_load(mesh, settings, materials, loads)
-    fixed = support_mask(mesh, settings, loads)
+    supports = support_mask(mesh, settings, loads)
+    fixed = supports
     presc = prescribed_displacement(mesh, loads, 0.0_dp)
     allocate(u(2*mesh%nnode), force(2*mesh%nnode))
     u = 0.0_dp
@@ -148,13 +177,25 @@ contains
       lambda = real(k, dp)/real(n, dp)
       u_start = u
       force_start = force
+      changes = 0
+      strikes = 0
+      best_violations = huge(1)
+      increment_iterations = 0
+      if (present(plate)) freed = spread(.false., 1, size(plate%candidates))
+      if (present(plate)) then
+        call predict_contact_set()
+        if (allocated(error)) return
+      end if
+      contact_set: do
+      call held_equations()
       energy_first = 0.0_dp
       converged = .false.
+      first = .true.                                   ! this iteration takes the held values' increment
       do iteration = 1, max_iterations
         call assemble_tangent()
         rhs = lambda*load - force
-        if (iteration == 1) then
-          call band_constrain_rhs(stiffness, fixed, lambda*presc - u, rhs)
+        if (first) then
+          call band_constrain_rhs(stiffness, fixed, target - u, rhs)
         else
           call band_constrain_rhs(stiffness, fixed, 0.0_dp*u, rhs)
         end if
@@ -176,7 +217,8 @@ contains
           call set_error(error, solve_failure_text(info))     ! located by the driver
           return
         end if
-        if (iteration == 1) energy_first = abs(sum(merge(0.0_dp, du*rhs, fixed)))
+        if (first) energy_first = abs(sum(merge(0.0_dp, du*rhs, fixed)))
+        first = .false.
         u = u + du
         call evaluate(u - u_start)
         r = lambda*load - force
@@ -187,6 +229,13 @@ contains
           call analysis_error('the plastic static solve diverged in load increment '//integer_text(k)//' of '//integer_text(n)// &
             ' (Newton iteration '//integer_text(iteration)//': the displacement or the residual is not finite)')
           return
+        end if
+        if (present(plate)) then                       ! nodes through the plate are put on it at once
+          if (put_on_plate() > 0) then
+            call held_equations()
+            first = .true.
+            cycle
+          end if
         end if
         du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with this factor
         call factor_solve(factor, du, info)
@@ -210,9 +259,15 @@ contains
           'INCREMENTS= (or ITERATIONS=) or a hardening TANGENT=')
         return
       end if
-      summary%increment_iterations(k) = iteration
-      summary%iterations = summary%iterations + iteration
-      summary%iterations_max = max(summary%iterations_max, iteration)
+      increment_iterations = increment_iterations + iteration
+      if (.not. present(plate)) exit contact_set
+      call change_contact_set(violations)
+      if (allocated(error)) return
+      if (violations == 0) exit contact_set
+      end do contact_set
+      summary%increment_iterations(k) = increment_iterations
+      summary%iterations = summary%iterations + increment_iterations
+      summary%iterations_max = max(summary%iterations_max, increment_iterations)
       ! Commit: the trapezoidal work and dissipation of the increment (module comment).
       solution%external_work = solution%external_work + 0.5_dp*dot_product( &
         merge(force_start, (lambda - 1.0_dp/n)*load, fixed) + merge(force, lambda*load, fixed), u - u_start)
@@ -253,6 +308,159 @@ contains
       call not_finite_error(source, 'the plastic static stress or energy', error)
 
   contains
+
+    !> The held equations and their values at load factor lambda: the
+    !> supports (lambda times the prescribed values) and, with a plate, u_z of
+    !> every contact node at Z - z.
+    subroutine held_equations()
+      integer :: i, dof
+      fixed = supports
+      target = lambda*presc
+      if (.not. present(plate)) return
+      do i = 1, size(plate%candidates)
+        if (.not. plate%active(plate%candidates(i))) cycle
+        dof = node_dof(mesh, plate%candidates(i), 2)
+        if (supports(dof)) cycle
+        fixed(dof) = .true.
+        target(dof) = plate%z - mesh%xy(2, plate%candidates(i))
+      end do
+    end subroutine held_equations
+
+    !> The contact set an increment starts from: the linear contact problem
+    !> of the predictor (the tangent of the last converged state) solved with
+    !> the set changed as after a Newton solve (change_contact_set: the free
+    !> candidates it puts through the plate held, the contact nodes it makes
+    !> pull freed), until it holds or 50 + 10 x candidates solves have
+    !> passed. Newton then starts at the set of the linearised increment:
+    !> from a set too small (a body on its pole node alone) the first iterate
+    !> dents the flesh far into the plastic range, and the tangent of that
+    !> state does not find its way back.
+    subroutine predict_contact_set()
+      real(dp), allocatable :: predicted(:), reaction(:)
+      integer :: pass, predictor_strikes, predictor_best, changed
+      call assemble_tangent()
+      predictor_strikes = 0
+      predictor_best = huge(1)
+      do pass = 1, 50 + 10*size(plate%candidates)
+        call held_equations()
+        rhs = lambda*load - force
+        call band_constrain_rhs(stiffness, fixed, target - u, rhs)
+        call factor_compute(factor, stiffness, fixed, info, solver_of_card(settings%solver))
+        if (info > 0) then
+          if (k == 1 .and. pass == 1) then
+            call singular_error(mesh, source, info, error)
+          else
+            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '// &
+              integer_text(n)//' (the contact predictor, equation '//integer_text(info)//')')
+          end if
+          return
+        end if
+        call factor_solve(factor, rhs, info)
+        if (info /= 0) then
+          call set_error(error, solve_failure_text(info))     ! located by the driver
+          return
+        end if
+        predicted = u + rhs
+        reaction = force + band_multiply(stiffness, rhs) - lambda*load   ! linearised F_int - F_ext
+        call contact_violations(predicted, reaction, changed, predictor_best, predictor_strikes)
+        if (changed == 0) exit
+      end do
+    end subroutine predict_contact_set
+
+    !> During a Newton solve with a plate: the free candidates through it by
+    !> more than the tolerance put on it (a point-held body would otherwise
+    !> iterate to a deep plastic dent first), except those freed in this
+    !> increment (the iterates on the way would put them back before the
+    !> solve shows where they go); their count.
+    integer function put_on_plate() result(added)
+      integer :: i, node, dof
+      added = 0
+      do i = 1, size(plate%candidates)
+        node = plate%candidates(i)
+        dof = node_dof(mesh, node, 2)
+        if (plate%active(node) .or. supports(dof) .or. freed(i)) cycle
+        if (plate%z - (mesh%xy(2, node) + u(dof)) <= plate%tolerance) cycle
+        plate%active(node) = .true.
+        added = added + 1
+      end do
+      summary%contact_changes = summary%contact_changes + min(added, 1)
+    end function put_on_plate
+
+    !> After a converged Newton solve with a plate: the set changed
+    !> (contact_violations on the solution), or a located error when it has
+    !> changed 50 + 10 x candidates times in the increment.
+    subroutine change_contact_set(violations)
+      integer, intent(out) :: violations
+      call contact_violations(u, force - lambda*load, violations, best_violations, strikes)
+      if (violations == 0) return
+      changes = changes + 1
+      if (changes > 50 + 10*size(plate%candidates)) then
+        call analysis_error('the contact set on the PLATE does not settle in load increment '//integer_text(k)// &
+          ' of '//integer_text(n)//' ('//integer_text(changes - 1)//' changes, '//integer_text(violations)// &
+          ' node(s) still through the plate or pulling): give more INCREMENTS=')
+      end if
+    end subroutine change_contact_set
+
+    !> For a displacement and its reactions F_int - F_ext: the free
+    !> candidates through the plate by more than the tolerance and the
+    !> contact nodes that pull (a z reaction below -1e-6 of the largest
+    !> contact reaction, as check_settled), `violations` of them, all
+    !> changed; if their count has not fallen (below `best`) in 10 changes
+    !> (`strikes`), the worst one alone (Judice and Pires).
+    subroutine contact_violations(displacement, reaction, violations, best, strikes)
+      real(dp), intent(in) :: displacement(:), reaction(:)
+      integer, intent(out) :: violations
+      integer, intent(inout) :: best, strikes
+      real(dp) :: worst, amount, reaction_scale
+      integer :: i, node, dof, worst_node
+      logical, allocatable :: change(:)
+      allocate(change(size(plate%candidates)))
+      change = .false.
+      reaction_scale = tiny(1.0_dp)
+      do i = 1, size(plate%candidates)
+        dof = node_dof(mesh, plate%candidates(i), 2)
+        if (plate%active(plate%candidates(i))) reaction_scale = max(reaction_scale, abs(reaction(dof)))
+      end do
+      reaction_scale = 1.0e-6_dp*reaction_scale
+      worst = 0.0_dp
+      worst_node = 0
+      do i = 1, size(plate%candidates)
+        node = plate%candidates(i)
+        dof = node_dof(mesh, node, 2)
+        if (supports(dof)) cycle
+        if (plate%active(node)) then                   ! pulls: F_int - F_ext < 0 in z (the plate lies below)
+          amount = -reaction(dof)
+          change(i) = amount > reaction_scale
+          amount = amount/reaction_scale
+        else                                          ! through the plate
+          amount = plate%z - (mesh%xy(2, node) + displacement(dof))
+          change(i) = amount > plate%tolerance
+          amount = amount/max(plate%tolerance, tiny(1.0_dp))
+        end if
+        if (change(i) .and. amount > worst) then
+          worst = amount
+          worst_node = i
+        end if
+      end do
+      violations = count(change)
+      if (violations == 0) return
+      summary%contact_changes = summary%contact_changes + 1
+      if (violations < best) then
+        best = violations
+        strikes = 0
+      else
+        strikes = strikes + 1
+      end if
+      if (strikes >= 10) then                          ! one node at a time: the worst
+        change = .false.
+        change(worst_node) = .true.
+      end if
+      do i = 1, size(plate%candidates)
+        if (.not. change(i)) cycle
+        plate%active(plate%candidates(i)) = .not. plate%active(plate%candidates(i))
+        if (.not. plate%active(plate%candidates(i))) freed(i) = .true.
+      end do
+    end subroutine contact_violations
 
     !> K_t from the tangents of the last evaluation.
     subroutine assemble_tangent()
