@@ -74,10 +74,12 @@ contains
     integer :: e, g, j
     force = 0.0_dp
     do e = 1, operators%nelem
-      local = du(operators%dofs(:, e))
+      do j = 1, 8                                   ! not du(dofs(:, e)): that vector subscript allocates a copy
+        local(j) = du(operators%dofs(j, e))
+      end do
       do g = 1, gauss_count
-        increment = 0.0_dp
-        do j = 1, 8
+        increment = operators%b(:, 1, g, e)*local(1)   ! B du (eq. [4]); from the first term: no zeroing call
+        do j = 2, 8
           increment = increment + operators%b(:, j, g, e)*local(j)
         end do
         volumetric = increment(1) + increment(2) + increment(3)     ! stress_from_strain, inlined: eqs. [1], [2], [8], [9]

@@ -25,7 +25,7 @@ module visco2d_plastic_step
   use visco2d_assembly, only: assemble_stiffness, node_dof, element_dofs
   use visco2d_pad_mesh, only: body_nodes
   use visco2d_operators, only: operators_t, operators_element_force
-  use visco2d_plasticity, only: return_result_t, point_return, yield_stress
+  use visco2d_plasticity, only: return_result_t, radial_return, yield_stress
   implicit none
   private
 
@@ -36,16 +36,22 @@ contains
   !> The elastic limit of every Gauss point at the equivalent plastic strain
   !> ebar: (2/3) sigma_y(ebar)^2, the largest |s|^2 an elastic step may reach
   !> (von Mises: |s| <= sqrt(2/3) sigma_y); -1 at the points of materials
-  !> without plasticity. Computed when ebar changes, so the pass compares.
-  pure subroutine yield_limits(materials, element_material, ebar, limit)
+  !> without plasticity. Computed when ebar changes, so the pass compares;
+  !> with `previous` (the ebar `limit` holds), only at the points whose ebar
+  !> changed.
+  pure subroutine yield_limits(materials, element_material, ebar, limit, previous)
     type(material_t), intent(in) :: materials(:)
     integer, intent(in) :: element_material(:)
     real(dp), intent(in) :: ebar(:, :)
-    real(dp), intent(out) :: limit(:, :)
+    real(dp), intent(inout) :: limit(:, :)
+    real(dp), intent(in), optional :: previous(:, :)
     integer :: e, g
     do e = 1, size(element_material)
       associate (material => materials(element_material(e)))
       do g = 1, gauss_count
+        if (present(previous)) then
+          if (previous(g, e) == ebar(g, e)) cycle
+        end if
         if (material%plastic) then
           limit(g, e) = 2.0_dp/3.0_dp*yield_stress(material%hardening, ebar(g, e))**2
         else
@@ -61,7 +67,11 @@ contains
   !> yield_limits at the interval's start), internal forces; for each Gauss
   !> point ebar after the interval (from `ebar`, at its start) and the
   !> plastic strain increment de_p (engineering shear). `yielded`: the
-  !> number of Gauss points that yielded in the interval.
+  !> number of Gauss points that yielded in the interval. One sweep over the
+  !> elements, as operators_trial_stress: the trial stress of point_return
+  !> is inlined and radial_return called only outside the yield surface,
+  !> since this pass runs at every equilibrium iteration and most points
+  !> stay elastic.
   pure subroutine plastic_trial_stress(operators, materials, element_material, limit, du, shear, bulk, stress, ebar, &
                                        increments, trial, force, ebar_next, plastic_increments, yielded, history)
     type(operators_t), intent(in) :: operators
@@ -77,71 +87,56 @@ contains
     real(dp), intent(out) :: ebar_next(:, :), plastic_increments(:, :, :)
     integer, intent(out) :: yielded
     real(dp), intent(in), optional :: history(:, :, :)       !< (4, gauss_count, nelem) s0 of the interval
-    real(dp) :: element_force(8), no_history(4, gauss_count)
-    integer :: e, j, count
+    type(return_result_t) :: state
+    real(dp) :: local(8), increment(4), sigma(4), s0(4), mean, volumetric, element_force(8)
+    real(dp) :: element_stress(4, gauss_count)      ! contiguous: no packed copy of trial(:, :, e) for the force
+    integer :: e, g, j
     force = 0.0_dp
     yielded = 0
-    no_history = 0.0_dp
+    s0 = 0.0_dp
+    plastic_increments = 0.0_dp                     ! set below at the points that yield
+    ebar_next = ebar
     do e = 1, operators%nelem
-      if (present(history)) then
-        call element_stresses(operators, e, materials(element_material(e)), limit(:, e), du(operators%dofs(:, e)), &
-                              shear(e), bulk(e), stress(:, :, e), ebar(:, e), history(:, :, e), increments(:, :, e), &
-                              trial(:, :, e), ebar_next(:, e), plastic_increments(:, :, e), count)
-      else
-        call element_stresses(operators, e, materials(element_material(e)), limit(:, e), du(operators%dofs(:, e)), &
-                              shear(e), bulk(e), stress(:, :, e), ebar(:, e), no_history, increments(:, :, e), &
-                              trial(:, :, e), ebar_next(:, e), plastic_increments(:, :, e), count)
-      end if
-      yielded = yielded + count
-      element_force = operators_element_force(operators, e, trial(:, :, e))
+      do j = 1, 8
+        local(j) = du(operators%dofs(j, e))
+      end do
+      do g = 1, gauss_count
+        increment = operators%b(:, 1, g, e)*local(1)   ! B du (eq. [4]); from the first term: no zeroing call
+        do j = 2, 8
+          increment = increment + operators%b(:, j, g, e)*local(j)
+        end do
+        if (present(history)) s0 = history(:, g, e)
+        volumetric = increment(1) + increment(2) + increment(3)
+        if (limit(g, e) < 0.0_dp) then              ! no plasticity: as operators_trial_stress, eqs. [13], [14]
+          sigma(1:3) = stress(1:3, g, e) + bulk(e)*volumetric + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
+          sigma(4) = stress(4, g, e) + shear(e)*increment(4)
+          sigma = sigma + s0
+        else                                        ! point_return: the deviatoric trial of eqs. [13], [21], [23]
+          mean = sum(stress(1:3, g, e))/3.0_dp
+          sigma(1:3) = stress(1:3, g, e) - mean + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
+          sigma(4) = stress(4, g, e) + shear(e)*increment(4)
+          sigma = sigma + s0
+          if (sigma(1)**2 + sigma(2)**2 + sigma(3)**2 + 2.0_dp*sigma(4)**2 > limit(g, e)) then
+            state = radial_return(materials(element_material(e))%hardening, shear(e), sigma, ebar(g, e))
+            sigma = state%stress
+            if (state%yielded) then
+              yielded = yielded + 1
+              plastic_increments(:, g, e) = state%plastic_increment
+              ebar_next(g, e) = state%equivalent_plastic
+            end if
+          end if
+          sigma(1:3) = sigma(1:3) + mean + bulk(e)*volumetric     ! the mean stress p_n + K tr(de), eq. [14]
+        end if
+        increments(:, g, e) = increment
+        element_stress(:, g) = sigma
+      end do
+      trial(:, :, e) = element_stress
+      element_force = operators_element_force(operators, e, element_stress)
       do j = 1, 8
         force(operators%dofs(j, e)) = force(operators%dofs(j, e)) + element_force(j)
       end do
     end do
   end subroutine plastic_trial_stress
-
-  !> One element's Gauss points over the interval: strain increments B du,
-  !> the stresses (returned where the point's material yields), ebar and
-  !> de_p; `count` the points that yielded.
-  pure subroutine element_stresses(operators, e, material, limit, local, shear, bulk, stress, ebar, history, increments, &
-                                   trial, ebar_next, plastic_increments, count)
-    type(operators_t), intent(in) :: operators
-    integer, intent(in) :: e
-    type(material_t), intent(in) :: material
-    real(dp), intent(in) :: limit(gauss_count), local(8), shear, bulk, stress(4, gauss_count), ebar(gauss_count)
-    real(dp), intent(in) :: history(4, gauss_count)
-    real(dp), intent(out) :: increments(4, gauss_count), trial(4, gauss_count), ebar_next(gauss_count)
-    real(dp), intent(out) :: plastic_increments(4, gauss_count)
-    integer, intent(out) :: count
-    type(return_result_t) :: state
-    real(dp) :: increment(4), sigma(4), volumetric
-    integer :: g, j
-    count = 0
-    do g = 1, gauss_count
-      increment = 0.0_dp
-      do j = 1, 8
-        increment = increment + operators%b(:, j, g, e)*local(j)
-      end do
-      volumetric = increment(1) + increment(2) + increment(3)
-      plastic_increments(:, g) = 0.0_dp
-      ebar_next(g) = ebar(g)
-      if (limit(g) < 0.0_dp) then                   ! no plasticity: as operators_trial_stress, eqs. [13], [14]
-        sigma(1:3) = stress(1:3, g) + bulk*volumetric + 2.0_dp*shear*(increment(1:3) - volumetric/3.0_dp)
-        sigma(4) = stress(4, g) + shear*increment(4)
-        sigma = sigma + history(:, g)
-      else
-        call point_return(material%hardening, shear, bulk, stress(:, g), increment, history(:, g), limit(g), ebar(g), &
-                          sigma, state)
-        if (state%yielded) then
-          count = count + 1
-          plastic_increments(:, g) = state%plastic_increment
-          ebar_next(g) = state%equivalent_plastic
-        end if
-      end if
-      increments(:, g) = increment
-      trial(:, g) = sigma
-    end do
-  end subroutine element_stresses
 
   !> The plastic work of an interval, sum over the Gauss points of
   !> 1/2 (s_start + s_end) : de_p |J| r (the trapezoid, as the energy books

@@ -816,8 +816,8 @@ contains
     if (stepper%plastic) then                       ! the histories take the elastic part de - de_p (eq. [24])
       stepper%plastic_dissipation = stepper%plastic_dissipation + &
                                     plastic_work(stepper%operators, state%stress, stepper%trial, stepper%plastic_increments)
-      if (any(stepper%trial_ebar /= state%ebar)) &
-        call yield_limits(deck%materials, deck%mesh%element_material, stepper%trial_ebar, stepper%yield_limit)
+      call yield_limits(deck%materials, deck%mesh%element_material, stepper%trial_ebar, stepper%yield_limit, &
+                        previous=state%ebar)
       state%ebar = stepper%trial_ebar
       state%plastic_strain = state%plastic_strain + stepper%plastic_increments
       if (stepper%memory) call commit_history(deck%mesh%element_material, state%history, &

@@ -121,16 +121,22 @@ contains
     state%normal = trial/norm
     ! Newton on g(dgamma) = |s_trial| - 2 mu dgamma - sqrt(2/3) sigma_y(ebar + sqrt(2/3) dgamma),
     ! piecewise linear in dgamma: each iterate is the root of one segment's line, and the
-    ! iteration ends when the root lies in its own segment (one step on a bilinear curve).
-    dgamma = 0.0_dp
-    do iteration = 1, max_return_iterations
+    ! iteration ends when the root lies in its own segment (the bilinear curve's one line is
+    ! solved at once: dgamma = excess / (2 mu + 2/3 H)).
+    if (size(hardening%stress) == 1) then           ! bilinear: g is one line, its root in one step
+      slope = hardening%final_slope
+      dgamma = excess/(2.0_dp*shear + 2.0_dp/3.0_dp*slope)
+    else
+      dgamma = 0.0_dp
+      do iteration = 1, max_return_iterations
+        slope = hardening_slope(hardening, ebar + root_two_thirds*dgamma)
+        residual = norm - 2.0_dp*shear*dgamma - root_two_thirds*yield_stress(hardening, ebar + root_two_thirds*dgamma)
+        if (iteration > 1 .and. abs(residual) <= 1.0e-14_dp*norm) exit
+        dgamma = dgamma + residual/(2.0_dp*shear + 2.0_dp/3.0_dp*slope)
+        dgamma = max(dgamma, 0.0_dp)
+      end do
       slope = hardening_slope(hardening, ebar + root_two_thirds*dgamma)
-      residual = norm - 2.0_dp*shear*dgamma - root_two_thirds*yield_stress(hardening, ebar + root_two_thirds*dgamma)
-      if (iteration > 1 .and. abs(residual) <= 1.0e-14_dp*norm) exit
-      dgamma = dgamma + residual/(2.0_dp*shear + 2.0_dp/3.0_dp*slope)
-      dgamma = max(dgamma, 0.0_dp)
-    end do
-    slope = hardening_slope(hardening, ebar + root_two_thirds*dgamma)
+    end if
     state%multiplier = dgamma
     state%stress = trial - 2.0_dp*shear*dgamma*state%normal
     state%plastic_increment(1:3) = dgamma*state%normal(1:3)
