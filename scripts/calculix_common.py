@@ -269,6 +269,31 @@ def peeq_field(P, nelem):
     return pe
 
 
+def gauss_field(block, column, nelem):
+    """(nelem, 4) one column of an *EL PRINT block at visco2d's Gauss points (the mean of a pair)."""
+    e, k2 = gauss_point_index(block)
+    total = np.zeros((nelem, 4))
+    count = np.zeros((nelem, 4))
+    np.add.at(total, (e, k2), np.asarray(block)[:, column])
+    np.add.at(count, (e, k2), 1.0)
+    return total / np.maximum(count, 1.0)
+
+
+def node_average(field, elements, node):
+    """A Gauss-point field extrapolated bilinearly to the corners of each element (the 2x2 points as the
+    corners of a square of half-side 1/sqrt(3)) and averaged over the elements at `node`, as visco2d's
+    stress recovery (q_surface_MPa) does."""
+    corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+    signs = [(-1, -1), (1, -1), (-1, 1), (1, 1)]       # point k = i + 2 j
+    values = []
+    for e in np.nonzero((elements == node).any(axis=1))[0]:
+        a = int(np.nonzero(elements[e] == node)[0][0])
+        xi, eta = corners[a]
+        L = [0.25 * (1 + math.sqrt(3) * xi * sx) * (1 + math.sqrt(3) * eta * sy) for sx, sy in signs]
+        values.append(float(np.dot(L, field[e])))
+    return float(np.mean(values))
+
+
 def plastic_work(pe, w, Y, H):
     """sum w (Y pe + H pe^2 / 2) = int sigma_y d(pe) dV, the plastic dissipation of J2 plasticity with
     linear isotropic hardening (exact for any path with that curve)."""
