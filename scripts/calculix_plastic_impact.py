@@ -22,11 +22,8 @@ Not part of `make test` (several minutes).
 import argparse
 import math
 import os
-import re
 import shutil
-import subprocess
 import sys
-import time
 
 import numpy as np
 
@@ -36,76 +33,22 @@ sys.path.insert(0, os.path.join(ROOT, "python"))
 
 from visco2d import case  # noqa: E402
 
+sys.path.insert(0, HERE)
+from calculix_common import (  # noqa: E402
+    SECTOR, ccx_plastic_card, ccx_version, contact_cards, dat_blocks, fmt, gauss_point_index, gauss_weights,
+    hardening_modulus, material_cards, peeq_field, plastic_work, read_mesh, rel, run_ccx, run_visco2d,
+    sphere_mesh_cards, stored_energy, volume_mean_weights)
+
 G_ACC = 9.8
-GP = 1.0 / math.sqrt(3.0)
 
 # ---------------------------------------------------------------- materials
 UNI = dict(E=1.0e6, nu=0.3, Y=1.0e4, Et=2.0e5, h=0.01, eps=0.04, steps=20)
 SPHERE = dict(R=0.03, E=4.0e6, nu=0.32, rho=845.0, Y=0.4e6, Et=0.4e6, drop=0.3)
 
 
-def hardening_modulus(E, Et):
-    return E * Et / (E - Et)
-
-
-def ccx_plastic_card(Y, E, Et, eps_last=10.0):
-    """*PLASTIC lines of the bilinear curve: (Y, 0) and (Y + H eps_last, eps_last)."""
-    H = hardening_modulus(E, Et)
-    return f"*PLASTIC\n{Y:.10g}, 0.0\n{Y + H * eps_last:.10g}, {eps_last:.10g}\n"
-
-
 # ---------------------------------------------------------------- running
-def run_ccx(ccx, folder, job):
-    """ccx -i job in folder; (seconds of wall clock, user+sys CPU of the child, log text)."""
-    start = time.time()
-    before = os.times()
-    env = dict(os.environ, OMP_NUM_THREADS="1", CCX_NPROC_STIFFNESS="1", CCX_NPROC_EQUATION_SOLVER="1")
-    with open(os.path.join(folder, job + ".log"), "w") as log:
-        result = subprocess.run([ccx, "-i", job], cwd=folder, stdout=log, stderr=subprocess.STDOUT, env=env)
-    after = os.times()
-    cpu = (after.children_user - before.children_user) + (after.children_system - before.children_system)
-    text = open(os.path.join(folder, job + ".log")).read()
-    if result.returncode != 0 or "*ERROR" in text:
-        tail = "\n".join(text.splitlines()[-15:])
-        raise RuntimeError(f"ccx failed on {folder}/{job}.inp (exit {result.returncode}):\n{tail}")
-    return time.time() - start, cpu, text
-
-
 def job_log(folder, label):
     return os.path.join(folder, f"ccx_{label}.log")
-
-
-def run_visco2d(exe, deck, out):
-    start = time.time()
-    result = subprocess.run([exe, "-q", "-o", out, deck], capture_output=True, text=True)
-    if result.returncode not in (0,):
-        raise RuntimeError(f"visco2d failed on {deck}: {result.stderr.strip()}")
-    name = os.path.splitext(os.path.basename(deck))[0]
-    return os.path.join(out, name), time.time() - start
-
-
-def dat_blocks(path):
-    """Parse a ccx .dat file: list of (title, time, rows) with rows a list of float lists."""
-    blocks = []
-    head = re.compile(r"^\s*(.*?)\s*for set\s+(\S+)\s+and time\s+(\S+)")
-    current = None
-    with open(path) as handle:
-        for line in handle:
-            m = head.match(line)
-            if m:
-                current = (m.group(1).strip() + " " + m.group(2), float(m.group(3)), [])
-                blocks.append(current)
-                continue
-            if current is None:
-                continue
-            parts = line.split()
-            if not parts:
-                continue
-            try:
-                current[2].append([float(p) for p in parts])
-            except ValueError:
-                current = None
-    return blocks
 
 
 # ---------------------------------------------------------------- 1. uniaxial
@@ -214,41 +157,6 @@ END
 """)
 
 
-def read_mesh(vcase):
-    import h5py
-    with h5py.File(os.path.join(vcase, "results.h5"), "r") as f:
-        nodes = f["/mesh/nodes"][...]
-        elements = f["/mesh/elements"][...] - 1
-        ids = f["/mesh/node_ids"][...]
-    return nodes, elements, ids
-
-
-def gauss_weights(nodes, elements):
-    """(nelem, 4) whole-body volumes 2 pi r detJ of the 2x2 Gauss points, (nelem, 4, 2) their (r, z),
-    and (nelem, 4, 4) the shape functions there; point k = i + 2 j with xi_i, eta_j = -g, +g."""
-    pts = [(-GP, -GP), (GP, -GP), (-GP, GP), (GP, GP)]
-    ne = len(elements)
-    w = np.zeros((ne, 4))
-    xy = np.zeros((ne, 4, 2))
-    shape = np.zeros((4, 4))
-    for k, (xi, eta) in enumerate(pts):
-        N = 0.25 * np.array([(1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta)])
-        dxi = 0.25 * np.array([-(1 - eta), (1 - eta), (1 + eta), -(1 + eta)])
-        deta = 0.25 * np.array([-(1 - xi), -(1 + xi), (1 + xi), (1 - xi)])
-        X = nodes[elements]  # (ne, 4, 2)
-        J11 = X[:, :, 0] @ dxi
-        J12 = X[:, :, 1] @ dxi
-        J21 = X[:, :, 0] @ deta
-        J22 = X[:, :, 1] @ deta
-        det = J11 * J22 - J12 * J21
-        r = X[:, :, 0] @ N
-        w[:, k] = 2 * math.pi * r * det
-        xy[:, k, 0] = r
-        xy[:, k, 1] = X[:, :, 1] @ N
-        shape[k] = N
-    return w, xy, shape
-
-
 def free_fall_times(dt):
     """(t_f, t1): the free fall of DROP HEIGHT under g ends at t_f; CalculiX's first step ends at t1 = t_f - 2 dt."""
     t_f = math.sqrt(2 * SPHERE["drop"] / G_ACC)
@@ -267,60 +175,12 @@ def ccx_sphere_deck(path, nodes, elements, ids, plastic, penalty, sigma_inf, t_e
     """
     p = SPHERE
     t_f, t1 = free_fall_times(dt)
-    lines = ["*HEADING", f"sphere R {p['R']} m {'plastic' if plastic else 'elastic'} drop {p['drop']} m, visco2d's mesh",
-             "*NODE, NSET=NSPHERE"]
-    for i, (r, z) in enumerate(nodes):
-        lines.append(f"{ids[i]}, {r:.15g}, {z + p['drop']:.15g}")
-    # the rigid plate: one fixed C3D8 brick under y = 0 (CalculiX's axial direction), across the
-    # 2-degree sector of the expansion
-    rmax = nodes[:, 0].max()
-    x0, x1, y0, y1, zz = -0.3 * rmax, 1.5 * rmax, -0.2 * rmax, 0.0, 0.2 * rmax
-    base = 10 ** (len(str(int(ids.max()))) + 1)
-    plate = [(x0, y0, -zz), (x1, y0, -zz), (x1, y1, -zz), (x0, y1, -zz),
-             (x0, y0, zz), (x1, y0, zz), (x1, y1, zz), (x0, y1, zz)]
-    lines.append("*NODE, NSET=NPLATE")
-    for k, (x, y, z) in enumerate(plate):
-        lines.append(f"{base + k + 1}, {x:.15g}, {y:.15g}, {z:.15g}")
-    lines.append("*ELEMENT, TYPE=CAX4, ELSET=ESPHERE")
-    for e, conn in enumerate(elements):
-        lines.append(f"{e + 1}, " + ", ".join(str(ids[n]) for n in conn))
-    lines.append("*ELEMENT, TYPE=C3D8, ELSET=EPLATE")
-    lines.append(f"{base + 1}, " + ", ".join(str(base + k + 1) for k in range(8)))
-    axis = [ids[i] for i in range(len(nodes)) if abs(nodes[i, 0]) < 1e-12]
-    lines.append("*NSET, NSET=AXIS")
-    lines += [", ".join(str(a) for a in axis[i:i + 10]) for i in range(0, len(axis), 10)]
-    # slave surface: the element edges on the outer boundary (not on the axis) below slave_z
-    count = {}
-    for e, conn in enumerate(elements):
-        for f in range(4):
-            a, b = conn[f], conn[(f + 1) % 4]
-            count.setdefault(tuple(sorted((a, b))), []).append((e, f))
-    lines.append("*SURFACE, NAME=SSLAVE, TYPE=ELEMENT")
-    nslave = 0
-    for (a, b), users in count.items():
-        if len(users) != 1:
-            continue
-        if abs(nodes[a, 0]) < 1e-12 and abs(nodes[b, 0]) < 1e-12:
-            continue
-        if max(nodes[a, 1], nodes[b, 1]) > slave_z:
-            continue
-        e, f = users[0]
-        lines.append(f"{e + 1}, S{f + 1}")
-        nslave += 1
-    # the plate's top face y = 0: the brick's face S5 (nodes 3-7-8-4), outward normal +y
-    lines += ["*SURFACE, NAME=SPLATE, TYPE=ELEMENT", f"{base + 1}, S5"]
-    lines += ["*MATERIAL, NAME=FLESH", "*ELASTIC", f"{p['E']:.10g}, {p['nu']:.10g}", "*DENSITY", f"{p['rho']:.10g}"]
-    if plastic:
-        lines.append(ccx_plastic_card(p["Y"], p["E"], p["Et"]).rstrip())
-    lines += ["*MATERIAL, NAME=PLATE", "*ELASTIC", f"{1000 * p['E']:.10g}, 0.3", "*DENSITY", f"{p['rho']:.10g}",
-              "*SOLID SECTION, ELSET=ESPHERE, MATERIAL=FLESH",
-              "*SOLID SECTION, ELSET=EPLATE, MATERIAL=PLATE",
-              "*SURFACE INTERACTION, NAME=FRICTIONLESS",
-              "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR",
-              f"{penalty:.6g}, {sigma_inf:.6g}",
-              "*CONTACT PAIR, INTERACTION=FRICTIONLESS, TYPE=NODE TO SURFACE",
-              "SSLAVE, SPLATE",
-              "*BOUNDARY", "AXIS, 1, 1, 0.0", "NPLATE, 1, 3, 0.0",
+    lines = ["*HEADING", f"sphere R {p['R']} m {'plastic' if plastic else 'elastic'} drop {p['drop']} m, visco2d's mesh"]
+    mesh, nslave = sphere_mesh_cards(nodes, elements, ids, p["drop"], slave_z)
+    lines += mesh
+    lines += material_cards(p["E"], p["nu"], p["rho"], plastic, p["Y"], p["Et"])
+    lines += contact_cards(penalty, sigma_inf)
+    lines += ["*BOUNDARY", "AXIS, 1, 1, 0.0", "NPLATE, 1, 3, 0.0",
               # step 1: the free fall
               "*STEP, INC=1000000",
               "*DYNAMIC, DIRECT",
@@ -369,11 +229,7 @@ def ccx_sphere_results(folder, job, nodes, elements, ids, plastic, release_fract
     volume = w.sum()
     mass = p["rho"] * volume
     # c_i: the consistent weights of node i in the volume mean (u_cm = c . u)
-    c = np.zeros(len(nodes))
-    for k in range(4):
-        for a in range(4):
-            np.add.at(c, elements[:, a], w[:, k] * shape[k, a])
-    c /= volume
+    c = volume_mean_weights(nodes, elements, w, shape)
     index = {int(n): i for i, n in enumerate(ids)}
     t_f, t1 = free_fall_times(dt)
     blocks = dat_blocks(os.path.join(folder, job + ".dat"))
@@ -416,7 +272,7 @@ def ccx_sphere_results(folder, job, nodes, elements, ids, plastic, release_fract
     v0 = -(vz[j - 1] + s_ * (vz[j] - vz[j - 1]))
     t = t_abs - t_c                      # time since first contact
     alpha = uz_c - uz                    # z_cm(t_c) - z_cm(t)
-    F = np.array(force) * 180.0
+    F = np.array(force) * SECTOR
     # the plate is a 3D brick under the 2-degree sector of CalculiX's expansion: its reaction is the
     # sector's; the whole ring is 180 times it (checked below against the momentum balance)
     alpha_m, t_alpha_m = parabola_vertex(t, alpha)
@@ -439,39 +295,27 @@ def ccx_sphere_results(folder, job, nodes, elements, ids, plastic, release_fract
         res["separated"] = "no"
     # ELKE and ELSE are the 2-degree sector's (the expansion angle): the whole body is 180 times them;
     # checked by 1/2 M v_cm^2 over 180 ELKE at the second sample, before contact (rigid-body motion)
-    e_scale = 180.0
+    e_scale = SECTOR
     res["energy_scale"] = 0.5 * mass * vz[1] ** 2 / (e_scale * elke[1])
     # Gauss-point fields at the end (second step)
     last = max(b[1] for b in blocks)
     S = np.array([b[2] for b in blocks if b[1] == last and b[0].startswith("stresses")][0])
     X = np.array([b[2] for b in blocks if b[1] == last and b[0].startswith("global coordinates")][0])
-    m = (S[:, 1] - 1).astype(int)
-    e = (S[:, 0] - 1).astype(int)
-    k2 = (m % 2) + 2 * ((m // 2) % 2)
+    e, k2 = gauss_point_index(S)
     rx = np.hypot(X[:, 2], X[:, 4])
     mismatch = max(np.abs(rx - xy[e, k2, 0]).max(), np.abs(X[:, 3] - p["drop"] - xy[e, k2, 1]).max())
     res["gauss_point_map_error_m"] = mismatch
-    Kb = p["E"] / (3 * (1 - 2 * p["nu"]))
-    Gs = p["E"] / (2 * (1 + p["nu"]))
-    sig = S[:, 2:8]
-    pm = sig[:, :3].mean(axis=1)
-    dev = sig[:, :3] - pm[:, None]
-    ss = (dev ** 2).sum(axis=1) + 2 * (sig[:, 3:6] ** 2).sum(axis=1)
-    dens = pm ** 2 / (2 * Kb) + ss / (4 * Gs)
-    # each 2D Gauss point appears twice (the two layers of the expansion): half the weight each
-    res["stored_end_J"] = float((0.5 * w[e, k2] * dens).sum())
+    res["stored_end_J"] = stored_energy(S, w, p["E"], p["nu"])
     res["kinetic_end_J"] = elke[-1] * e_scale if elke else float("nan")
     res["internal_end_J"] = else_[-1] * e_scale if else_ else float("nan")
     if plastic:
         P = np.array([b[2] for b in blocks if b[1] == last and b[0].startswith("equivalent plastic")][0])
-        pe = np.zeros((len(elements), 4))
-        np.maximum.at(pe, ((P[:, 0] - 1).astype(int), (P[:, 1] - 1).astype(int) % 2
-                           + 2 * (((P[:, 1] - 1).astype(int) // 2) % 2)), P[:, 2])
+        pe = peeq_field(P, len(elements))
         H = hardening_modulus(p["E"], p["Et"])
         res["equivalent_plastic_strain_max"] = pe.max()
         res["yielded_volume_m3"] = w[pe > 0].sum()
         res["yielded_volume_1e-6_m3"] = w[pe > 1e-6].sum()
-        res["plastic_dissipation_J"] = float((w * (p["Y"] * pe + 0.5 * H * pe ** 2)).sum())
+        res["plastic_dissipation_J"] = plastic_work(pe, w, p["Y"], H)
         res["plastic_dissipation_else_J"] = res["internal_end_J"] - res["stored_end_J"]
     res["history"] = dict(t=t, alpha=alpha, F=F, vz=vz)
     return res
@@ -486,24 +330,6 @@ QUANTITIES = [
     ("equivalent_plastic_strain_max", "largest equivalent plastic strain"),
     ("yielded_volume_m3", "yielded volume (m^3)"),
 ]
-
-
-def fmt(x):
-    if x is None or (isinstance(x, float) and math.isnan(x)):
-        return "-"
-    if isinstance(x, str):
-        return x
-    if x == 0:
-        return "0"
-    return f"{x:.4g}"
-
-
-def rel(a, b):
-    if a is None or b is None or isinstance(a, str) or isinstance(b, str):
-        return "-"
-    if b == 0:
-        return "-"
-    return f"{(a - b) / abs(b) * 100:+.1f} %"
 
 
 def main():
@@ -528,9 +354,7 @@ def main():
     if not ccx:
         print("ccx (CalculiX) is not installed (apt-get install -y calculix-ccx): the CalculiX runs are skipped")
     else:
-        vtext = subprocess.run([ccx, "-v"], capture_output=True, text=True).stdout
-        m = re.search(r"Version\s+(\S+)", vtext)
-        version = m.group(1) if m else "?"
+        version = ccx_version(ccx)
     report = [f"# CalculiX check of visco2d's dynamic plasticity\n",
               f"Written by scripts/calculix_plastic_impact.py; CalculiX {version or 'not run'}; "
               f"MESH SPHERE LEVEL={args.level}; dt = {args.dt:g} s.\n"]
