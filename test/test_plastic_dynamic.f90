@@ -20,6 +20,8 @@
 !>  4. BRUISE CRITERION=PLASTIC: the bruise is the yielded volume, shrinking
 !>     with the thresholds; its susceptibility; the bruise volume, plastic
 !>     work and restitution converge with the mesh level and DT.
+!>  4b. Without a BRUISE card no envelope is kept: the plastic strain field
+!>     and every other key equal a run with OUTPUT ENVELOPES=YES.
 !>  5. ITERATIONS=1 on a yielding step: a located error at the TIME card,
 !>     no result folder; a PAD with a PLASTIC card refused; CRITERION=PLASTIC
 !>     refused without a PLASTIC material, with STRESS= and in STATIC.
@@ -28,7 +30,7 @@ program test_plastic_dynamic
   use visco2d_error, only: error_t, error_text
   use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, summary_real
   use visco2d_driver, only: run_deck
-  use visco2d_record, only: record_t
+  use visco2d_record, only: record_t, record_find, summary_text
   use visco2d_test_decks, only: deck_line_length, try_read_deck, check_error_location
   implicit none
 
@@ -41,6 +43,7 @@ program test_plastic_dynamic
   call perfectly_plastic_bar()
   call high_yield_is_elastic()
   call yielding_impacts()
+  call no_envelopes_kept()
   call plastic_bruise()
   call convergence()
   call bad_decks()
@@ -268,6 +271,55 @@ contains
   end subroutine convergence
 
   !> True if the record's bruise fields (results.h5's /bruise) hold `name`.
+  !> A yielding drop without a BRUISE card keeps no envelope (no envelope_*
+  !> key, no stress envelope field) and writes its plastic strain with the
+  !> quadrature; the same deck with OUTPUT ENVELOPES=YES has the same fields
+  !> and values (it stops at separation, where the flesh no longer yields, so
+  !> the final ebar is the envelope's last solve-point one) and every key of
+  !> the first run (the envelopes change no result: exactly equal numbers).
+  subroutine no_envelopes_kept()
+    type(record_t) :: plain, kept
+    character(len=deck_line_length), allocatable :: lines(:)
+    logical :: ok, same
+    integer :: k, j
+    lines = drop('PLASTIC YIELD=0.25e6 TANGENT=0.4e6', '0.3', '')
+    call run('plain_plastic', lines, plain, ok)
+    if (.not. ok) return
+    lines = [lines(:size(lines) - 1), [character(len=deck_line_length) :: 'OUTPUT ENVELOPES=YES', 'END']]
+    call run('kept_envelopes', lines, kept, ok)
+    if (.not. ok) return
+    call check('no BRUISE card: no envelope key', record_find(plain, 'envelope_von_mises_max_Pa') == 0)
+    call check('OUTPUT ENVELOPES=YES: the envelope keys', record_find(kept, 'envelope_von_mises_max_Pa') > 0)
+    call check('no BRUISE card: no stress envelope field', .not. has_field(plain, 'von_mises_envelope'))
+    call check('no BRUISE card: the plastic strain and quadrature fields', has_field(plain, 'equivalent_plastic_strain') &
+               .and. has_field(plain, 'volume_weight') .and. has_field(plain, 'gauss_r') .and. has_field(plain, 'gauss_z'))
+    do k = 1, size(plain%bruise_fields)
+      same = .false.
+      do j = 1, size(kept%bruise_fields)
+        if (kept%bruise_fields(j)%name /= plain%bruise_fields(k)%name) cycle
+        same = all(kept%bruise_fields(j)%gauss == plain%bruise_fields(k)%gauss)
+      end do
+      call check('field '//plain%bruise_fields(k)%name//' as with the envelopes kept', same)
+    end do
+    same = .true.                                   ! the numbers (text items name the case and its files)
+    do k = 1, plain%nsummary
+      associate (key => plain%summary(k)%key)
+      if (plain%summary(k)%kind == summary_text .or. key == 'cpu_s' .or. index(key, 'wall') > 0 .or. &
+          index(key, 'time_phase') > 0) cycle
+      j = record_find(kept, key)
+      if (j == 0) then
+        same = .false.
+        print '(a)', '  missing with the envelopes kept: '//key
+      else if (kept%summary(j)%real_value /= plain%summary(k)%real_value .or. &
+               kept%summary(j)%integer_value /= plain%summary(k)%integer_value) then
+        same = .false.
+        print '(a)', '  differs: '//key
+      end if
+      end associate
+    end do
+    call check('no BRUISE card: every key as with the envelopes kept', same)
+  end subroutine no_envelopes_kept
+
   logical function has_field(record, name)
     type(record_t), intent(in) :: record
     character(*), intent(in) :: name

@@ -82,8 +82,12 @@ def has_contact(case):
 
 def bruise_measure(case):
     """(criterion, measure, label, unit, factor) of the envelope to draw: the first criterion of
-    bruise_criterion (a deck may give one per material)."""
-    criteria = str(case["summary"].get("bruise_criterion", "MAXSHEAR")).replace(" ", "").split(",")
+    bruise_criterion (a deck may give one per material); without a BRUISE card, the plastic strain
+    of a PLASTIC run (which keeps no stress envelope then), else the largest shear stress's."""
+    plastic_only = case.get("bruise") is not None and "max_shear_envelope" not in case["bruise"] \
+        and "equivalent_plastic_strain" in case["bruise"]
+    criteria = str(case["summary"].get("bruise_criterion", "PLASTIC" if plastic_only else "MAXSHEAR"))
+    criteria = criteria.replace(" ", "").split(",")
     criterion = criteria[0].upper() if criteria[0].upper() in MEASURES else "MAXSHEAR"
     return (criterion,) + MEASURES[criterion] + (len(set(criteria)) > 1,)
 
@@ -312,7 +316,9 @@ def envelope_panels(case, data, fig, whole_spec, zoom_spec, bar_spec):
         bar.ax.axhline(data["threshold"], color="r", lw=2.2)
     outline = ("bruised region: envelope = threshold" if not data["mixed"]
                else "bruised region (bruised Gauss points, nodal mean 0.5)")
-    if data["bruised_points"] is not None and data["bruised_points"][0].size == 0:
+    if "bruise_criterion" not in case["summary"]:
+        outline = "no BRUISE card (no outline)"
+    elif data["bruised_points"] is not None and data["bruised_points"][0].size == 0:
         outline = "nothing bruised (no outline)"
     elif data["ratio"].min() >= 1.0:
         outline = "all the section bruised (no outline)"
@@ -373,7 +379,10 @@ def numbers_text(case, data):
                           f"{s('bruise_threshold_J_m3') * 1e-6:.3g} J/cm³" if s("bruise_threshold_J_m3") is not None
                           else f"ε̄p > {100 * s('bruise_threshold_strain'):.3g} %"
                           if s("bruise_threshold_strain") is not None else "per material")
-        lines.append(f"BRUISE {case['summary'].get('bruise_criterion', data['criterion'])}, threshold {threshold_text}")
+        if "bruise_criterion" in case["summary"]:
+            lines.append(f"BRUISE {case['summary']['bruise_criterion']}, threshold {threshold_text}")
+        else:
+            lines.append("no BRUISE card: no region assessed")
         volume = s(f"bruise_volume_{key_suffix}")
         if volume is not None:
             assessed = s(f"bruise_assessed_volume_{key_suffix}")

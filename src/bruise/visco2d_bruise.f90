@@ -28,7 +28,7 @@
 !> with neither.
 module visco2d_bruise
   use visco2d_kinds, only: dp, geometry_axisymmetric
-  use visco2d_deck, only: deck_t, stop_at_separation, analysis_dynamic
+  use visco2d_deck, only: deck_t, stop_at_separation
   use visco2d_record, only: record_t, gauss_field_t, record_put, record_put_real, record_put_integer, record_real
   use visco2d_element, only: gauss_count, element_b_matrices, element_gauss_points
   use visco2d_material, only: von_mises, max_shear
@@ -39,7 +39,8 @@ module visco2d_bruise
   implicit none
   private
 
-  public :: bruise_t, bruise_update, bruise_report, bruise_static, measure_count, measure_names, envelopes_wanted
+  public :: bruise_t, bruise_update, bruise_report, bruise_static, measure_count, measure_names, envelopes_wanted, &
+            bruise_plastic_field
 
   integer, parameter :: measure_count = 4   !< max shear, von Mises, octahedral, energy density
   !> Names of the measures as fields and keys (in the order of the criterion codes).
@@ -117,20 +118,29 @@ contains
     call bruise_report(bruise, deck, record)
   end subroutine bruise_static
 
-  !> True for a deck with a BRUISE card or OUTPUT ENVELOPES=YES, and for a
-  !> dynamic deck with a PLASTIC material (its equivalent plastic strain is
-  !> written with the bruise fields, a BRUISE card or not).
+  !> True for a deck with a BRUISE card or OUTPUT ENVELOPES=YES. A dynamic
+  !> deck with a PLASTIC material and neither keeps no envelope: its
+  !> equivalent plastic strain is written at the end (bruise_plastic_field).
   logical function envelopes_wanted(deck) result(wanted)
     type(deck_t), intent(in) :: deck
-    integer :: k
     wanted = deck%output%envelopes
     if (allocated(deck%bruises)) wanted = wanted .or. size(deck%bruises) > 0   ! unallocated: a deck built in code
-    if (deck%analysis == analysis_dynamic) then
-      do k = 1, size(deck%materials)
-        if (deck%materials(k)%plastic) wanted = .true.
-      end do
-    end if
   end function envelopes_wanted
+
+  !> The fields of a run with a PLASTIC material that kept no envelopes (no
+  !> BRUISE card, no OUTPUT ENVELOPES=YES): its equivalent plastic strain
+  !> `ebar` at the end, which is its envelope (ebar never decreases), with
+  !> the quadrature (volume weights, Gauss-point positions), into the record.
+  subroutine bruise_plastic_field(deck, ebar, record)
+    type(deck_t), intent(in) :: deck
+    real(dp), intent(in) :: ebar(:, :)                         !< (gauss_count, nelem)
+    type(record_t), intent(inout) :: record
+    type(bruise_t) :: bruise
+    call bruise_start(bruise, deck)
+    bruise%plastic = ebar
+    allocate(record%bruise_fields(0))
+    call put_quadrature(bruise, deck, record)
+  end subroutine bruise_plastic_field
 
   !> Allocate the envelopes (zero), the rule of every element, the volume
   !> weights and the Gauss-point positions.
@@ -318,46 +328,56 @@ contains
     integer :: m, e
     allocate(record%bruise_fields(0))
     do m = 1, measure_count
-      call add(trim(measure_names(m))//'_envelope', criterion_unit(m), bruise%envelope(m, :, :))
-      call add(trim(measure_names(m))//'_time', 's', bruise%time_of_max(m, :, :))
+      call add_field(record, deck, trim(measure_names(m))//'_envelope', criterion_unit(m), bruise%envelope(m, :, :))
+      call add_field(record, deck, trim(measure_names(m))//'_time', 's', bruise%time_of_max(m, :, :))
     end do
-    call add('volume_weight', merge('m^3      ', 'm^3 per m', deck%settings%geometry == geometry_axisymmetric), &
-             bruise%volume, .false.)
-    call add('gauss_r', 'm', bruise%point(1, :, :), .false.)
-    call add('gauss_z', 'm', bruise%point(2, :, :), .false.)
-    if (allocated(bruise%plastic)) call add('equivalent_plastic_strain', '1', bruise%plastic)
+    call put_quadrature(bruise, deck, record)
     if (size(deck%bruises) == 0) return                 ! OUTPUT ENVELOPES=YES alone: no threshold, no region
     allocate(threshold(gauss_count, deck%mesh%nelem))
     threshold = 0.0_dp
     do e = 1, deck%mesh%nelem
       if (bruise%rule(e) > 0) threshold(:, e) = deck%bruises(bruise%rule(e))%threshold
     end do
-    call add('threshold', 'Pa or J/m^3 (the criterion of the element''s BRUISE card); 0: not assessed', threshold)
-    call add('assessed', '1', merge(1.0_dp, 0.0_dp, assessed))
-    call add('bruised', '1', merge(1.0_dp, 0.0_dp, bruised))
-    call add('failure_time', 's (-1: never)', bruise%failure_time)
-
-  contains
-
-    !> A field; with its nodal average unless `nodal` is false (the quadrature).
-    subroutine add(name, units, values, nodal)
-      character(*), intent(in) :: name, units
-      real(dp), intent(in) :: values(:, :)
-      logical, intent(in), optional :: nodal
-      type(gauss_field_t) :: field
-      field%name = name
-      field%units = trim(units)
-      field%gauss = values
-      if (present(nodal)) then
-        if (.not. nodal) then
-          record%bruise_fields = [record%bruise_fields, field]
-          return
-        end if
-      end if
-      field%nodal = nodal_average(deck, values)
-      record%bruise_fields = [record%bruise_fields, field]
-    end subroutine add
+    call add_field(record, deck, 'threshold', 'Pa or J/m^3 (the criterion of the element''s BRUISE card); 0: not assessed', &
+                   threshold)
+    call add_field(record, deck, 'assessed', '1', merge(1.0_dp, 0.0_dp, assessed))
+    call add_field(record, deck, 'bruised', '1', merge(1.0_dp, 0.0_dp, bruised))
+    call add_field(record, deck, 'failure_time', 's (-1: never)', bruise%failure_time)
   end subroutine put_fields
+
+  !> The quadrature (volume weights, Gauss-point positions) and, with a
+  !> PLASTIC material, the equivalent plastic strain, as record fields.
+  subroutine put_quadrature(bruise, deck, record)
+    type(bruise_t), intent(in) :: bruise
+    type(deck_t), intent(in) :: deck
+    type(record_t), intent(inout) :: record
+    call add_field(record, deck, 'volume_weight', merge('m^3      ', 'm^3 per m', &
+                   deck%settings%geometry == geometry_axisymmetric), bruise%volume, .false.)
+    call add_field(record, deck, 'gauss_r', 'm', bruise%point(1, :, :), .false.)
+    call add_field(record, deck, 'gauss_z', 'm', bruise%point(2, :, :), .false.)
+    if (allocated(bruise%plastic)) call add_field(record, deck, 'equivalent_plastic_strain', '1', bruise%plastic)
+  end subroutine put_quadrature
+
+  !> A field into the record; with its nodal average unless `nodal` is false (the quadrature).
+  subroutine add_field(record, deck, name, units, values, nodal)
+    type(record_t), intent(inout) :: record
+    type(deck_t), intent(in) :: deck
+    character(*), intent(in) :: name, units
+    real(dp), intent(in) :: values(:, :)
+    logical, intent(in), optional :: nodal
+    type(gauss_field_t) :: field
+    field%name = name
+    field%units = trim(units)
+    field%gauss = values
+    if (present(nodal)) then
+      if (.not. nodal) then
+        record%bruise_fields = [record%bruise_fields, field]
+        return
+      end if
+    end if
+    field%nodal = nodal_average(deck, values)
+    record%bruise_fields = [record%bruise_fields, field]
+  end subroutine add_field
 
   !> Nodal value: the mean over the node's elements of the Gauss point nearest
   !> the node (Gauss point c sits next to corner c): no extrapolation, so an

@@ -61,7 +61,7 @@ module visco2d_dynamic
                             phase_output, phase_step_loop
   use visco2d_progress, only: progress_step, progress_expect_end, progress_impact_end
   use visco2d_advice, only: deformation_warnings, largest_strain
-  use visco2d_bruise, only: bruise_t, bruise_update, bruise_report, envelopes_wanted
+  use visco2d_bruise, only: bruise_t, bruise_update, bruise_report, envelopes_wanted, bruise_plastic_field
   use visco2d_impact, only: impact_t, impact_start, impact_measure, impact_summary, impact_surface_stress
   use visco2d_integrators, only: mass_coefficient, energy_overshoot, stability_advice
   use visco2d_dynamic_state, only: dynamic_state_t
@@ -362,6 +362,10 @@ contains
     t_solve = state%t + stepper%points(r)%h
     if (at_solve_point) call solve_point_state(stepper, deck, r, state)
     call commit_substep(stepper, deck, r, state, t_end)                         ! eqs. [24], [40]-[42]
+    if (.not. envelopes_wanted(deck)) then  ! no envelope kept (a PLASTIC run's plastic strain is its final ebar)
+      call timer_stop(phase_constitutive)
+      return
+    end if
     if (at_solve_point) then              ! ebar_solve: absent (unallocated) without a PLASTIC material
       call bruise_update(measures%bruise, deck, t_solve, stepper%stress_solve, stepper%strain_solve, &
                          stepper%history_solve, stepper%ebar_solve)
@@ -492,6 +496,7 @@ contains
       end if
     end if
     call bruise_report(measures%bruise, deck, record)
+    if (stepper%plastic .and. .not. envelopes_wanted(deck)) call bruise_plastic_field(deck, state%ebar, record)
     if (stepper%plastic) call put_plastic_summary(stepper, deck, record, state, log%basis_factor, error)
     if (allocated(error)) return
     ! Beyond the small-strain model: the largest principal strain at the end
