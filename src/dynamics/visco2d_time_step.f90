@@ -133,6 +133,7 @@ module visco2d_time_step
     real(dp), allocatable :: trial_ebar(:, :), plastic_increments(:, :, :), ebar_solve(:, :), plastic_solve(:, :, :)
     real(dp), allocatable :: yield_limit(:, :)     !< (2/3) sigma_y(ebar)^2 of the state (yield_limits)
     real(dp), allocatable :: residual(:), correction(:), no_values(:)
+    real(dp), allocatable :: plastic_correction(:) !< dU less the linear solve's at the last yielding solve (the predictor)
     integer :: iterations = 0                      !< equilibrium iterations, all sub-steps
     integer :: iterations_max = 0                  !< the most in one solve
     integer :: iterated_solves = 0                 !< solves in which a Gauss point yielded
@@ -670,8 +671,9 @@ contains
     integer, intent(in) :: r
     type(dynamic_state_t), intent(in) :: state
     type(error_t), allocatable, intent(inout) :: error
-    real(dp), allocatable :: base(:), previous(:), difference(:)
+    real(dp), allocatable :: base(:), previous(:), difference(:), linear(:)
     logical, allocatable :: free(:)
+    logical :: predicted
     real(dp) :: c, kept, energy_first, energy, force_ratio, scale, relaxation, denominator
     integer :: iteration, yielded, e, status
     associate (point => stepper%points(r), row => stepper%points(r)%row)
@@ -687,12 +689,15 @@ contains
     end if
     energy_first = abs(sum(stepper%solution*stepper%effective_load, mask=free))
     relaxation = 1.0_dp
+    linear = stepper%solution
+    predicted = allocated(stepper%plastic_correction)
+    if (predicted) stepper%solution = stepper%solution + merge(stepper%plastic_correction, 0.0_dp, free)
     do iteration = 1, stepper%iterations_allowed
       call timer_start(phase_constitutive)
       call plastic_solve_point(stepper, deck, point, state, yielded)
       call timer_stop(phase_constitutive)
       stepper%residual = base - c*stepper%mass*stepper%solution - kept*stepper%internal_solve
-      if (iteration == 1 .and. yielded == 0) exit                  ! elastic: the linear solve is the answer
+      if (iteration == 1 .and. yielded == 0 .and. .not. predicted) exit   ! elastic: the linear solve is the answer
       scale = sqrt(max(sum(base**2, mask=free), kept**2*sum(stepper%internal_solve**2, mask=free), &
                        c**2*sum((stepper%mass*stepper%solution)**2, mask=free), tiny(1.0_dp)))
       force_ratio = sqrt(sum(stepper%residual**2, mask=free))/scale
@@ -730,10 +735,15 @@ contains
       previous = stepper%correction
       stepper%solution = stepper%solution + relaxation*stepper%correction
     end do
-    if (yielded > 0) then
+    if (yielded > 0 .or. predicted) then
       stepper%iterations = stepper%iterations + iteration
       stepper%iterations_max = max(stepper%iterations_max, iteration)
       stepper%iterated_solves = stepper%iterated_solves + 1
+    end if
+    if (yielded > 0) then
+      stepper%plastic_correction = stepper%solution - linear
+    else if (allocated(stepper%plastic_correction)) then
+      deallocate(stepper%plastic_correction)
     end if
     end associate
   end subroutine equilibrium_iterations
