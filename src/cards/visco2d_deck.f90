@@ -381,15 +381,16 @@ contains
     follows = any(deck%cards%cards(k - 1)%keyword == keywords)
   end function follows
 
-  !> Plasticity is solved by ANALYSIS STATIC (without a PLATE or PAD) and by
-  !> ANALYSIS DYNAMIC (with or without the rigid PLATE, not on a PAD) so far:
+  !> Plasticity is solved by ANALYSIS STATIC (alone or on the rigid PLATE
+  !> with SLIP, not on a PAD) and by ANALYSIS DYNAMIC (with or without the
+  !> rigid PLATE, on a PAD whose own materials are not plastic) so far:
   !> elsewhere a PLASTIC card is an error (not an elastic run). An
   !> INCREMENTS= or ITERATIONS= on a deck without plasticity is a warning.
   subroutine check_plastic_analysis(deck, reading, error)
     type(deck_t), intent(inout) :: deck
     type(reading_t), intent(in) :: reading
     type(error_t), allocatable, intent(inout) :: error
-    integer :: k, m
+    integer :: k, m, j
     m = 0
     do k = 1, size(deck%materials)
       if (deck%materials(k)%plastic) then
@@ -425,11 +426,25 @@ contains
         deck%materials(m)%id//') is available for ANALYSIS STATIC and DYNAMIC only so far; this deck is ANALYSIS '// &
         analysis_name(deck%analysis)//' (line '//integer_text(reading%analysis_line)//')'); return
     else if (deck%pad%line > 0) then
-      call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
-        deck%materials(m)%id//') is not available with a PAD yet (line '//integer_text(deck%pad%line)// &
-        '); a plastic fruit on the rigid PLATE is'); return
+      do j = 1, size(deck%materials)
+        if (.not. (deck%materials(j)%plastic .and. pad_material(deck, deck%materials(j)%id))) cycle
+        call card_error(error, deck%cards, deck%cards%cards(card_at_line(deck, deck%materials(j)%plastic_line)), &
+          'plasticity of a PAD''s material (PLASTIC, material '//deck%materials(j)%id//', of the PAD on line '// &
+          integer_text(deck%pad%line)//') is not available yet; a plastic body on an elastic or viscoelastic pad is')
+        return
+      end do
     end if
   end subroutine check_plastic_analysis
+
+  !> True if material `id` is the PAD's (MAT=) or its cover's (COVERMAT=).
+  pure logical function pad_material(deck, id)
+    type(deck_t), intent(in) :: deck
+    character(*), intent(in) :: id
+    pad_material = .false.
+    if (allocated(deck%pad%material)) pad_material = deck%pad%material == id
+    if (allocated(deck%pad%cover_material)) pad_material = pad_material .or. &
+      (len(deck%pad%cover_material) > 0 .and. deck%pad%cover_material == id)
+  end function pad_material
 
   !> A BRUISE CRITERION=PLASTIC card reads the equivalent plastic strain of
   !> an ANALYSIS DYNAMIC run: it needs that analysis and a PLASTIC material

@@ -163,7 +163,8 @@ contains
   !> (the instantaneous elastic moduli G, K; the axis free in z but for the
   !> far pole, u_r = 0 on the axis), and the shortening
   !> u_z(contact pole) - u_z(far pole), the poles the body's lowest and
-  !> highest nodes on the axis. A homogeneous plastic strain gives it exactly
+  !> highest nodes on the axis (a PAD's nodes held: the body alone). A
+  !> homogeneous plastic strain gives it exactly
   !> (-eps_p,z times the height); `found` is false for plane strain or a body
   !> without a node of the axis at both poles.
   subroutine residual_flattening(deck, b, weight, plastic_strain, shortening, found, error)
@@ -199,6 +200,10 @@ contains
     end do
     if (bottom == 0 .or. top == bottom) return
     supports(node_dof(mesh, top, 2)) = .true.
+    do node = body_nodes(deck) + 1, mesh%nnode        ! a PAD's nodes: held, the body is unloaded alone
+      supports(node_dof(mesh, node, 1)) = .true.
+      supports(node_dof(mesh, node, 2)) = .true.
+    end do
     shear = deck%materials(mesh%element_material)%shear
     bulk = deck%materials(mesh%element_material)%bulk
     call assemble_stiffness(mesh, deck%settings, shear, bulk, stiffness)

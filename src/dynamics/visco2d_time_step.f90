@@ -671,7 +671,7 @@ contains
     integer, intent(in) :: r
     type(dynamic_state_t), intent(in) :: state
     type(error_t), allocatable, intent(inout) :: error
-    real(dp), allocatable :: base(:), previous(:), difference(:), linear(:)
+    real(dp), allocatable :: base(:), previous(:), difference(:), linear(:), reduced(:)
     logical, allocatable :: free(:)
     logical :: predicted
     real(dp) :: c, kept, energy_first, energy, force_ratio, scale, relaxation, denominator
@@ -700,7 +700,8 @@ contains
       if (iteration == 1 .and. yielded == 0 .and. .not. predicted) exit   ! elastic: the linear solve is the answer
       scale = sqrt(max(sum(base**2, mask=free), kept**2*sum(stepper%internal_solve**2, mask=free), &
                        c**2*sum((stepper%mass*stepper%solution)**2, mask=free), tiny(1.0_dp)))
-      force_ratio = sqrt(sum(stepper%residual**2, mask=free))/scale
+      reduced = reduced_residual(stepper, stepper%residual)
+      force_ratio = sqrt(sum(reduced**2, mask=free))/scale
       stepper%correction = stepper%residual
       call band_constrain_rhs(point%effective, stepper%supports, stepper%no_values, stepper%correction)
       call timer_start(phase_solve)
@@ -711,7 +712,7 @@ contains
         return
       end if
       if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%no_values, stepper%correction)
-      energy = abs(sum(stepper%correction*stepper%residual, mask=free))
+      energy = abs(sum(stepper%correction*reduced, mask=free))
       if (.not. (ieee_is_finite(force_ratio) .and. ieee_is_finite(energy))) then
         call set_error(error, 'the equilibrium iteration of the plastic step diverged (iteration '// &
           integer_text(iteration)//': the residual is not finite); use a smaller DT')
@@ -747,6 +748,30 @@ contains
     end if
     end associate
   end subroutine equilibrium_iterations
+
+  !> The residual of the free equations once the held ones are eliminated:
+  !> a body equation c held on a PAD's surface, u_c = sum_k w_k u_(p_k) (+ the
+  !> gap), passes its residual to its partners, r_(p_k) + w_k r_c (the
+  !> reduced system the capacitance solve answers), and keeps none; on the
+  !> rigid plate (no partners) the residual itself. Compared on the free
+  !> equations only, where the supports and held rows carry reactions.
+  pure function reduced_residual(stepper, residual) result(reduced)
+    type(stepper_t), intent(in) :: stepper
+    real(dp), intent(in) :: residual(:)
+    real(dp) :: reduced(size(residual))
+    integer :: i, c, k
+    reduced = residual
+    if (.not. stepper%contact_on) return
+    do i = 1, size(stepper%held_rows)
+      c = stepper%held_rows(i)
+      if (stepper%supports(c)) cycle
+      do k = 1, 2
+        associate (partner => stepper%contact%partner(k, c))
+        if (partner > 0) reduced(partner) = reduced(partner) + stepper%contact%weight(k, c)*residual(c)
+        end associate
+      end do
+    end do
+  end function reduced_residual
 
   !> The stresses at the solve point t + h from the start state and dU
   !> (stepper%solution) with the moduli and history stress over h, the
