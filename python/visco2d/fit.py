@@ -642,11 +642,22 @@ def fit_relaxation_curve(t, modulus, terms, long_term=False):
     """Least squares of eq. [47] to E(t) samples: (theta, scipy result, sorted by increasing rate)."""
     from scipy.optimize import least_squares
     scale = float(np.max(np.abs(modulus)))
+    positive = t[t > 0]
+    t_low = positive.min() if positive.size else t.max() * 1e-6
+    # Bounds in log space, wide enough never to bind a term the data see: a rate within 1e-3/t_max ...
+    # 1e3/t_min (a faster or slower term is invisible in the curve), a modulus within 1e-8 ... 10
+    # times the largest E(t) sample.
+    low_e, high_e = math.log(1e-8 * scale), math.log(10 * scale)
+    low_a, high_a = math.log(1e-3 / t.max()), math.log(1e3 / t_low)
+    lows = [v for _ in range(terms) for v in (low_e, low_a)] + ([low_e] if long_term else [])
+    highs = [v for _ in range(terms) for v in (high_e, high_a)] + ([high_e] if long_term else [])
     best = None
     for start in relaxation_start(t, modulus, terms, long_term):
+        start = np.clip(start, np.array(lows) + 1e-9, np.array(highs) - 1e-9)
         result = least_squares(lambda th: (relaxation_model(th, t, terms, long_term)[0] - modulus) / scale,
                                start, jac=lambda th: relaxation_model(th, t, terms, long_term)[1] / scale,
-                               method='lm', xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=20000)
+                               bounds=(lows, highs), method='trf', x_scale='jac',
+                               xtol=1e-14, ftol=1e-14, gtol=1e-14, max_nfev=20000)
         if best is None or result.cost < best.cost:
             best = result
     theta = best.x.copy()
@@ -740,7 +751,7 @@ def fit_relaxation(options):
              f'held strain = {options.strain:g}' + (f', area = {area:.6g} m^2' if area else ''),
              f'model: E(t) = {"E_inf + " if long_term else ""}sum_i E_i exp(-alpha_i t), eq. [47], '
              f'{terms} terms; sigma(t) = eps0 E(t) (an instantaneous step)',
-             f'optimiser = scipy.optimize.least_squares (lm, analytic Jacobian), {result.nfev} evaluations, '
+             f'optimiser = scipy.optimize.least_squares (trf, analytic Jacobian), {result.nfev} evaluations, '
              f'best of {3} starts', 'forward_runs = 0 (closed form)',
              '', f'eq. [48] with nu = {options.nu:g} (visco2d relax): K = {bulk:.6g} +- {shear_se[0]:.3g} Pa']
     for m, (g, b) in enumerate(shear):
