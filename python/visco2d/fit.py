@@ -386,7 +386,7 @@ def forward_jacobian(model_at, theta, params, f0=None):
 
 # ---------------------------------------------------------------- outputs
 
-def summary_lines(title, names, values, uq, logs, extra=()):
+def summary_lines(title, names, values, uq, logs, extra=(), unit=''):
     lines = [f'# {title}', '']
     lines += list(extra)
     lines += ['', 'constants (value, standard error, relative standard error; log: fitted as ln of the value):']
@@ -399,8 +399,8 @@ def summary_lines(title, names, values, uq, logs, extra=()):
     for k, name in enumerate(names):
         lines.append(f'  {name:>12s}' + ''.join(f'{c:+10.4f}' if np.isfinite(c) else f'{"nan":>10s}'
                                               for c in uq['corr'][k]))
-    lines += ['', f'points = {uq["n"]}', f'constants = {uq["p"]}', f'residual_rms = {uq["rms"]:.6g}',
-              f'residual_s = {uq["s"]:.6g}  (sqrt(SSR / (n - p)))', f'condition_number = {uq["condition"]:.4g}  '
+    lines += ['', f'points = {uq["n"]}', f'constants = {uq["p"]}', f'residual_rms = {uq["rms"]:.6g} {unit}',
+              f'residual_s = {uq["s"]:.6g} {unit}  (sqrt(SSR / (n - p)))', f'condition_number = {uq["condition"]:.4g}  '
               f'(of the column-normalised J^T J)']
     return lines
 
@@ -570,13 +570,13 @@ def fit_deck(options):
                   picture(kind_x, kind_y, x, y, fit, f'{os.path.basename(template)} fitted to '
                           f'{os.path.basename(options.data)}'),
                   bounds=[(p.low, p.high) for p in params], fixed=fixed, template=template,
-                  title=f'visco2d-fit deck {template}')
+                  title=f'visco2d-fit deck {template}', unit=SI[kind_y].split('_', 1)[1])
 
 
 def finish(options, names, logs, theta, uq, extra, cards, table, draw, bounds, fixed, template, title,
-           more_files=None):
+           more_files=None, unit=''):
     warnings = uq['warnings']
-    lines = summary_lines(title, names, uq['values'], uq, logs, extra)
+    lines = summary_lines(title, names, uq['values'], uq, logs, extra, unit)
     lines.append(f'warnings = {len(warnings)}')
     lines += [f'WARNING: {w}' for w in warnings]
     lines += ['', 'cards (cards.inp):'] + ['  ' + c for c in cards]
@@ -766,7 +766,7 @@ def fit_relaxation(options):
                     picture('time', 'modulus', t, modulus, model, f'eq. [47], {terms} terms, fitted to '
                             f'{os.path.basename(options.data)}', logx=True),
                     bounds=[(0.0, math.inf)] * p, fixed={}, template=None,
-                    title=f'visco2d-fit relaxation {options.data}')
+                    title=f'visco2d-fit relaxation {options.data}', unit='Pa (of E(t))')
     path = os.path.join(options.out, 'fit.json')
     with open(path) as handle:
         record = json.load(handle)
