@@ -273,3 +273,38 @@ def test_samples_follow_the_covariance_and_the_bounds(tmp_path):
     e = np.log([row['E'] for row in rows])
     nu = np.array([row['nu'] for row in rows])
     assert abs(e.std() - 0.1) < 0.005 and nu.max() <= 0.31 and abs(np.corrcoef(e, nu)[0, 1] - 0.25) < 0.05
+
+
+def test_relaxation_with_a_long_term_modulus(exe, tmp_path):
+    """E_inf + two terms recovered within 3 sigma; its card is PRONY E=.. ALPHA=0 and eq. [48] gives
+    the long-term shear term BETA=0 (the program's conversion, relaxation.md)."""
+    t = np.logspace(-2, 3, 80)
+    true = [0.3e6, 0.02, 0.8e6, 2.0, 0.5e6]
+    rng = np.random.default_rng(7)
+    stress = 0.1 * (true[0] * np.exp(-true[1] * t) + true[2] * np.exp(-true[3] * t) + true[4])
+    stress += rng.normal(0, 1e-3 * stress[0], t.size)
+    data = write_csv(tmp_path / 'lt.csv', 'time_s,stress_Pa', t, stress)
+    out = str(tmp_path / 'lt')
+    assert fit.main(['relaxation', '--data', data, '--terms', '2', '--long-term', '--strain', '0.1',
+                     '--nu', '0.3', '-o', out, '--exe', exe, '-q']) == 0
+    record = fitted(out)
+    assert record['warnings'] == []
+    for value, se, exact in zip(record['values'], record['se'], true):
+        assert abs(value - exact) < 3 * se, (value, se, exact)
+    assert record['shear']['beta'][0] == 0.0
+    with open(os.path.join(out, 'cards.inp')) as handle:
+        assert 'ALPHA=0\n' in handle.read()
+
+
+def test_a_history_column_that_does_not_exist_is_refused(exe, tmp_path, capsys):
+    d, f = fit_examples.compression_curve(1, exe=exe)
+    data = write_csv(tmp_path / 'c.csv', 'deformation_m,force_N', d, f)
+    status = fit.main(['deck', fit_examples.COMPRESSION, '--data', data, '--param', 'E1=0.5e6:6e6',
+                       '--param', 'E4=0.05e6:2e6', '--model-x', 'top_uz_m', '--model-y', 'top_force_N',
+                       '-o', str(tmp_path / 'o'), '--exe', exe])
+    error = capsys.readouterr().err
+    assert status == 2 and 'no column "top_force_N"' in error and 'top_sz_Pa' in error, error
+    status = fit.main(['deck', fit_examples.COMPRESSION, '--data', data, '--param', 'E1=0.5e6:6e6',
+                       '--param', 'E4=0.05e6:2e6', '-o', str(tmp_path / 'o'), '--exe', exe])
+    assert status == 2 and 'give --model-x' in capsys.readouterr().err
+    assert not (tmp_path / 'o').exists()

@@ -686,6 +686,8 @@ def shear_uncertainty(exe, nu, pairs, cov_values):
     flat = np.array([v for pair in pairs for v in pair], dtype=float)
     jac = np.zeros((len(base), len(flat)))
     for j in range(len(flat)):
+        if flat[j] == 0:            # the alpha = 0 of a long-term E_inf: not a fitted constant
+            continue
         step = 1e-6 * flat[j]
         moved = flat.copy()
         moved[j] += step
