@@ -206,7 +206,7 @@ def test_underdetermined_compression_fit_reports_the_correlation(exe, tmp_path):
 BAD = {
     'unsorted': ('time_s,force_N\n0.001,1\n0.003,2\n0.002,3\n0.004,4\n', ':4:1: time_s decreases'),
     'repeated': ('time_s,force_N\n0.001,1\n0.002,2\n0.002,3\n0.004,4\n', ':4:1: time_s repeats'),
-    'no unit': ('time,force_N\n0.001,1\n0.002,2\n0.003,3\n', ':1:1: column "time" has no unit'),
+    'no_unit': ('time,force_N\n0.001,1\n0.002,2\n0.003,3\n', ':1:1: column "time" has no unit'),
     'unknown': ('time_s,pressure_Pa\n0.001,1\n0.002,2\n0.003,3\n', ':1:8: unknown column "pressure_Pa"'),
     'nan': ('time_s,force_N\n0.001,1\n0.002,nan\n0.003,3\n', ':3:7: force_N: nan is not a finite number'),
     'inf': ('# c\ntime_s,force_N\n0.001,1\n0.002,2\n0.003,inf\n', ':5:7: force_N: inf is not a finite number'),
