@@ -2,7 +2,7 @@
 # Install what visco2d needs, only what is missing: gfortran, LAPACK/BLAS
 # (reference and OpenBLAS serial),
 # HDF5 (Fortran), CHOLMOD, pkg-config, numdiff, h5dump (Debian packages), fpm,
-# h5py, matplotlib, meshio and vtk (PyPI). Safe to run again; quiet when everything is present.
+# h5py, matplotlib, meshio, scipy and vtk (PyPI). Safe to run again; quiet when everything is present.
 #   bash scripts/setup.sh mpi       also OpenMPI (openmpi-bin libopenmpi-dev: mpif90, mpirun) for the
 #                                   MPI task farm (make mpi, the MPI stage of make test; ~25 s to install)
 #   bash scripts/setup.sh paraview  also ParaView (Debian's python3-paraview, 5.11 on Debian 12: pvpython),
@@ -67,6 +67,7 @@ command -v fpm >/dev/null 2>&1 || pip_missing+=(fpm)
 "$python" -c "import matplotlib" 2>/dev/null || pip_missing+=(matplotlib)   # make study, make figures
 "$python" -c "import pytest" 2>/dev/null || pip_missing+=(pytest)           # python/tests (make test)
 "$python" -c "import meshio" 2>/dev/null || pip_missing+=(meshio)           # the results.xmf test (make test)
+"$python" -c "import scipy" 2>/dev/null || pip_missing+=(scipy)             # visco2d-fit: least_squares (doc/calibration.md)
 # VTK's legacy XDMF reader, the one ParaView's "Xdmf Reader" is (scripts/test_xdmf.sh; ~20 s, one wheel)
 "$python" -c "import vtkmodules.vtkIOXdmf2" 2>/dev/null || pip_missing+=(vtk)
 if [ ${#pip_missing[@]} -gt 0 ]; then

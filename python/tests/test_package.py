@@ -21,7 +21,7 @@ def console_scripts():
 def test_launchers_are_the_console_scripts(tmp_path):
     subprocess.run([sys.executable, os.path.join(HERE, "launchers.py"), str(tmp_path)], check=True)
     scripts = console_scripts()
-    assert sorted(os.listdir(tmp_path)) == sorted(scripts) == ["visco2d-batch", "visco2d-diff", "visco2d-report"]
+    assert sorted(os.listdir(tmp_path)) == sorted(scripts) == ["visco2d-batch", "visco2d-diff", "visco2d-fit", "visco2d-report"]
     environment = {key: value for key, value in os.environ.items() if key != "PYTHONPATH"}
     for name in scripts:
         done = subprocess.run([str(tmp_path / name), "--help"], capture_output=True, text=True, env=environment)
