@@ -12,7 +12,7 @@ module visco2d_deck
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, short_real, nearest_word
   use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column, &
-                           named_integer, has_field
+                           named_integer, named_word, has_field
   use visco2d_material_cards, only: read_material, read_prony, finish_material, read_plastic, read_hardening
   use visco2d_curve_cards, only: read_curve
   use visco2d_time, only: time_stage_t, read_time
@@ -189,7 +189,7 @@ contains
     type(reading_t), intent(inout) :: reading
     integer, intent(in) :: i
     type(error_t), allocatable, intent(inout) :: error
-    character(:), allocatable :: word
+    character(:), allocatable :: word, word_newton
     integer :: k
 
     associate (cards => deck%cards, card => deck%cards%cards(i))
@@ -222,8 +222,19 @@ contains
                           integer_text(deck%settings%iterations), field_column(card, 'ITERATIONS')); return
         end if
       end if
+      if (word == 'DYNAMIC' .and. has_field(card, 'NEWTON')) then   ! the plastic step's Newton method
+        reading%increments_given = .true.
+        call named_word(cards, card, 'NEWTON', word_newton, error)
+        if (allocated(error)) return
+        if (word_newton /= 'MODIFIED' .and. word_newton /= 'FULL') then
+          call card_error(error, cards, card, 'NEWTON must be MODIFIED (the factored S~, the default) or FULL (the '// &
+                          'consistent tangent factored at each iteration), got '//word_newton, &
+                          field_column(card, 'NEWTON')); return
+        end if
+        deck%settings%full_newton = word_newton == 'FULL'
+      end if
       call check_fields_used(cards, card, error, &
-        'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC [ITERATIONS=n]')
+        'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC [ITERATIONS=n] [NEWTON=MODIFIED|FULL]')
       if (allocated(error)) return
       select case (word)
       case ('STATIC')
@@ -405,8 +416,8 @@ contains
         reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and ITERATIONS= are for plastic materials (a PLASTIC card); '// &
         'this deck has none and is solved in one linear step')
       if (reading%increments_given .and. deck%analysis /= analysis_static) call add_warning(deck, &
-        reading%analysis_line, 'ANALYSIS', 'ITERATIONS= is for plastic materials (a PLASTIC card); this deck has '// &
-        'none and each step is one linear solve')
+        reading%analysis_line, 'ANALYSIS', 'ITERATIONS= and NEWTON= are for plastic materials (a PLASTIC card); '// &
+        'this deck has none and each step is one linear solve')
       return
     end if
     k = card_at_line(deck, deck%materials(m)%plastic_line)

@@ -554,6 +554,7 @@ contains
     call record_put_integer(record, 'equilibrium_iterations', stepper%iterations)
     call record_put_integer(record, 'equilibrium_iterations_max', stepper%iterations_max)
     call record_put_integer(record, 'plastic_solves', stepper%iterated_solves)
+    if (stepper%full_newton) call record_put_integer(record, 'tangent_factorizations', stepper%tangent_factorizations)
     call record_put_real(record, 'plastic_dissipation_J', factor*stepper%plastic_dissipation)
     call record_put_real(record, 'equivalent_plastic_strain_max', maxval(state%ebar))
     call record_put_real(record, 'yielded_volume_m3', factor*sum(stepper%operators%weight, mask=state%ebar > 0.0_dp))

@@ -36,7 +36,7 @@ module visco2d_time_step
   use visco2d_strings, only: integer_text, short_real
   use visco2d_deck, only: deck_t
   use visco2d_material, only: has_memory
-  use visco2d_plastic_step, only: plastic_trial_stress, plastic_work, yield_limits
+  use visco2d_plastic_step, only: plastic_trial_stress, plastic_work, yield_limits, plastic_tangent_stiffness
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_constrain_rhs
@@ -52,7 +52,7 @@ module visco2d_time_step
   use visco2d_pad_mesh, only: is_pad_node
   use visco2d_pad_projection, only: project_on_surface
   use visco2d_timers, only: timer_start, timer_stop, phase_solve, phase_constitutive, phase_contact, &
-                            phase_factorization
+                            phase_factorization, phase_assembly
   use visco2d_integrators, only: integrator_t, substep_t, integrator_create, solve_interval, mass_coefficient, &
                                  inertia_load, solve_point_inertia, update_kinematics
   use visco2d_dynamic_state, only: dynamic_state_t
@@ -134,6 +134,11 @@ module visco2d_time_step
     real(dp), allocatable :: yield_limit(:, :)     !< (2/3) sigma_y(ebar)^2 of the state (yield_limits)
     real(dp), allocatable :: residual(:), correction(:), no_values(:)
     real(dp), allocatable :: plastic_correction(:) !< dU less the linear solve's at the last yielding solve (the predictor)
+    logical :: full_newton = .false.               !< NEWTON=FULL: the consistent tangent factored at each iteration
+    type(band_matrix_t) :: tangent                 !< its S_t = c M + (1 - alpha_f) K_t (NEWTON=FULL)
+    type(factor_t) :: tangent_factor               !< S_t factored with the supports imposed
+    type(capacitance_t) :: tangent_capacitance     !< the held equations on that factor
+    integer :: tangent_factorizations = 0          !< the factorizations of S_t
     integer :: iterations = 0                      !< equilibrium iterations, all sub-steps
     integer :: iterations_max = 0                  !< the most in one solve
     integer :: iterated_solves = 0                 !< solves in which a Gauss point yielded
@@ -169,6 +174,7 @@ contains
     end do
     if (stepper%plastic) then
       stepper%iterations_allowed = deck%settings%iterations
+      stepper%full_newton = deck%settings%full_newton
       allocate(stepper%trial_ebar(gauss_count, mesh%nelem), stepper%ebar_solve(gauss_count, mesh%nelem), &
                stepper%plastic_increments(4, gauss_count, mesh%nelem), stepper%plastic_solve(4, gauss_count, mesh%nelem), &
                stepper%residual(n), stepper%correction(n), stepper%no_values(n), stepper%yield_limit(gauss_count, mesh%nelem))
@@ -703,15 +709,20 @@ contains
       reduced = reduced_residual(stepper, stepper%residual)
       force_ratio = sqrt(sum(reduced**2, mask=free))/scale
       stepper%correction = stepper%residual
-      call band_constrain_rhs(point%effective, stepper%supports, stepper%no_values, stepper%correction)
-      call timer_start(phase_solve)
-      call factor_solve(point%factor, stepper%correction, status)
-      call timer_stop(phase_solve)
-      if (status /= 0) then
-        call set_error(error, solve_failure_text(status))
-        return
+      if (stepper%full_newton) then                  ! NEWTON=FULL: S_t d = r, S_t of this iterate
+        call tangent_correction(stepper, deck, point, state, c, kept, error)
+        if (allocated(error)) return
+      else                                           ! modified Newton: S~ d = r on the TIME stage's factor
+        call band_constrain_rhs(point%effective, stepper%supports, stepper%no_values, stepper%correction)
+        call timer_start(phase_solve)
+        call factor_solve(point%factor, stepper%correction, status)
+        call timer_stop(phase_solve)
+        if (status /= 0) then
+          call set_error(error, solve_failure_text(status))
+          return
+        end if
+        if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%no_values, stepper%correction)
       end if
-      if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%no_values, stepper%correction)
       energy = abs(sum(stepper%correction*reduced, mask=free))
       if (.not. (ieee_is_finite(force_ratio) .and. ieee_is_finite(energy))) then
         call set_error(error, 'the equilibrium iteration of the plastic step diverged (iteration '// &
@@ -728,7 +739,7 @@ contains
           short_real(dynamic_energy_tolerance)//'); use a smaller DT, or more ITERATIONS= on the ANALYSIS card')
         return
       end if
-      if (iteration > 1) then                        ! Aitken's acceleration (Irons and Tuck 1969)
+      if (iteration > 1 .and. .not. stepper%full_newton) then   ! Aitken's acceleration (Irons and Tuck 1969)
         difference = stepper%correction - previous
         denominator = dot_product(difference, difference)
         if (denominator > 0.0_dp) relaxation = -relaxation*dot_product(previous, difference)/denominator
@@ -748,6 +759,53 @@ contains
     end if
     end associate
   end subroutine equilibrium_iterations
+
+  !> NEWTON=FULL: the correction S_t d = r (r in stepper%correction on entry,
+  !> d on return) with the consistent tangent of the current iterate,
+  !> S_t = c M + (1 - alpha_f) K_t (K_t: plastic_tangent_stiffness at the
+  !> solve point), factored anew with the supports imposed and the held
+  !> equations in its own capacitance system (zero values), as S~ is.
+  subroutine tangent_correction(stepper, deck, point, state, c, kept, error)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    type(solve_point_t), intent(in) :: point
+    type(dynamic_state_t), intent(in) :: state
+    real(dp), intent(in) :: c, kept
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: info, status
+    call timer_start(phase_assembly)
+    call plastic_tangent_stiffness(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                   stepper%solution, point%shear_h, point%bulk_h, state%stress, state%ebar, &
+                                   point%effective%kd, stepper%tangent, stepper%history_h)   ! history_h: absent without memory
+    stepper%tangent%ab = kept*stepper%tangent%ab
+    stepper%tangent%ab(1, :) = stepper%tangent%ab(1, :) + c*stepper%mass
+    call timer_stop(phase_assembly)
+    call timer_start(phase_factorization)
+    call factor_compute(stepper%tangent_factor, stepper%tangent, stepper%supports, info, stepper%solver)
+    stepper%tangent_factorizations = stepper%tangent_factorizations + 1
+    if (info == 0) then
+      call capacitance_reset(stepper%tangent_capacitance, stepper%tangent_factor%n)
+      if (stepper%contact_on) call capacitance_set(stepper%tangent_capacitance, stepper%tangent_factor, &
+                                                   stepper%held .and. .not. stepper%supports, info, error)
+    end if
+    call timer_stop(phase_factorization)
+    if (allocated(error)) return
+    if (info /= 0) then
+      call set_error(error, 'the consistent tangent of the plastic step is not positive definite (equation '// &
+        integer_text(abs(info))//'): the flesh softens faster than the step can follow; use NEWTON=MODIFIED or a '// &
+        'smaller DT')
+      return
+    end if
+    call band_constrain_rhs(stepper%tangent, stepper%supports, stepper%no_values, stepper%correction)
+    call timer_start(phase_solve)
+    call factor_solve(stepper%tangent_factor, stepper%correction, status)
+    call timer_stop(phase_solve)
+    if (status /= 0) then
+      call set_error(error, solve_failure_text(status))
+      return
+    end if
+    if (stepper%contact_on) call capacitance_apply(stepper%tangent_capacitance, stepper%no_values, stepper%correction)
+  end subroutine tangent_correction
 
   !> The residual of the free equations once the held ones are eliminated:
   !> a body equation c held on a PAD's surface, u_c = sum_k w_k u_(p_k) (+ the

@@ -22,6 +22,7 @@ module visco2d_model
     integer :: solver = 0                         !< the SOLVER card's choice (visco2d_factor's numbers; 0: the default)
     integer :: increments = 10                    !< INCREMENTS= of ANALYSIS STATIC: load increments of a plastic solve
     integer :: iterations = 30                    !< ITERATIONS= of ANALYSIS STATIC: Newton iterations allowed per increment
+    logical :: full_newton = .false.              !< NEWTON=FULL of ANALYSIS DYNAMIC: the consistent tangent factored each iteration
   end type settings_t
 
   !> A support: components prescribed at a set of nodes, u = value * curve(t)
