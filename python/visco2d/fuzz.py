@@ -1300,7 +1300,7 @@ def check_oracles(case, case_dir, seed_summaries):
         reference = seed_summaries[case.seed_name]
         ignore = ('cpu_s', 'case', 'title')
         differing = sorted(key for key in set(reference) | set(summary) if key not in ignore
-                           and reference.get(key) != summary.get(key))
+                           and without_deck_name(reference.get(key)) != without_deck_name(summary.get(key)))
         case.reference, case.differing = reference, differing
         if reference and differing:
             add(case, 'SILENT', 'a change of layout only (%s) changed the summary: %s' % (
@@ -1311,6 +1311,14 @@ def check_oracles(case, case_dir, seed_summaries):
         if summary.get(key) != value:
             add(case, 'SILENT', 'summary.txt has %s = %s, this deck expects %s' % (key, summary.get(key), value))
             sign(case, 'SILENT summary ' + key)
+
+
+def without_deck_name(value):
+    """A summary value with a warning's leading deck path (`d000017.inp:19: PAD: ...`) cut to its
+    line (`:19: PAD: ...`): a mutant and its seed are different files with the same cards."""
+    if value is None:
+        return None
+    return re.sub(r'^\S*?\.inp:', ':', value)
 
 
 # ---------------------------------------------------------------------------- campaign

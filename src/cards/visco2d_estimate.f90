@@ -20,6 +20,10 @@ module visco2d_estimate
   !> Contact iterations assumed for a STATIC run with a PLATE (one
   !> factorization each; the shipped static contact runs take 3 to 15).
   integer, parameter :: static_contact_iterations = 10
+  !> Newton iterations assumed per load increment of a STATIC run with a
+  !> PLASTIC material (one factorization each; measured 1 to 4, 3.5 on
+  !> test/fuzz/seed_plastic_static.inp, on the plate or not).
+  integer, parameter :: static_plastic_iterations = 4
 
 contains
 
@@ -78,7 +82,11 @@ contains
                         written_snapshots=written, &
                         sparse=deck%settings%solver == solver_card_default .or. &
                                deck%settings%solver == solver_card_cholmod)
-    if (analysis == budget_static .and. plate) estimate%seconds = static_contact_iterations*estimate%seconds
+    if (analysis == budget_static .and. any(deck%materials%plastic)) then
+      estimate%seconds = real(deck%settings%increments, dp)*static_plastic_iterations*estimate%seconds
+    else if (analysis == budget_static .and. plate) then
+      estimate%seconds = static_contact_iterations*estimate%seconds
+    end if
   end function estimate_run
 
   !> Boundary nodes in the lowest 2 % of the body's height: those a plate
@@ -142,10 +150,17 @@ contains
     integer :: line
     call time_limit(limit, origin)
     if (limit <= 0.0_dp .or. size%seconds <= limit) return
-    what = 'this run is estimated to take roughly '//seconds_text(size%seconds)//' ('// &
-      count_text(size%steps)//' steps of '//count_text(size%equations)//' equations, half-bandwidth '// &
-      count_text(size%half_bandwidth)//'), more than the limit of '//seconds_text(limit)//' set by '// &
-      origin//' (a larger DT, a shorter TEND or a coarser mesh; or raise the limit)'
+    if (deck%analysis == analysis_static .and. any(deck%materials%plastic)) then
+      what = 'this run is estimated to take roughly '//seconds_text(size%seconds)//' ('// &
+        count_text(int(deck%settings%increments, int64))//' load increments of '//count_text(size%equations)// &
+        ' equations, half-bandwidth '//count_text(size%half_bandwidth)//'), more than the limit of '// &
+        seconds_text(limit)//' set by '//origin//' (fewer INCREMENTS= or a coarser mesh; or raise the limit)'
+    else
+      what = 'this run is estimated to take roughly '//seconds_text(size%seconds)//' ('// &
+        count_text(size%steps)//' steps of '//count_text(size%equations)//' equations, half-bandwidth '// &
+        count_text(size%half_bandwidth)//'), more than the limit of '//seconds_text(limit)//' set by '// &
+        origin//' (a larger DT, a shorter TEND or a coarser mesh; or raise the limit)'
+    end if
     line = 0
     if (allocated(deck%stages)) then
       if (ubound(deck%stages, 1) >= 1) line = deck%stages(1)%line
