@@ -230,7 +230,7 @@ contains
       summary_real(record, 'plastic_dissipation_J')/exact_work - 1.0_dp
     ! The trapezoid is exact on the straight segments; it would be off by part of a step's work where a
     ! step crosses the yield surface, but both yield points (eps = Y/E at t = 0.25, the reverse one at
-    ! t = 1.9) are rows here: measured 1.2e-11, the Newton tolerance bounds it (1e-8).
+    ! t = 1.4) are rows here: measured 1.2e-11, the Newton tolerance bounds it (1e-8).
     call check_close('cyclic bar: the plastic work = the integral of sigma d ebar (yield points on rows)', &
                      summary_real(record, 'plastic_dissipation_J'), exact_work, 1.0e-8_dp)
     call check_close('cyclic bar: strain_energy_J = sigma_end^2/(2E) V', summary_real(record, 'strain_energy_J'), &
