@@ -15,6 +15,7 @@ module visco2d_driver
   use visco2d_static, only: static_solution_t, solve_static, static_record
   use visco2d_plastic_static, only: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
   use visco2d_quasistatic, only: solve_quasistatic
+  use visco2d_plastic_quasistatic, only: solve_plastic_quasistatic
   use visco2d_dynamic, only: solve_dynamic
   use visco2d_progress, only: progress_begin, progress_end
   use visco2d_static_contact, only: solve_static_contact, solve_plastic_static_contact
@@ -242,7 +243,10 @@ contains
         call record_put_integer(record, 'time_stages', size(deck%stages))
         call record_put_real(record, 'dt_s', deck%stages(1)%dt)
         call progress_begin(case_name, deck%stages(size(deck%stages))%end_time)
-        if (deck%analysis == analysis_quasistatic) then
+        if (deck%analysis == analysis_quasistatic .and. any_plastic(deck%materials)) then   ! Newton in every step
+          call solve_plastic_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, &
+            deck%stages, deck%source, record, error)
+        else if (deck%analysis == analysis_quasistatic) then
           call solve_quasistatic(deck%mesh, deck%materials, deck%settings, deck%loads, deck%probes, deck%stages, &
             deck%source, record, error)
         else

@@ -36,6 +36,7 @@ module visco2d_quasistatic
   private
 
   public :: solve_quasistatic
+  public :: quasistatic_history_define, quasistatic_row, quasistatic_snapshot, zero_padded   ! for the plastic loop
 
   !> The state of a quasi-static run between increments: the stiffness S_n
   !> and its factor for the current step length, the step constants, the

@@ -212,10 +212,10 @@ contains
                           integer_text(deck%settings%increments), field_column(card, 'INCREMENTS')); return
         end if
       end if
-      if (word == 'STATIC' .or. word == 'DYNAMIC') then   ! the Newton iterations of an increment, or of a step
+      if (word == 'STATIC' .or. word == 'QUASISTATIC' .or. word == 'DYNAMIC') then   ! Newton iterations of an increment or a step
         reading%increments_given = reading%increments_given .or. has_field(card, 'ITERATIONS')
         call named_integer(cards, card, 'ITERATIONS', deck%settings%iterations, error, &
-                           default=merge(30, 50, word == 'STATIC'))
+                           default=merge(50, 30, word == 'DYNAMIC'))
         if (allocated(error)) return
         if (deck%settings%iterations < 1 .or. deck%settings%iterations > max_iterations) then
           call card_error(error, cards, card, 'ITERATIONS must be in [1, '//integer_text(max_iterations)//'], got '// &
@@ -234,7 +234,8 @@ contains
         deck%settings%full_newton = word_newton == 'FULL'
       end if
       call check_fields_used(cards, card, error, &
-        'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC | DYNAMIC [ITERATIONS=n] [NEWTON=MODIFIED|FULL]')
+        'ANALYSIS STATIC [INCREMENTS=n] [ITERATIONS=n] | QUASISTATIC [ITERATIONS=n] | DYNAMIC [ITERATIONS=n] '// &
+        '[NEWTON=MODIFIED|FULL]')
       if (allocated(error)) return
       select case (word)
       case ('STATIC')
@@ -393,9 +394,11 @@ contains
   end function follows
 
   !> Plasticity is solved by ANALYSIS STATIC (alone or on the rigid PLATE
-  !> with SLIP, not on a PAD) and by ANALYSIS DYNAMIC (with or without the
-  !> rigid PLATE, on a PAD whose own materials are not plastic) so far:
-  !> elsewhere a PLASTIC card is an error (not an elastic run). An
+  !> with SLIP, not on a PAD), by ANALYSIS QUASISTATIC (which has no contact:
+  !> a PLATE or PAD there is refused by check_contact_cards) and by ANALYSIS
+  !> DYNAMIC (with or without the rigid PLATE, on a PAD whose own materials
+  !> are not plastic) so far: elsewhere a PLASTIC card is an error (not an
+  !> elastic run). An
   !> INCREMENTS= or ITERATIONS= on a deck without plasticity is a warning.
   subroutine check_plastic_analysis(deck, reading, error)
     type(deck_t), intent(inout) :: deck
@@ -415,8 +418,11 @@ contains
       if (reading%increments_given .and. deck%analysis == analysis_static) call add_warning(deck, &
         reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and ITERATIONS= are for plastic materials (a PLASTIC card); '// &
         'this deck has none and is solved in one linear step')
-      if (reading%increments_given .and. deck%analysis /= analysis_static) call add_warning(deck, &
+      if (reading%increments_given .and. deck%analysis == analysis_dynamic) call add_warning(deck, &
         reading%analysis_line, 'ANALYSIS', 'ITERATIONS= and NEWTON= are for plastic materials (a PLASTIC card); '// &
+        'this deck has none and each step is one linear solve')
+      if (reading%increments_given .and. deck%analysis == analysis_quasistatic) call add_warning(deck, &
+        reading%analysis_line, 'ANALYSIS', 'ITERATIONS= is for plastic materials (a PLASTIC card); '// &
         'this deck has none and each step is one linear solve')
       return
     end if
@@ -432,11 +438,7 @@ contains
           deck%materials(m)%id//') in ANALYSIS STATIC takes frictionless contact only so far: give the PLATE '// &
           'card (line '//integer_text(deck%plate%line)//') SLIP'); return
       end if
-    else if (deck%analysis /= analysis_dynamic) then
-      call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
-        deck%materials(m)%id//') is available for ANALYSIS STATIC and DYNAMIC only so far; this deck is ANALYSIS '// &
-        analysis_name(deck%analysis)//' (line '//integer_text(reading%analysis_line)//')'); return
-    else if (deck%pad%line > 0) then
+    else if (deck%analysis == analysis_dynamic .and. deck%pad%line > 0) then
       do j = 1, size(deck%materials)
         if (.not. (deck%materials(j)%plastic .and. pad_material(deck, deck%materials(j)%id))) cycle
         call card_error(error, deck%cards, deck%cards%cards(card_at_line(deck, deck%materials(j)%plastic_line)), &

@@ -538,13 +538,19 @@ contains
   end function contract
 
   !> The summary keys of a plastic static solve (doc/outputs.md), energies
-  !> and volumes on the energy_basis (whole body in axisymmetry).
-  subroutine plastic_record(settings, summary, record)
+  !> and volumes on the energy_basis (whole body in axisymmetry);
+  !> `increments` = .false. leaves out load_increments (a quasi-static run,
+  !> whose increments are its time steps).
+  subroutine plastic_record(settings, summary, record, increments)
     type(settings_t), intent(in) :: settings
     type(plastic_summary_t), intent(in) :: summary
     type(record_t), intent(inout) :: record
+    logical, intent(in), optional :: increments
+    logical :: with_increments
+    with_increments = .true.
+    if (present(increments)) with_increments = increments
     associate (factor => whole_body_factor(settings%geometry))
-    call record_put_integer(record, 'load_increments', summary%increments)
+    if (with_increments) call record_put_integer(record, 'load_increments', summary%increments)
     call record_put_integer(record, 'newton_iterations', summary%iterations)
     call record_put_integer(record, 'newton_iterations_max', summary%iterations_max)
     call record_put_real(record, 'equivalent_plastic_strain_max', summary%equivalent_plastic_max)
