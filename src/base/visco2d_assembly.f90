@@ -16,7 +16,8 @@ module visco2d_assembly
   implicit none
   private
 
-  public :: element_dofs, node_dof, assemble_stiffness, external_load, support_mask, prescribed_displacement
+  public :: element_dofs, node_dof, assemble_stiffness, assemble_point_tangents, external_load, support_mask
+  public :: prescribed_displacement
   public :: lumped_mass, gravity_load, internal_force, nodal_average, gather, scatter_add, nodal_field, band_vector
 
 contains
@@ -95,6 +96,26 @@ contains
                           settings%formulation))
     end do
   end subroutine assemble_stiffness
+
+  !> The tangent stiffness K_t = sum_e sum_g |J| r B^T C_g B from a material
+  !> matrix C_g per Gauss point (a plastic solve's consistent tangents), B and
+  !> |J| r the quadrature of the element pass: b (4, 8, gauss, nelem), weight
+  !> (gauss, nelem), tangent (4, 4, gauss, nelem).
+  subroutine assemble_point_tangents(mesh, b, weight, tangent, matrix)
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: b(:, :, :, :), weight(:, :), tangent(:, :, :, :)
+    type(band_matrix_t), intent(out) :: matrix
+    real(dp) :: ke(8, 8)
+    integer :: e, g
+    call band_create(matrix, 2*mesh%nnode, mesh%half_bandwidth)
+    do e = 1, mesh%nelem
+      ke = 0.0_dp
+      do g = 1, size(weight, 1)
+        ke = ke + weight(g, e)*matmul(transpose(b(:, :, g, e)), matmul(tangent(:, :, g, e), b(:, :, g, e)))
+      end do
+      call band_add_element(matrix, element_dofs(mesh, e), ke)
+    end do
+  end subroutine assemble_point_tangents
 
   !> Load vector R(t) of the pressures and point loads at time t (s): each
   !> one's value times its curve (1 without a curve).

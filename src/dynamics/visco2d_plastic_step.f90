@@ -20,7 +20,7 @@ module visco2d_plastic_step
   use visco2d_material, only: material_t, elastic_matrix
   use visco2d_strings, only: integer_text
   use visco2d_element, only: gauss_count
-  use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_create, band_add_element
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
   use visco2d_assembly, only: assemble_stiffness, node_dof, element_dofs
   use visco2d_pad_mesh, only: body_nodes
@@ -29,7 +29,7 @@ module visco2d_plastic_step
   implicit none
   private
 
-  public :: plastic_trial_stress, plastic_work, yield_limits, residual_flattening, plastic_tangent_stiffness
+  public :: plastic_trial_stress, plastic_work, yield_limits, residual_flattening, plastic_point_tangents
 
 contains
 
@@ -138,54 +138,45 @@ contains
     end do
   end subroutine plastic_trial_stress
 
-  !> The tangent of the internal force over the interval at the increment
-  !> du (ANALYSIS DYNAMIC NEWTON=FULL): K_t = sum B^T C B |J| r over the
-  !> Gauss points, C the consistent tangent of each point's return over the
-  !> interval from its start (consistent_tangent, Simo and Hughes Box 3.2,
-  !> with the interval's mu and K: the same trial as plastic_trial_stress),
-  !> the elastic matrix where the point stays inside the yield surface or
-  !> its material has no plasticity; into `matrix` (band, half-bandwidth
-  !> `half_bandwidth`, order size(du)).
-  subroutine plastic_tangent_stiffness(operators, materials, element_material, limit, du, shear, bulk, stress, ebar, &
-                                       half_bandwidth, matrix, history)
+  !> The consistent tangents over the interval at the increment du
+  !> (ANALYSIS DYNAMIC NEWTON=FULL): for each Gauss point C =
+  !> consistent_tangent of its return over the interval from its start
+  !> (Simo and Hughes Box 3.2, with the interval's mu and K: the trial of
+  !> plastic_trial_stress), the elastic matrix where the point stays inside
+  !> the yield surface or its material has no plasticity; into `tangent`
+  !> (4, 4, gauss_count, nelem), for assemble_point_tangents.
+  pure subroutine plastic_point_tangents(operators, materials, element_material, limit, du, shear, bulk, stress, ebar, &
+                                         tangent, history)
     type(operators_t), intent(in) :: operators
     type(material_t), intent(in) :: materials(:)
     integer, intent(in) :: element_material(:)
     real(dp), intent(in) :: limit(:, :), du(:), shear(:), bulk(:), stress(:, :, :), ebar(:, :)
-    integer, intent(in) :: half_bandwidth
-    type(band_matrix_t), intent(inout) :: matrix
+    real(dp), intent(out) :: tangent(:, :, :, :)
     real(dp), intent(in), optional :: history(:, :, :)
     type(return_result_t) :: state
-    real(dp) :: local(8), increment(4), sigma(4), s0(4), mean, volumetric, tangent(4, 4), element_matrix(8, 8)
+    real(dp) :: local(8), increment(4), sigma(4), s0(4), mean, volumetric
     integer :: e, g, j
-    call band_create(matrix, size(du), half_bandwidth)
     s0 = 0.0_dp
     do e = 1, operators%nelem
       do j = 1, 8
         local(j) = du(operators%dofs(j, e))
       end do
-      element_matrix = 0.0_dp
       do g = 1, gauss_count
-        tangent = elastic_matrix(shear(e), bulk(e))
-        if (limit(g, e) >= 0.0_dp) then               ! plastic_trial_stress's trial (eqs. [13], [21], [23])
-          increment = matmul(operators%b(:, :, g, e), local)
-          if (present(history)) s0 = history(:, g, e)
-          volumetric = increment(1) + increment(2) + increment(3)
-          mean = sum(stress(1:3, g, e))/3.0_dp
-          sigma(1:3) = stress(1:3, g, e) - mean + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
-          sigma(4) = stress(4, g, e) + shear(e)*increment(4)
-          sigma = sigma + s0
-          if (sigma(1)**2 + sigma(2)**2 + sigma(3)**2 + 2.0_dp*sigma(4)**2 > limit(g, e)) then
-            state = radial_return(materials(element_material(e))%hardening, shear(e), sigma, ebar(g, e))
-            if (state%yielded) tangent = consistent_tangent(bulk(e), shear(e), state)
-          end if
-        end if
-        element_matrix = element_matrix + operators%weight(g, e)* &
-                         matmul(transpose(operators%b(:, :, g, e)), matmul(tangent, operators%b(:, :, g, e)))
+        tangent(:, :, g, e) = elastic_matrix(shear(e), bulk(e))
+        if (limit(g, e) < 0.0_dp) cycle             ! no plasticity
+        increment = matmul(operators%b(:, :, g, e), local)     ! plastic_trial_stress's trial (eqs. [13], [21], [23])
+        if (present(history)) s0 = history(:, g, e)
+        volumetric = increment(1) + increment(2) + increment(3)
+        mean = sum(stress(1:3, g, e))/3.0_dp
+        sigma(1:3) = stress(1:3, g, e) - mean + 2.0_dp*shear(e)*(increment(1:3) - volumetric/3.0_dp)
+        sigma(4) = stress(4, g, e) + shear(e)*increment(4)
+        sigma = sigma + s0
+        if (sigma(1)**2 + sigma(2)**2 + sigma(3)**2 + 2.0_dp*sigma(4)**2 <= limit(g, e)) cycle
+        state = radial_return(materials(element_material(e))%hardening, shear(e), sigma, ebar(g, e))
+        if (state%yielded) tangent(:, :, g, e) = consistent_tangent(bulk(e), shear(e), state)
       end do
-      call band_add_element(matrix, operators%dofs(:, e), element_matrix)
     end do
-  end subroutine plastic_tangent_stiffness
+  end subroutine plastic_point_tangents
 
   !> The plastic work of an interval, sum over the Gauss points of
   !> 1/2 (s_start + s_end) : de_p |J| r (the trapezoid, as the energy books

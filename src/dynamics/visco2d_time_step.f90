@@ -36,12 +36,13 @@ module visco2d_time_step
   use visco2d_strings, only: integer_text, short_real
   use visco2d_deck, only: deck_t
   use visco2d_material, only: has_memory
-  use visco2d_plastic_step, only: plastic_trial_stress, plastic_work, yield_limits, plastic_tangent_stiffness
+  use visco2d_plastic_step, only: plastic_trial_stress, plastic_work, yield_limits, plastic_point_tangents
   use visco2d_element, only: gauss_count
   use visco2d_operators, only: operators_t, operators_create, operators_trial_stress, operators_element_force
   use visco2d_banded, only: band_matrix_t, band_multiply_rows, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solver_default, solve_failure_text
-  use visco2d_assembly, only: assemble_stiffness, external_load, support_mask, node_dof, prescribed_displacement, &
+  use visco2d_assembly, only: assemble_stiffness, assemble_point_tangents, external_load, support_mask, node_dof, &
+                              prescribed_displacement, &
                               scatter_add, lumped_mass, gravity_load
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, element_terms, viscoelastic_state_t
   use visco2d_constitutive, only: history_stresses, commit_history
@@ -136,6 +137,7 @@ module visco2d_time_step
     real(dp), allocatable :: plastic_correction(:) !< dU less the linear solve's at the last yielding solve (the predictor)
     logical :: full_newton = .false.               !< NEWTON=FULL: the consistent tangent factored at each iteration
     type(band_matrix_t) :: tangent                 !< its S_t = c M + (1 - alpha_f) K_t (NEWTON=FULL)
+    real(dp), allocatable :: point_tangents(:, :, :, :)   !< (4, 4, gauss, nelem) the consistent tangents of K_t
     type(factor_t) :: tangent_factor               !< S_t factored with the supports imposed
     type(capacitance_t) :: tangent_capacitance     !< the held equations on that factor
     integer :: tangent_factorizations = 0          !< the factorizations of S_t
@@ -762,8 +764,8 @@ contains
 
   !> NEWTON=FULL: the correction S_t d = r (r in stepper%correction on entry,
   !> d on return) with the consistent tangent of the current iterate,
-  !> S_t = c M + (1 - alpha_f) K_t (K_t: plastic_tangent_stiffness at the
-  !> solve point), factored anew with the supports imposed and the held
+  !> S_t = c M + (1 - alpha_f) K_t (K_t: plastic_point_tangents at the
+  !> solve point, assembled by assemble_point_tangents), factored anew with the supports imposed and the held
   !> equations in its own capacitance system (zero values), as S~ is.
   subroutine tangent_correction(stepper, deck, point, state, c, kept, error)
     type(stepper_t), intent(inout) :: stepper
@@ -774,9 +776,12 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: info, status
     call timer_start(phase_assembly)
-    call plastic_tangent_stiffness(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
-                                   stepper%solution, point%shear_h, point%bulk_h, state%stress, state%ebar, &
-                                   point%effective%kd, stepper%tangent, stepper%history_h)   ! history_h: absent without memory
+    if (.not. allocated(stepper%point_tangents)) allocate(stepper%point_tangents(4, 4, gauss_count, deck%mesh%nelem))
+    call plastic_point_tangents(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                stepper%solution, point%shear_h, point%bulk_h, state%stress, state%ebar, &
+                                stepper%point_tangents, stepper%history_h)   ! history_h: absent without memory
+    call assemble_point_tangents(deck%mesh, stepper%operators%b, stepper%operators%weight, stepper%point_tangents, &
+                                 stepper%tangent)
     stepper%tangent%ab = kept*stepper%tangent%ab
     stepper%tangent%ab(1, :) = stepper%tangent%ab(1, :) + c*stepper%mass
     call timer_stop(phase_assembly)

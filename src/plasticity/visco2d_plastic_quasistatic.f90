@@ -57,9 +57,10 @@ module visco2d_plastic_quasistatic
   use visco2d_model, only: settings_t, loads_t, probe_t, time_stage_t, source_t, stage_total_steps
   use visco2d_progress, only: progress_step
   use visco2d_element, only: element_b_matrices, gauss_count
-  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
-  use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
+  use visco2d_assembly, only: element_dofs, assemble_point_tangents, external_load, gravity_load, support_mask, &
+                              prescribed_displacement, &
                               scatter_add, nodal_field
   use visco2d_solve_errors, only: singular_error, not_finite_error
   use visco2d_plasticity, only: return_result_t, consistent_tangent, viscoplastic_update
@@ -234,7 +235,7 @@ contains
       converged = .false.
       first = .true.
       do iteration = 1, max_iterations
-        call assemble_tangent()
+        call assemble_point_tangents(mesh, b, weight, tangent, stiffness)   ! K_t of the last evaluation
         rhs = load - force
         if (first) then
           call band_constrain_rhs(stiffness, fixed, target - u, rhs)
@@ -344,20 +345,6 @@ contains
       history%history = trial_history%history
       load_start = load
     end subroutine commit
-
-    !> K_t from the tangents of the last evaluation.
-    subroutine assemble_tangent()
-      real(dp) :: ke(8, 8)
-      integer :: el, gp
-      call band_create(stiffness, 2*mesh%nnode, mesh%half_bandwidth)
-      do el = 1, nelem
-        ke = 0.0_dp
-        do gp = 1, gauss_count
-          ke = ke + weight(gp, el)*matmul(transpose(b(:, :, gp, el)), matmul(tangent(:, :, gp, el), b(:, :, gp, el)))
-        end do
-        call band_add_element(stiffness, element_dofs(mesh, el), ke)
-      end do
-    end subroutine assemble_tangent
 
     !> Stresses, histories, tangents and the internal force at
     !> u = u_start + increment: every Gauss point updated from the step's

@@ -38,9 +38,10 @@ module visco2d_plastic_static
   use visco2d_material, only: material_t, elastic_matrix, stress_from_strain
   use visco2d_model, only: settings_t, loads_t, source_t
   use visco2d_element, only: element_b_matrices, gauss_count
-  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs, band_multiply
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
-  use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
+  use visco2d_assembly, only: element_dofs, assemble_point_tangents, external_load, gravity_load, support_mask, &
+                              prescribed_displacement, &
                               scatter_add, nodal_field, nodal_average, node_dof
   use visco2d_static, only: static_solution_t
   use visco2d_solve_errors, only: singular_error, not_finite_error
@@ -192,7 +193,7 @@ contains
       converged = .false.
       first = .true.                                   ! this iteration takes the held values' increment
       do iteration = 1, max_iterations
-        call assemble_tangent()
+        call assemble_point_tangents(mesh, b, weight, tangent, stiffness)   ! K_t of the last evaluation
         rhs = lambda*load - force
         if (first) then
           call band_constrain_rhs(stiffness, fixed, target - u, rhs)
@@ -338,7 +339,7 @@ contains
     subroutine predict_contact_set()
       real(dp), allocatable :: predicted(:), reaction(:)
       integer :: pass, predictor_strikes, predictor_best, changed
-      call assemble_tangent()
+      call assemble_point_tangents(mesh, b, weight, tangent, stiffness)   ! K_t of the last evaluation
       predictor_strikes = 0
       predictor_best = huge(1)
       do pass = 1, 50 + 10*size(plate%candidates)
@@ -461,20 +462,6 @@ contains
         if (.not. plate%active(plate%candidates(i))) freed(i) = .true.
       end do
     end subroutine contact_violations
-
-    !> K_t from the tangents of the last evaluation.
-    subroutine assemble_tangent()
-      real(dp) :: ke(8, 8)
-      integer :: el, gp
-      call band_create(stiffness, 2*mesh%nnode, mesh%half_bandwidth)
-      do el = 1, nelem
-        ke = 0.0_dp
-        do gp = 1, gauss_count
-          ke = ke + weight(gp, el)*matmul(transpose(b(:, :, gp, el)), matmul(tangent(:, :, gp, el), b(:, :, gp, el)))
-        end do
-        call band_add_element(stiffness, element_dofs(mesh, el), ke)
-      end do
-    end subroutine assemble_tangent
 
     !> Stresses, tangents and the internal force at u = u_start + increment:
     !> every Gauss point's return from the increment's start.
