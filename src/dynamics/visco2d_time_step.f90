@@ -683,7 +683,7 @@ contains
     logical, allocatable :: free(:)
     logical :: predicted
     real(dp) :: c, kept, energy_first, energy, force_ratio, scale, relaxation, denominator
-    integer :: iteration, yielded, e, status
+    integer :: iteration, yielded, e
     associate (point => stepper%points(r), row => stepper%points(r)%row)
     c = mass_coefficient(row, point%h)
     kept = 1.0_dp - row%alpha_f
@@ -715,15 +715,8 @@ contains
         call tangent_correction(stepper, deck, point, state, c, kept, error)
         if (allocated(error)) return
       else                                           ! modified Newton: S~ d = r on the TIME stage's factor
-        call band_constrain_rhs(point%effective, stepper%supports, stepper%no_values, stepper%correction)
-        call timer_start(phase_solve)
-        call factor_solve(point%factor, stepper%correction, status)
-        call timer_stop(phase_solve)
-        if (status /= 0) then
-          call set_error(error, solve_failure_text(status))
-          return
-        end if
-        if (stepper%contact_on) call capacitance_apply(point%capacitance, stepper%no_values, stepper%correction)
+        call held_correction(stepper, point%effective, point%factor, point%capacitance, error)
+        if (allocated(error)) return
       end if
       energy = abs(sum(stepper%correction*reduced, mask=free))
       if (.not. (ieee_is_finite(force_ratio) .and. ieee_is_finite(energy))) then
@@ -774,7 +767,7 @@ contains
     type(dynamic_state_t), intent(in) :: state
     real(dp), intent(in) :: c, kept
     type(error_t), allocatable, intent(inout) :: error
-    integer :: info, status
+    integer :: info
     call timer_start(phase_assembly)
     if (.not. allocated(stepper%point_tangents)) allocate(stepper%point_tangents(4, 4, gauss_count, deck%mesh%nelem))
     call plastic_point_tangents(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
@@ -801,16 +794,29 @@ contains
         'smaller DT')
       return
     end if
-    call band_constrain_rhs(stepper%tangent, stepper%supports, stepper%no_values, stepper%correction)
+    call held_correction(stepper, stepper%tangent, stepper%tangent_factor, stepper%tangent_capacitance, error)
+  end subroutine tangent_correction
+
+  !> The correction d of `matrix` d = r (r in stepper%correction on entry, d
+  !> on return) on its factor, the supports and the held equations kept where
+  !> they are (zero values; the held ones by the capacitance system).
+  subroutine held_correction(stepper, matrix, factor, capacitance, error)
+    type(stepper_t), intent(inout) :: stepper
+    type(band_matrix_t), intent(in) :: matrix
+    type(factor_t), intent(in) :: factor
+    type(capacitance_t), intent(inout) :: capacitance    !< capacitance_apply keeps its multipliers
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: status
+    call band_constrain_rhs(matrix, stepper%supports, stepper%no_values, stepper%correction)
     call timer_start(phase_solve)
-    call factor_solve(stepper%tangent_factor, stepper%correction, status)
+    call factor_solve(factor, stepper%correction, status)
     call timer_stop(phase_solve)
     if (status /= 0) then
       call set_error(error, solve_failure_text(status))
       return
     end if
-    if (stepper%contact_on) call capacitance_apply(stepper%tangent_capacitance, stepper%no_values, stepper%correction)
-  end subroutine tangent_correction
+    if (stepper%contact_on) call capacitance_apply(capacitance, stepper%no_values, stepper%correction)
+  end subroutine held_correction
 
   !> The residual of the free equations once the held ones are eliminated:
   !> a body equation c held on a PAD's surface, u_c = sum_k w_k u_(p_k) (+ the
