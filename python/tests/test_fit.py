@@ -157,24 +157,32 @@ def test_compression_fit_recovers_e1_e4_within_3_sigma(exe, tmp_path):
         assert f'PRONY E={fit.fmt(record["values"][0])} ALPHA=0.000311' in cards
 
 
+IMPACT = ('TITLE impact\nANALYSIS DYNAMIC\nMATERIAL f ELASTIC E=${E} NU=0.3 RHO=800\n'
+          'MESH SPHERE R=0.03 LEVEL=1\nINITIAL VZ=-1\nTIME DT=2e-5 TEND=4e-3\n'
+          'PLATE Z=0 SLIP RELEASE=YES\nSTOP AT=TEND\nEND\n')
+
+
+def fit_impact(exe, tmp_path, young, column, names, seed):
+    """E fitted to the level-1 sphere's impact at E = `young`: the history `column` over the first
+    3 ms of contact, with noise of 1 % of its largest magnitude, written as a `names` curve."""
+    template = tmp_path / 'impact.inp'
+    template.write_text(IMPACT)
+    history = fit_examples.run_template(IMPACT, {'E': '%g' % young}, exe)
+    t = np.array(history['t_ms']) * 1e-3
+    values = np.array(history[column])
+    keep = (t > 0) & (t < 3e-3)
+    noisy = values[keep] + np.random.default_rng(seed).normal(0, 0.01 * np.abs(values).max(), keep.sum())
+    data = write_csv(tmp_path / 'curve.csv', names, t[keep], noisy)
+    out = str(tmp_path / 'fit')
+    assert fit.main(['deck', str(template), '--data', data, '--param', 'E=1e6:20e6', '-o', out,
+                     '--exe', exe, '-q']) == 0
+    return fitted(out)
+
+
 def test_impact_fit_recovers_e_from_the_force_history(exe, tmp_path):
     """A level-1 elastic sphere's impact force against time (the plate's force_N and t_ms chosen
     from the column names): E recovered within 3 sigma."""
-    template = tmp_path / 'impact.inp'
-    template.write_text('TITLE impact\nANALYSIS DYNAMIC\nMATERIAL f ELASTIC E=${E} NU=0.3 RHO=800\n'
-                        'MESH SPHERE R=0.03 LEVEL=1\nINITIAL VZ=-1\nTIME DT=2e-5 TEND=4e-3\n'
-                        'PLATE Z=0 SLIP RELEASE=YES\nSTOP AT=TEND\nEND\n')
-    history = fit_examples.run_template(template.read_text(), {'E': '4e6'}, exe)
-    t = np.array(history['t_ms']) * 1e-3
-    force = np.array(history['force_N'])
-    keep = (t > 0) & (t < 3e-3)
-    rng = np.random.default_rng(31)
-    noisy = force[keep] + rng.normal(0, 0.01 * force.max(), keep.sum())
-    data = write_csv(tmp_path / 'impact.csv', 'time_s,force_N', t[keep], noisy)
-    out = str(tmp_path / 'impact')
-    assert fit.main(['deck', str(template), '--data', data, '--param', 'E=1e6:20e6', '-o', out,
-                     '--exe', exe, '-q']) == 0
-    record = fitted(out)
+    record = fit_impact(exe, tmp_path, 4e6, 'force_N', 'time_s,force_N', 31)
     assert abs(record['values'][0] - 4e6) < 3 * record['se'][0], record
 
 
@@ -182,21 +190,7 @@ def test_impact_fit_recovers_e_from_the_centre_acceleration(exe, tmp_path):
     """The same impact measured as the centre's acceleration (the paper's Fig. 2 measures it;
     accel_m_s2 reads the centre of mass's az_cm_m_s2 without a sensor PROBE): E recovered within
     3 sigma, the noise 1 % of the peak deceleration."""
-    template = tmp_path / 'impact.inp'
-    template.write_text('TITLE impact\nANALYSIS DYNAMIC\nMATERIAL f ELASTIC E=${E} NU=0.3 RHO=800\n'
-                        'MESH SPHERE R=0.03 LEVEL=1\nINITIAL VZ=-1\nTIME DT=2e-5 TEND=4e-3\n'
-                        'PLATE Z=0 SLIP RELEASE=YES\nSTOP AT=TEND\nEND\n')
-    history = fit_examples.run_template(template.read_text(), {'E': '3e6'}, exe)
-    t = np.array(history['t_ms']) * 1e-3
-    accel = np.array(history['az_cm_m_s2'])
-    keep = (t > 0) & (t < 3e-3)
-    rng = np.random.default_rng(37)
-    noisy = accel[keep] + rng.normal(0, 0.01 * np.abs(accel).max(), keep.sum())
-    data = write_csv(tmp_path / 'accel.csv', 'time_s,accel_m_s2', t[keep], noisy)
-    out = str(tmp_path / 'accel')
-    assert fit.main(['deck', str(template), '--data', data, '--param', 'E=1e6:20e6', '-o', out,
-                     '--exe', exe, '-q']) == 0
-    record = fitted(out)
+    record = fit_impact(exe, tmp_path, 3e6, 'az_cm_m_s2', 'time_s,accel_m_s2', 37)
     assert abs(record['values'][0] - 3e6) < 3 * record['se'][0], record
     assert record['se'][0] < 0.02 * 3e6, record          # a confident answer, not a wide one
 
