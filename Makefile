@@ -93,19 +93,22 @@ study-fast: build
 
 # make bench       seconds per phase (visco2d --timing) of the Table 1 impact at levels 1, 4, 5 into
 #                  out/bench/ (bench.md, bench.csv); BENCH_ARGS="--levels 1,2,3" for a quick one; then
-#                  what plasticity costs (bench_plastic.md; BENCH_PLASTIC_ARGS="--level 2 --repeat 5").
+#                  what plasticity costs (bench_plastic.md; BENCH_PLASTIC_ARGS="--level 2 --repeat 5"), then
+#                  the sweep throughput (make bench-sweep, below; about a minute).
 .PHONY: bench
 bench: build
 	@python3 -m visco2d.bench $(BENCH_ARGS)
 	@python3 -m visco2d.bench_plastic $(BENCH_PLASTIC_ARGS)   # what plasticity costs: python/visco2d/bench_plastic.py
+	@python3 -m visco2d.bench_sweep $(BENCH_SWEEP_ARGS)       # what a sweep loses: python/visco2d/bench_sweep.py
 
 # make bench-sweep  sweep throughput: 200 level-1 peach impacts by visco2d-batch run -j (all cores) against
 #                  the per-case compute (all 200 decks in one visco2d process): cases/s achieved, ideal
-#                  (cores / per-case compute), efficiency, the least of 3 runs each; into out/bench-sweep/
-#                  (python/visco2d/bench_sweep.py; BENCH_SWEEP_ARGS="--cases 400 --level 2 -j 2 --repeat 5").
+#                  (cores / per-case compute), efficiency: the median of 3 rounds of both, outputs on a RAM
+#                  file system; into out/bench-sweep/ (python/visco2d/bench_sweep.py;
+#                  BENCH_SWEEP_ARGS="--cases 400 --level 2 -j 2 --repeat 5", --disk to write onto the disk).
 .PHONY: bench-sweep
 bench-sweep: build
-	@python3 -m visco2d.bench_sweep $(or $(BENCH_SWEEP_ARGS),--repeat 3)
+	@python3 -m visco2d.bench_sweep $(BENCH_SWEEP_ARGS)
 
 # make fuzz        N mutated decks (default 1000) of the seed decks in inputs/ and test/fuzz/ through the
 #                  release build, 20 s bound each, report in out/fuzz/ (summary.md, cases.csv, failures/);

@@ -11,7 +11,7 @@ def fake_visco2d(folder):
     """An executable that prints its arguments and its BLAS thread setting."""
     path = os.path.join(folder, "visco2d")
     with open(path, "w") as handle:
-        handle.write('#!/bin/sh\necho "args: $*"\necho "threads: $OPENBLAS_NUM_THREADS $OMP_NUM_THREADS"\n')
+        handle.write('#!/bin/sh\necho "args: $*"\necho "threads: $OPENBLAS_NUM_THREADS $OMP_NUM_THREADS $OMP_THREAD_LIMIT"\n')
     os.chmod(path, os.stat(path).st_mode | stat.S_IEXEC)
     return path
 
@@ -22,7 +22,7 @@ def test_run_command_line_and_one_thread(tmp_path, monkeypatch):
     done = runner.run(exe, ["a.inp", "b.inp"], "out", options=["--timing"])
     assert done.returncode == 0
     assert "args: --timing -q -o out a.inp b.inp" in done.stdout
-    assert "threads: 1 1" in done.stdout
+    assert "threads: 1 1 1" in done.stdout
 
 
 def test_explicit_program_first(tmp_path, monkeypatch):

@@ -14,6 +14,7 @@ STANDIN = """#!/bin/bash
 # visco2d stand-in: -o ROOT --decks-from -
 root=$2
 echo "process $*" >> "{log}"
+echo "threads $OMP_NUM_THREADS $OMP_THREAD_LIMIT $OPENBLAS_NUM_THREADS" >> "{log}.threads"
 n=0
 while IFS= read -r deck; do
   n=$((n + 1))
@@ -69,6 +70,21 @@ def test_one_process_a_worker_every_case_once(tmp_path):
     for case in cases:
         assert case.error is None and not case.not_run, case.name
         assert os.path.isfile(os.path.join(out, case.name, case.name + '.inp'))   # the deck beside its results
+
+
+def test_each_worker_process_runs_one_thread(tmp_path, monkeypatch):
+    """Two workers on two cores: a process whose CHOLMOD or BLAS starts threads of its own takes CPU
+    from the other worker's; every process gets the one-thread settings whatever the caller's are."""
+    exe, log = make_standin(str(tmp_path))
+    monkeypatch.setenv('OMP_NUM_THREADS', '8')
+    monkeypatch.setenv('OPENBLAS_NUM_THREADS', '8')
+    out = str(tmp_path / 'out')
+    cases = make_cases(out, 4)
+    workers.run_local(cases, out, exe, 2, batch.Progress(len(cases), quiet=True),
+                      prepare=lambda case: batch.write_deck(case, out))
+    with open(log + '.threads') as handle:
+        lines = handle.read().splitlines()
+    assert lines == ['threads 1 1 1'] * 2
 
 
 def test_a_dead_process_fails_its_deck_and_the_rest_run_again(tmp_path):

@@ -490,7 +490,7 @@ def run_mpi(cases, out, ranks, farm, mpirun_args, progress):
     if ranks > (os.cpu_count() or 1):
         command.append('--oversubscribe')
     command += shlex.split(mpirun_args or '') + [farm, '-o', out] + [case.deck for case in cases]
-    environment = dict(os.environ)
+    environment = dict(os.environ, **runner.ONE_THREAD)     # one thread a rank: a rank a core
     if hasattr(os, 'geteuid') and os.geteuid() == 0:
         environment.setdefault('OMPI_ALLOW_RUN_AS_ROOT', '1')
         environment.setdefault('OMPI_ALLOW_RUN_AS_ROOT_CONFIRM', '1')

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Sweep throughput: how close `visco2d-batch run -j N` comes to N cores of computing.
 
-    PYTHONPATH=python python3 -m visco2d.bench_sweep [--cases 200] [--level 2] [-j N] [--repeat 1] [--out out/bench-sweep]
+    PYTHONPATH=python python3 -m visco2d.bench_sweep [--cases 200] [--level 1] [-j N] [--repeat 3] [--disk] [--out out/bench-sweep]
 
 The sweep: the peach of inputs/peach_drop.inp at mesh level LEVEL with DROP HEIGHT=${height},
-CASES heights from 0.05 to 0.3 m (level 1: 88 elements, some 25 ms a case). Two measurements:
+CASES heights from 0.05 to 0.3 m (level 1: 88 elements, some 30 ms a case). Two measurements:
 
   per-case compute   all CASES decks in one `visco2d -q` process, one after the other: its CPU
                      time (user + sys) / CASES: what a case costs without a process of its own
@@ -12,22 +12,33 @@ CASES heights from 0.05 to 0.3 m (level 1: 88 elements, some 25 ms a case). Two 
   the sweep          `visco2d-batch run TEMPLATE --param height=... -j N -q` (the launcher make build
                      writes), its wall time.
 
-Prints the cases/s achieved, the ideal N / per-case compute, and their ratio, the efficiency, and
-the CPU the sweep took in all its processes against CASES x the per-case compute (what the sweep
-adds: process starts, Python; unlike the wall time it hardly depends on what else the machine
-runs), and the one process's wall time against the sweep's over N (1: the sweep is N such processes);
-with --repeat R the fastest of R sweeps, and the least wall and CPU of R one-process runs. The machine's load average is printed too: on a shared
-machine the cores are not all this sweep's. Writes OUT/bench_sweep.md. Exit status 1 if a run failed.
+Each of the REPEAT rounds runs both, in turn (the one process first in odd rounds, the sweep
+first in even ones), so that a machine whose speed drifts (a shared or virtual one: the same
+process here took 6.0 to 8.7 s within minutes) slows both alike; the efficiency of a round is
+its sweep's cases/s against N / its own per-case compute, and the result is the median of the
+rounds with their range. Also printed: the CPU all the sweep's processes took against CASES x
+the per-case compute (what the sweep adds: process starts, Python), and the one process's wall
+time against the sweep's over N (1: the sweep is N such processes).
+
+Both write their outputs into a scratch folder on a RAM file system (/dev/shm when there is one;
+removed at the end), each run into a folder of its own: on ext4, creating files soon after
+deleting many (the benchmark's own earlier runs) costs kernel time in the inode allocator that
+varied 0.2-1.8 s between identical runs, more than the effect measured. --disk writes under OUT
+instead (what a user's sweep onto a disk sees). Writes OUT/bench_sweep.md. The machine's load
+average is printed: on a shared machine the cores are not all this sweep's. Exit status 1 if a
+run failed.
 """
 import argparse
 import os
 import resource
 import shutil
+import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
-from .runner import ROOT
+from .runner import ONE_THREAD, ROOT
 
 
 def children_cpu():
@@ -40,11 +51,14 @@ def main():
     parser.add_argument('--cases', type=int, default=200)
     parser.add_argument('--level', type=int, default=1)
     parser.add_argument('-j', '--jobs', type=int, default=os.cpu_count() or 1)
-    parser.add_argument('--repeat', type=int, default=1)
+    parser.add_argument('--repeat', type=int, default=3, help='rounds of one process and one sweep (default 3)')
+    parser.add_argument('--disk', action='store_true', help='write the runs under OUT, not on a RAM file system')
     parser.add_argument('--out', default=os.path.join('out', 'bench-sweep'))
     parser.add_argument('--exe', default=os.path.join(ROOT, 'build', 'install', 'bin', 'visco2d'))
     parser.add_argument('--tool', default=os.path.join(ROOT, 'build', 'install', 'bin', 'visco2d-batch'))
     options = parser.parse_args()
+    if options.repeat < 1 or options.cases < 1 or options.jobs < 1:
+        parser.error('--repeat, --cases and -j must be at least 1')
     os.makedirs(options.out, exist_ok=True)
     template = os.path.join(options.out, 'peach.inp')
     with open(os.path.join(ROOT, 'inputs', 'peach_drop.inp')) as handle:
@@ -53,65 +67,99 @@ def main():
     with open(template, 'w') as handle:
         handle.write(text)
     sweep = ['--param', f'height=0.05:0.3:{options.cases}']
+    ram = '/dev/shm'
+    if options.disk or not (os.path.isdir(ram) and os.access(ram, os.W_OK)):
+        scratch_parent = options.out
+    else:
+        scratch_parent = ram
+    scratch = tempfile.mkdtemp(prefix='visco2d-bench-sweep-', dir=scratch_parent)
+    try:
+        return measure(options, template, sweep, scratch, scratch_parent)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
 
+
+def one_process(options, decks, folder):
+    """All decks in one visco2d process: (wall, CPU) or None when it failed."""
+    before = children_cpu()
+    start = time.monotonic()
+    run = subprocess.run([options.exe, '-q', '-o', folder] + decks, env=dict(os.environ, **ONE_THREAD))
+    wall, cpu = time.monotonic() - start, children_cpu() - before
+    if run.returncode != 0:
+        print(f'bench_sweep: the one-process run failed (exit {run.returncode})', file=sys.stderr)
+        return None
+    return wall, cpu
+
+
+def one_sweep(options, template, sweep, folder):
+    """The sweep by visco2d-batch: (wall, CPU of all its processes) or None when it failed."""
+    before = children_cpu()
+    start = time.monotonic()
+    run = subprocess.run([options.tool, 'run', template] + sweep +
+                         ['-j', str(options.jobs), '-q', '--exe', options.exe, '-o', folder])
+    wall, cpu = time.monotonic() - start, children_cpu() - before
+    if run.returncode != 0:
+        print(f'bench_sweep: the sweep failed (exit {run.returncode})', file=sys.stderr)
+        return None
+    return wall, cpu
+
+
+def measure(options, template, sweep, scratch, scratch_parent):
     # The decks, expanded once; all of them in one process: the per-case compute.
-    decks_root = os.path.join(options.out, 'expanded')
+    decks_root = os.path.join(scratch, 'expanded')
     subprocess.run([options.tool, 'expand', template] + sweep + ['-o', decks_root],
                    check=True, stdout=subprocess.DEVNULL)
     decks = sorted(os.path.join(decks_root, 'decks', name) for name in os.listdir(os.path.join(decks_root, 'decks'))
                    if name.endswith('.inp'))
-    one_walls, one_cpus = [], []
-    for _ in range(options.repeat):          # the least of R, as for the sweep: the noise of a shared machine only adds
-        shutil.rmtree(os.path.join(options.out, 'one_process'), ignore_errors=True)
-        before = children_cpu()
-        start = time.monotonic()
-        one = subprocess.run([options.exe, '-q', '-o', os.path.join(options.out, 'one_process')] + decks)
-        one_walls.append(time.monotonic() - start)
-        one_cpus.append(children_cpu() - before)
-        if one.returncode != 0:
-            print(f'bench_sweep: the one-process run failed (exit {one.returncode})', file=sys.stderr)
+    count, jobs = len(decks), options.jobs
+    rounds = []
+    for index in range(options.repeat):
+        one_folder = os.path.join(scratch, f'one_process_{index + 1}')
+        sweep_folder = os.path.join(scratch, f'sweep_{index + 1}')
+        if index % 2 == 0:
+            one = one_process(options, decks, one_folder)
+            swept = one and one_sweep(options, template, sweep, sweep_folder)
+        else:
+            swept = one_sweep(options, template, sweep, sweep_folder)
+            one = swept and one_process(options, decks, one_folder)
+        if not one or not swept:
             return 1
-    one_wall, one_cpu = min(one_walls), min(one_cpus)
-    per_case = one_cpu / len(decks)
+        (one_wall, one_cpu), (wall, cpu) = one, swept
+        per_case = one_cpu / count
+        rounds.append({'per_case': per_case, 'one_wall': one_wall, 'wall': wall, 'cpu': cpu,
+                       'efficiency': (count / wall) / (jobs / per_case),
+                       'against_one': one_wall / wall / jobs,
+                       'cpu_efficiency': count * per_case / cpu})
     cpu_s = []
-    for name in os.listdir(os.path.join(options.out, 'one_process')):
-        path = os.path.join(options.out, 'one_process', name, 'summary.txt')
+    for name in os.listdir(os.path.join(scratch, 'one_process_1')):
+        path = os.path.join(scratch, 'one_process_1', name, 'summary.txt')
         if os.path.isfile(path):
             with open(path) as handle:
                 cpu_s += [float(line.split('=')[1]) for line in handle if line.startswith('cpu_s =')]
     loop = sum(cpu_s) / len(cpu_s)
 
-    walls, cpus = [], []
-    for _ in range(options.repeat):
-        before = children_cpu()
-        start = time.monotonic()
-        run = subprocess.run([options.tool, 'run', template] + sweep +
-                             ['-j', str(options.jobs), '-q', '--exe', options.exe, '-o', os.path.join(options.out, 'sweep')])
-        walls.append(time.monotonic() - start)
-        cpus.append(children_cpu() - before)
-        if run.returncode != 0:
-            print(f'bench_sweep: the sweep failed (exit {run.returncode})', file=sys.stderr)
-            return 1
-    wall = min(walls)
-    sweep_cpu = cpus[walls.index(wall)]
-    achieved = len(decks) / wall
-    ideal = options.jobs / per_case
+    def spread(key, scale=100.0, digits=0):
+        values = sorted(scale * entry[key] for entry in rounds)
+        text = f'{statistics.median(values):.{digits}f}'
+        return text if len(values) == 1 else f'{text} ({values[0]:.{digits}f}-{values[-1]:.{digits}f})'
+
     load = os.getloadavg()[0]
-    lines = [f'# Sweep throughput: {len(decks)} peach impacts at level {options.level}, -j {options.jobs}', '',
+    where = 'a RAM file system' if scratch_parent == '/dev/shm' else f'disk ({scratch_parent})'
+    lines = [f'# Sweep throughput: {count} peach impacts at level {options.level}, -j {jobs}', '',
+             f'{len(rounds)} round{"s" if len(rounds) > 1 else ""} of one process and one sweep, '
+             f'outputs on {where}; median (least-most) of the rounds.', '',
              '| measure | value |', '|---|---|',
-             f'| per-case compute (one process, CPU / case) | {per_case * 1000:.1f} ms |',
+             f'| per-case compute (one process, CPU / case) | {spread("per_case", 1000, 1)} ms |',
              f'| per-case cpu_s of the summaries (step loop) | {loop * 1000:.1f} ms |',
-             f'| one process, wall | {one_wall:.2f} s |',
-             f'| sweep wall (-j {options.jobs}{", best of %d" % options.repeat if options.repeat > 1 else ""}) '
-             f'| {wall:.2f} s |',
-             f'| achieved | {achieved:.1f} cases/s |',
-             f'| ideal: {options.jobs} cores / per-case compute | {ideal:.1f} cases/s |',
-             f'| efficiency (achieved / ideal) | {100 * achieved / ideal:.0f} % |',
-             f'| against the one process: one-process wall / sweep wall / {options.jobs} | '
-             f'{100 * one_wall / wall / options.jobs:.0f} % |',
-             f'| sweep CPU, every process (visco2d-batch and its visco2d runs) | {sweep_cpu:.2f} s |',
-             f'| CPU efficiency: {len(decks)} x per-case compute / sweep CPU | '
-             f'{100 * len(decks) * per_case / sweep_cpu:.0f} % |',
+             f'| one process, wall | {spread("one_wall", 1, 2)} s |',
+             f'| sweep wall (-j {jobs}) | {spread("wall", 1, 2)} s |',
+             f'| achieved | {count / statistics.median(entry["wall"] for entry in rounds):.1f} cases/s |',
+             f'| ideal: {jobs} cores / per-case compute | '
+             f'{jobs / statistics.median(entry["per_case"] for entry in rounds):.1f} cases/s |',
+             f'| efficiency (achieved / ideal, each round against its own one process) | {spread("efficiency")} % |',
+             f'| against the one process: one-process wall / sweep wall / {jobs} | {spread("against_one")} % |',
+             f'| sweep CPU, every process (visco2d-batch and its visco2d runs) | {spread("cpu", 1, 2)} s |',
+             f'| CPU efficiency: {count} x per-case compute / sweep CPU | {spread("cpu_efficiency")} % |',
              f'| load average (1 min) at the end | {load:.2f} |']
     text = '\n'.join(lines) + '\n'
     print(text, end='')

@@ -10,7 +10,9 @@ import subprocess
 import sys
 
 #: One BLAS/OpenMP thread per visco2d process: the sweeps put one process on each core.
-ONE_THREAD = {name: "1" for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
+#: OMP_THREAD_LIMIT too: CHOLMOD's supernodal factor asks OpenMP for 4 threads whatever
+#: OMP_NUM_THREADS says (its num_threads clause); the limit is the one setting that caps it.
+ONE_THREAD = {name: "1" for name in ("OMP_NUM_THREADS", "OMP_THREAD_LIMIT", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
                                      "GOTO_NUM_THREADS", "BLIS_NUM_THREADS")}
 
 

@@ -24,7 +24,7 @@ import signal
 import subprocess
 import threading
 
-from . import batch
+from . import batch, runner
 
 AHEAD = 2               # decks written to a process before their turn: one running, one waiting in its pipe
 RESULT = re.compile(r'\d+ nodes, \d+ elements')    # visco2d's one-line result: "<case>: N nodes, M elements, ..."
@@ -82,7 +82,8 @@ class Workers:
         self.changed = threading.Condition()      # a case added or ended, or the queue closed
         self.closed = False
         self.done = collections.deque()           # the cases ended since the last ended()
-        self.environment = dict(os.environ, GFORTRAN_UNBUFFERED_PRECONNECTED='y')   # each line as written
+        self.environment = dict(os.environ, **runner.ONE_THREAD,        # one thread a process: a worker a core
+                                GFORTRAN_UNBUFFERED_PRECONNECTED='y')   # each line as written
         self.pool = concurrent.futures.ThreadPoolExecutor(max_workers=max(1, jobs))
         self.futures = [self.pool.submit(self.worker) for _ in range(max(1, jobs))]
 
