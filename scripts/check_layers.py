@@ -16,6 +16,8 @@ src/ is grouped in floors, from the bottom up (see doc/architecture.md):
             matrices, assembly, static and quasi-static solution
   io        writing the results (text, CSV, HDF5, XDMF)
   bruise    bruise prediction from the stress and strain fields
+  finite    finite deformation: hyperelastic laws (neo-Hookean, Mooney-Rivlin,
+            hyperfoam), the large-deformation element and its Newton solution
   contact   the rigid plate: contact conditions, capacitance system, impact
   dynamics  the time integration (Wilson-theta and its family)
   (src/)    the driver, which runs a deck through all of them
@@ -61,7 +63,7 @@ REACH = {
 
 # The floors a base module may reach.
 BASE_FLOORS = ("core", "model", "base")
-FLOORS = ["core", "model", "mesh", "cards", "base", "plasticity", "io", "bruise", "contact", "dynamics", ""]
+FLOORS = ["core", "model", "mesh", "cards", "base", "plasticity", "finite", "io", "bruise", "contact", "dynamics", ""]
 USE = re.compile(r"^\s*use\s+(visco2d_\w+)", re.IGNORECASE | re.MULTILINE)
 MODULE = re.compile(r"^\s*module\s+(visco2d_\w+)\s*$", re.IGNORECASE | re.MULTILINE)
 
