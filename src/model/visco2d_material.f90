@@ -17,10 +17,19 @@ module visco2d_material
   public :: elastic_matrix, stress_from_strain
   public :: von_mises, max_shear, elastic_constants_from_e_nu
   public :: hardening_t, bilinear_hardening
+  public :: hyperelastic_none, hyperelastic_neo_hooke, hyperelastic_mooney_rivlin, hyperelastic_foam
+  public :: hyperelastic_name
 
   integer, parameter :: material_kind_elastic = 1       !< MATERIAL id ELASTIC
   integer, parameter :: material_kind_viscoelastic = 2  !< MATERIAL id VISCOELASTIC + PRONY G= BETA=
   integer, parameter :: material_kind_uniaxial = 3      !< MATERIAL id UNIAXIAL + PRONY E= ALPHA= (eq. [47])
+
+  !> The strain energy of a hyperelastic material (KINEMATICS LARGE; with
+  !> KINEMATICS SMALL its linearisation, the shear and bulk moduli below).
+  integer, parameter :: hyperelastic_none = 0           !< not hyperelastic: linear (visco)elastic
+  integer, parameter :: hyperelastic_neo_hooke = 1      !< MATERIAL id NEOHOOKE C10= D1= (or E= NU=)
+  integer, parameter :: hyperelastic_mooney_rivlin = 2  !< MATERIAL id MOONEY C10= C01= D1=
+  integer, parameter :: hyperelastic_foam = 3           !< MATERIAL id HYPERFOAM + OGDEN MU= ALPHA= NU= cards
 
   !> The uniaxial yield stress against the equivalent plastic strain: piecewise
   !> linear through the points, with `final_slope` beyond the last.
@@ -58,6 +67,16 @@ module visco2d_material
     real(dp) :: plastic_tangent = 0.0_dp     !< E_t of PLASTIC TANGENT=, Pa (bilinear)
     integer :: plastic_line = 0              !< line of the PLASTIC card
     integer :: plastic_column = 0            !< column of its TANGENT= field (TABLE for a table), for errors
+    !> A hyperelastic material (hyperelastic_*): W = C10 (I1bar - 3) + C01 (I2bar - 3) + (J - 1)^2 / D1,
+    !> or the hyperfoam's terms; shear and bulk above hold its small-strain moduli.
+    integer :: hyperelastic = hyperelastic_none
+    real(dp) :: c10 = 0.0_dp                 !< C10, Pa
+    real(dp) :: c01 = 0.0_dp                 !< C01, Pa
+    real(dp) :: d1 = 0.0_dp                  !< D1 = 2 / K, 1/Pa
+    real(dp), allocatable :: foam_mu(:)      !< hyperfoam mu_i, Pa
+    real(dp), allocatable :: foam_alpha(:)   !< hyperfoam alpha_i
+    real(dp), allocatable :: foam_nu(:)      !< hyperfoam nu_i
+    integer, allocatable :: foam_lines(:)    !< lines of its OGDEN cards
   end type material_t
 
 contains
@@ -82,6 +101,18 @@ contains
     case default; name = 'ELASTIC'
     end select
   end function material_kind_name
+
+  !> The card word of a hyperelastic kind ('' for none).
+  pure function hyperelastic_name(kind) result(name)
+    integer, intent(in) :: kind
+    character(:), allocatable :: name
+    select case (kind)
+    case (hyperelastic_neo_hooke); name = 'NEOHOOKE'
+    case (hyperelastic_mooney_rivlin); name = 'MOONEY'
+    case (hyperelastic_foam); name = 'HYPERFOAM'
+    case default; name = ''
+    end select
+  end function hyperelastic_name
 
   !> True if the material has Prony terms with memory (beta > 0): it needs history.
   pure logical function has_memory(material)

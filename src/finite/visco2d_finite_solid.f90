@@ -1,0 +1,113 @@
+!> One element's response at finite deformation: its hyperelastic law at
+!> the Gauss points (visco2d_hyperelastic), pointwise or with the mean
+!> dilatation (FORMULATION BBAR), through the current-configuration element
+!> of visco2d_finite_element: internal force, tangent stiffness, Cauchy
+!> stresses, logarithmic strains and the stored energy.
+!>
+!> An ELASTIC material under KINEMATICS LARGE is the neo-Hookean law of its
+!> own G and K (C10 = G / 2, D1 = 2 / K): the same small-strain limit, and
+!> unlike the St Venant-Kirchhoff extension of Hooke's law it does not
+!> soften in compression.
+module visco2d_finite_solid
+  use visco2d_kinds, only: dp, formulation_bbar
+  use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke, hyperelastic_mooney_rivlin
+  use visco2d_quadrilateral, only: gauss_count
+  use visco2d_hyperelastic, only: hyperelastic_t, hyperelastic_from_moduli, isochoric_response, volumetric_response, &
+                                  hyperelastic_response, pressure_tangent
+  use visco2d_finite_element, only: finite_point_t, finite_kinematics, finite_force, finite_tangent, element_volumes
+  implicit none
+  private
+
+  public :: element_response, law_of_material, logarithmic_strain
+
+contains
+
+  !> The neo-Hookean or Mooney-Rivlin constants of a material (module comment for ELASTIC).
+  pure function law_of_material(material) result(law)
+    type(material_t), intent(in) :: material
+    type(hyperelastic_t) :: law
+    select case (material%hyperelastic)
+    case (hyperelastic_neo_hooke, hyperelastic_mooney_rivlin)
+      law%c10 = material%c10
+      law%c01 = material%c01
+      law%d1 = material%d1
+    case default
+      law = hyperelastic_from_moduli(material%shear, material%bulk)
+    end select
+  end function law_of_material
+
+  !> The element at displacement u (u_r1, u_z1, ...) of its reference
+  !> coordinates xy: internal force f (8), tangent K (8 x 8, when
+  !> `with_stiffness`), Cauchy stresses and logarithmic strains at the Gauss
+  !> points (rr, zz, tt, rz; engineering shear), and W integrated over the
+  !> reference volume (J, per radian in axisymmetry). `valid` false: an
+  !> element inverted or through the axis, nothing else is set.
+  pure subroutine element_response(geometry, formulation, material, xy, displacement, with_stiffness, &
+                                   force, stiffness, stress, strain, energy, valid)
+    integer, intent(in) :: geometry, formulation
+    type(material_t), intent(in) :: material
+    real(dp), intent(in) :: xy(2, 4), displacement(8)
+    logical, intent(in) :: with_stiffness
+    real(dp), intent(out) :: force(8), stiffness(8, 8), stress(4, gauss_count), strain(4, gauss_count), energy
+    logical, intent(out) :: valid
+    type(finite_point_t) :: points(gauss_count)
+    type(hyperelastic_t) :: law
+    real(dp) :: tangent(4, 4, gauss_count), point_energy, current, reference, gradient(8), ratio, pressure, slope
+    real(dp) :: volumetric_energy
+    integer :: gp
+    logical :: mean_dilatation
+    force = 0.0_dp
+    stiffness = 0.0_dp
+    stress = 0.0_dp
+    strain = 0.0_dp
+    energy = 0.0_dp
+    call finite_kinematics(geometry, xy, displacement, points, valid)
+    if (.not. valid) return
+    law = law_of_material(material)
+    mean_dilatation = formulation == formulation_bbar
+    if (mean_dilatation) then
+      call element_volumes(points, current, reference, gradient)
+      ratio = current/reference
+      call volumetric_response(law, ratio, pressure, slope, volumetric_energy)
+      energy = reference*volumetric_energy
+    end if
+    do gp = 1, gauss_count
+      if (mean_dilatation) then
+        call isochoric_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy)
+        stress(1:3, gp) = stress(1:3, gp) + pressure
+        tangent(:, :, gp) = tangent(:, :, gp) + pressure_tangent(pressure)
+      else
+        call hyperelastic_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy)
+      end if
+      energy = energy + points(gp)%reference_volume*point_energy
+      strain(:, gp) = logarithmic_strain(points(gp)%deformation)
+    end do
+    force = finite_force(points, stress)
+    if (.not. with_stiffness) return
+    stiffness = finite_tangent(geometry, points, stress, tangent)
+    if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
+  end subroutine element_response
+
+  !> The logarithmic (Hencky) strain ln V = 1/2 ln(F F^T) of an in-plane F
+  !> with a hoop stretch, as (rr, zz, tt, 2 rz): the in-plane block from the
+  !> eigenvalues and vectors of its 2 x 2 left Cauchy-Green tensor.
+  pure function logarithmic_strain(deformation) result(strain)
+    real(dp), intent(in) :: deformation(3, 3)
+    real(dp) :: strain(4)
+    real(dp) :: b(2, 2), mean, radius, lambda1, lambda2, c, s, angle, h1, h2
+    b = matmul(deformation(1:2, 1:2), transpose(deformation(1:2, 1:2)))
+    mean = 0.5_dp*(b(1, 1) + b(2, 2))
+    radius = hypot(0.5_dp*(b(1, 1) - b(2, 2)), b(1, 2))
+    lambda1 = mean + radius
+    lambda2 = mean - radius
+    angle = 0.5_dp*atan2(2.0_dp*b(1, 2), b(1, 1) - b(2, 2))
+    c = cos(angle)
+    s = sin(angle)
+    h1 = 0.5_dp*log(lambda1)
+    h2 = 0.5_dp*log(lambda2)
+    strain(1) = h1*c*c + h2*s*s
+    strain(2) = h1*s*s + h2*c*c
+    strain(3) = log(deformation(3, 3))
+    strain(4) = 2.0_dp*(h1 - h2)*c*s
+  end function logarithmic_strain
+end module visco2d_finite_solid
