@@ -4,7 +4,7 @@
 !> folder (visco2d_case_folder).
 module visco2d_driver
   use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, kinematics_large
   use visco2d_error, only: error_t, set_error, locate_error
   use visco2d_strings, only: integer_text, message_real
   use visco2d_deck, only: deck_t, read_deck, analysis_static, analysis_quasistatic, analysis_dynamic, &
@@ -14,6 +14,7 @@ module visco2d_driver
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_static, only: static_solution_t, solve_static, static_record
   use visco2d_plastic_static, only: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
+  use visco2d_finite_static, only: finite_summary_t, solve_finite_static, finite_record
   use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_plastic_quasistatic, only: solve_plastic_quasistatic
   use visco2d_dynamic, only: solve_dynamic
@@ -136,6 +137,7 @@ contains
     type(effects_t) :: effects
     type(static_solution_t) :: static_solution
     type(plastic_summary_t) :: plastic_summary
+    type(finite_summary_t) :: finite_summary
     character(:), allocatable :: case_name
     real :: cpu_start, cpu_end
     integer(int64) :: clock_start, clock_end, clock_rate
@@ -216,7 +218,15 @@ contains
       select case (deck%analysis)
       case (analysis_static)
         call record_put_integer(record, 'steps', 1)
-        if (effects%contact .and. any_plastic(deck%materials)) then   ! Newton with the plate as an active set
+        if (deck%settings%kinematics == kinematics_large) then   ! finite deformation: increments and Newton
+          call solve_finite_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+                                   static_solution, finite_summary, error)
+          if (allocated(error)) return
+          call static_record(deck%mesh, deck%settings, deck%probes, static_solution, record)
+          call finite_record(finite_summary, record)
+          call bruise_static(deck, static_solution%stress, static_solution%strain, record)
+          call record_put_integer(record, 'factorizations', finite_summary%iterations)
+        else if (effects%contact .and. any_plastic(deck%materials)) then   ! Newton with the plate as an active set
           call solve_plastic_static_contact(deck, record, error)
           if (allocated(error)) return
         else if (effects%contact) then

@@ -8,7 +8,7 @@
 !> visco2d_deck_types and are re-exported here, so a user of a deck
 !> imports this module only.
 module visco2d_deck
-  use visco2d_kinds, only: geometry_axisymmetric, geometry_plane_strain
+  use visco2d_kinds, only: geometry_axisymmetric, geometry_plane_strain, kinematics_small, kinematics_large
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, short_real, nearest_word
   use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column, &
@@ -35,7 +35,7 @@ module visco2d_deck
   use visco2d_deck_meaning, only: check_meaning
   use visco2d_deck_checks, only: check_time_stages, check_dynamic_cards, check_contact_cards, &
                                  check_plate_position, check_plate_supports, check_mass, check_locking, &
-                                 check_memory_needs_time, check_load_sizes, check_pressures
+                                 check_memory_needs_time, check_load_sizes, check_pressures, check_kinematics
   implicit none
   private
 
@@ -47,8 +47,8 @@ module visco2d_deck
   public :: plate_t, pad_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(30) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
-    'FORMULATION', 'SOLVER', 'MATERIAL', 'PRONY', 'PLASTIC', 'HARDENING', 'NODE', 'ELEMENT', 'MESH', 'FIX', &
+  character(len=11), parameter :: card_keywords(31) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+    'FORMULATION', 'KINEMATICS', 'SOLVER', 'MATERIAL', 'PRONY', 'PLASTIC', 'HARDENING', 'NODE', 'ELEMENT', 'MESH', 'FIX', &
     'PRESSURE', 'FORCE', 'GRAVITY', &
     'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'PAD', 'STOP', 'PROBE', 'EXPECT', &
     'BRUISE', 'END']
@@ -60,7 +60,7 @@ module visco2d_deck
     type(pending_t), allocatable :: fixes(:), forces(:), probes(:)
     character(len=32), allocatable :: pressure_curves(:)  !< CURVE= of each PRESSURE card, '' if none
     integer, allocatable :: pressure_cards(:)             !< card index of each PRESSURE card
-    integer :: title_line = 0, analysis_line = 0, geometry_line = 0, formulation_line = 0
+    integer :: title_line = 0, analysis_line = 0, geometry_line = 0, formulation_line = 0, kinematics_line = 0
     integer :: material_card = 0                          !< index of the last MATERIAL card, 0 if none
     logical :: increments_given = .false.                 !< ANALYSIS STATIC has INCREMENTS= or ITERATIONS=
   end type reading_t
@@ -121,7 +121,7 @@ contains
 
     associate (cards => deck%cards, card => deck%cards%cards(i))
     select case (card%keyword)
-    case ('TITLE', 'ANALYSIS', 'GEOMETRY', 'FORMULATION', 'SOLVER')
+    case ('TITLE', 'ANALYSIS', 'GEOMETRY', 'FORMULATION', 'KINEMATICS', 'SOLVER')
       call read_model_card(deck, reading, i, error)
     case ('WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'GRAVITY', 'OUTPUT', 'PLATE', 'PAD', 'STOP')
       call read_motion_card(deck, i, error)
@@ -177,7 +177,8 @@ contains
     case default
       call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
         suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
-        'GEOMETRY FORMULATION MATERIAL PRONY PLASTIC HARDENING NODE ELEMENT MESH FIX PRESSURE FORCE GRAVITY CURVE TIME '// &
+        'GEOMETRY FORMULATION KINEMATICS MATERIAL PRONY PLASTIC HARDENING NODE ELEMENT MESH FIX PRESSURE FORCE '// &
+        'GRAVITY CURVE TIME '// &
         'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE PAD STOP PROBE EXPECT BRUISE END)')
     end select
     end associate
@@ -267,6 +268,21 @@ contains
       call once(deck, i, reading%formulation_line, error); if (allocated(error)) return
       call read_formulation(cards, card, deck%settings%formulation, error); if (allocated(error)) return
       reading%formulation_line = card%line
+    case ('KINEMATICS')
+      call once(deck, i, reading%kinematics_line, error); if (allocated(error)) return
+      reading%kinematics_line = card%line
+      deck%kinematics_line = card%line
+      call positional_word(cards, card, 1, 'kinematics (SMALL or LARGE)', word, error); if (allocated(error)) return
+      call check_fields_used(cards, card, error, 'KINEMATICS SMALL | LARGE'); if (allocated(error)) return
+      select case (word)
+      case ('SMALL')
+        deck%settings%kinematics = kinematics_small
+      case ('LARGE')
+        deck%settings%kinematics = kinematics_large
+      case default
+        call card_error(error, cards, card, 'kinematics must be SMALL (small strain, the default) or LARGE (finite '// &
+                        'deformation), got "'//word//'"', field_column(card, '1'))
+      end select
     case ('SOLVER')
       call once(deck, i, deck%solver_line, error); if (allocated(error)) return
       deck%solver_line = card%line
@@ -415,7 +431,8 @@ contains
     call check_plastic_bruise(deck, m, error)
     if (allocated(error)) return
     if (m == 0) then
-      if (reading%increments_given .and. deck%analysis == analysis_static) call add_warning(deck, &
+      if (reading%increments_given .and. deck%analysis == analysis_static .and. &
+          deck%settings%kinematics /= kinematics_large) call add_warning(deck, &
         reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and ITERATIONS= are for plastic materials (a PLASTIC card); '// &
         'this deck has none and is solved in one linear step')
       if (reading%increments_given .and. deck%analysis == analysis_dynamic) call add_warning(deck, &
@@ -551,6 +568,7 @@ contains
       call finish_material(cards, deck%materials(i), error); if (allocated(error)) return
     end do
     call check_plastic_analysis(deck, reading, error); if (allocated(error)) return
+    call check_kinematics(deck, error); if (allocated(error)) return
     call check_time_stages(deck, reading%analysis_line, error); if (allocated(error)) return
     call check_dynamic_cards(deck, error); if (allocated(error)) return
     call check_contact_cards(deck, error); if (allocated(error)) return

@@ -3,11 +3,11 @@
 !> belong to one analysis kind, the plate, STOP, masses, memory materials,
 !> pressure edge sets, load sizes; and the warning for a locking material.
 module visco2d_deck_checks
-  use visco2d_kinds, only: dp, formulation_standard
+  use visco2d_kinds, only: dp, formulation_standard, kinematics_large
   use visco2d_error, only: error_t
   use visco2d_strings, only: integer_text, message_real, short_real
   use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, range_t, in_range, range_text
-  use visco2d_material, only: has_memory
+  use visco2d_material, only: has_memory, hyperelastic_none, hyperelastic_name
   use visco2d_dynamic_cards, only: standard_gravity
   use visco2d_contact_cards, only: stop_name, stop_at_tend, stop_at_max_deformation, stop_at_separation
   use visco2d_mesh, only: edge_set_name
@@ -18,7 +18,7 @@ module visco2d_deck_checks
 
   public :: check_time_stages, check_dynamic_cards, check_contact_cards, check_plate_position, check_mass
   public :: check_plate_supports
-  public :: check_locking, check_memory_needs_time, check_load_sizes, check_pressures
+  public :: check_locking, check_memory_needs_time, check_load_sizes, check_pressures, check_kinematics
 
 contains
 
@@ -197,6 +197,60 @@ contains
         'element locks (too stiff); FORMULATION BBAR avoids that')
     end do
   end subroutine check_locking
+
+  !> KINEMATICS LARGE runs what src/finite/ solves so far: ANALYSIS STATIC of
+  !> elastic or hyperelastic bodies under point loads, gravity and prescribed
+  !> displacements. Anything else is refused at its card, with what to do;
+  !> a hyperelastic material in a small-strain run warns (it is linearised).
+  subroutine check_kinematics(deck, error)
+    type(deck_t), intent(inout) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (deck%settings%kinematics /= kinematics_large) then
+      do k = 1, size(deck%materials)
+        if (deck%materials(k)%hyperelastic == hyperelastic_none) cycle
+        call add_warning(deck, deck%materials(k)%line, 'MATERIAL', 'material '//deck%materials(k)%id//' is '// &
+          hyperelastic_name(deck%materials(k)%hyperelastic)//', and this deck is small-strain (no KINEMATICS '// &
+          'LARGE): it runs as its linearisation, G = '//short_real(deck%materials(k)%shear)//' Pa, K = '// &
+          short_real(deck%materials(k)%bulk)//' Pa')
+      end do
+      return
+    end if
+    if (deck%analysis /= analysis_static) then
+      call line_error(error, deck, deck%kinematics_line, 'KINEMATICS LARGE solves ANALYSIS STATIC so far; '// &
+        analysis_name(deck%analysis)//' is small-strain only (remove the card, or make the deck STATIC)', '1')
+      return
+    end if
+    do k = 1, size(deck%materials)
+      if (deck%materials(k)%plastic) then
+        call line_error(error, deck, deck%materials(k)%plastic_line, 'plasticity (PLASTIC) is small-strain only; '// &
+          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY) materials')
+        return
+      end if
+      if (has_memory(deck%materials(k))) then
+        call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//' relaxes in '// &
+          'time (PRONY terms with BETA > 0): a viscoelastic law at finite strain is not in this version; '// &
+          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY) materials', '2')
+        return
+      end if
+    end do
+    if (size(deck%loads%pressures) > 0) then
+      call line_error(error, deck, deck%loads%pressures(1)%line, 'a PRESSURE on the undeformed edge is not the '// &
+        'follower load a finite deformation needs, and that load is not in this version: with KINEMATICS LARGE '// &
+        'load by FORCE, GRAVITY or a prescribed displacement (FIX ... UZ=)')
+      return
+    end if
+    if (deck%plate%line > 0) then
+      call line_error(error, deck, deck%plate%line, 'contact with the PLATE at finite deformation is not in this '// &
+        'version (KINEMATICS LARGE): prescribe the displacement of the contact side (FIX ... UZ=) instead')
+      return
+    end if
+    if (deck%pad%line > 0) then
+      call line_error(error, deck, deck%pad%line, 'a PAD at finite deformation is not in this version '// &
+        '(KINEMATICS LARGE)')
+      return
+    end if
+  end subroutine check_kinematics
 
   !> A material with memory needs time: STATIC cannot say which modulus to use.
   subroutine check_memory_needs_time(deck, analysis_line, error)

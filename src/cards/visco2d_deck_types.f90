@@ -68,6 +68,7 @@ module visco2d_deck_types
     integer :: gravity_line = 0                   !< the GRAVITY card (loads%gravity: its G=)
     type(output_request_t) :: output              !< OUTPUT EVERY= FIELDS=
     integer :: solver_line = 0
+    integer :: kinematics_line = 0                 !< line of the KINEMATICS card (0: none)
     type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
     type(pad_t) :: pad                            !< PAD on the plate (visco2d_pad_mesh); pad%line = 0: none
     integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)

@@ -13,7 +13,8 @@ module visco2d_material_cards
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, positional_word, check_fields_used, &
                            has_field, field_column, positional_count
   use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
-                              material_kind_uniaxial, elastic_constants_from_e_nu, bilinear_hardening
+                              material_kind_uniaxial, elastic_constants_from_e_nu, bilinear_hardening, &
+                              hyperelastic_neo_hooke, hyperelastic_mooney_rivlin
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_sorting, only: sorted_order
   implicit none
@@ -26,6 +27,8 @@ contains
   !> MATERIAL id ELASTIC E=.. NU=.. [RHO=..]   or   MATERIAL id ELASTIC G=.. K=.. [RHO=..]
   !> MATERIAL id VISCOELASTIC K=.. [RHO=..]      followed by PRONY G=.. BETA=.. cards
   !> MATERIAL id UNIAXIAL NU=.. [RHO=..]         followed by PRONY E=.. ALPHA=.. cards
+  !> MATERIAL id NEOHOOKE C10=.. D1=.. [RHO=..]  or E=.. NU=.. or G=.. K=.. (W = C10 (I1bar - 3) + (J - 1)^2 / D1)
+  !> MATERIAL id MOONEY C10=.. C01=.. D1=.. [RHO=..]
   subroutine read_material(cards, card, materials, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -35,7 +38,8 @@ contains
     character(:), allocatable :: kind
     integer :: k
     call positional_word(cards, card, 1, 'material id', material%id, error); if (allocated(error)) return
-    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC or UNIAXIAL)', kind, error)
+    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC, UNIAXIAL, NEOHOOKE or MOONEY)', kind, &
+                         error)
     if (allocated(error)) return
     material%line = card%line
     do k = 1, size(materials)
@@ -90,9 +94,11 @@ contains
       call check_fields_used(cards, card, error, 'MATERIAL id UNIAXIAL NU=.. [RHO=..], then PRONY E=.. ALPHA=..')
       if (allocated(error)) return
       allocate(material%uniaxial_young(0), material%uniaxial_rate(0), material%prony_lines(0))
+    case ('NEOHOOKE', 'MOONEY')
+      call read_hyperelastic(); if (allocated(error)) return
     case default
-      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC or UNIAXIAL, got "'// &
-                      kind//'"', field_column(card, '2')); return
+      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC, UNIAXIAL, NEOHOOKE or '// &
+                      'MOONEY, got "'//kind//'"', field_column(card, '2')); return
     end select
     material%card_column = field_column(card, 'K')
     if (material%kind == material_kind_uniaxial) material%card_column = field_column(card, 'NU')
@@ -106,6 +112,67 @@ contains
       if (present(name)) column = field_column(card, name)
       call card_error(error, cards, card, message, column)
     end subroutine field_error
+
+    !> NEOHOOKE (C10= D1=, or E= NU=, or G= K=) and MOONEY (C10= C01= D1=):
+    !> the constants of W and the small-strain moduli G = 2 (C10 + C01), K = 2 / D1.
+    subroutine read_hyperelastic()
+      character(:), allocatable :: usage
+      material%kind = material_kind_elastic
+      if (kind == 'NEOHOOKE') then
+        material%hyperelastic = hyperelastic_neo_hooke
+        usage = 'MATERIAL id NEOHOOKE C10=.. D1=.. [RHO=..] or E=.. NU=.. or G=.. K=..'
+        if (count([has_field(card, 'C10') .or. has_field(card, 'D1'), has_field(card, 'E') .or. &
+                   has_field(card, 'NU'), has_field(card, 'G') .or. has_field(card, 'K')]) > 1) then
+          call field_error('give the neo-Hookean constants one way: C10= and D1=, E= and NU=, or G= and K= (two '// &
+                           'constants fix the law)'); return
+        end if
+        if (has_field(card, 'E') .or. has_field(card, 'NU')) then
+          call named_real(cards, card, 'E', material%young, error, range=modulus_range); if (allocated(error)) return
+          call named_real(cards, card, 'NU', material%poisson, error); if (allocated(error)) return
+          if (material%poisson <= -1.0_dp .or. material%poisson >= 0.5_dp) then
+            call field_error('NU must be in (-1, 0.5), got '//short_real(material%poisson), 'NU'); return
+          end if
+          call elastic_constants_from_e_nu(material%young, material%poisson, material%shear, material%bulk)
+          material%c10 = 0.5_dp*material%shear
+          material%d1 = 2.0_dp/material%bulk
+        else if (has_field(card, 'G') .or. has_field(card, 'K')) then
+          call named_real(cards, card, 'G', material%shear, error, range=modulus_range); if (allocated(error)) return
+          call named_real(cards, card, 'K', material%bulk, error, range=modulus_range); if (allocated(error)) return
+          material%c10 = 0.5_dp*material%shear
+          material%d1 = 2.0_dp/material%bulk
+        else
+          call named_real(cards, card, 'C10', material%c10, error, range=modulus_range); if (allocated(error)) return
+          call read_d1(); if (allocated(error)) return
+        end if
+      else
+        material%hyperelastic = hyperelastic_mooney_rivlin
+        usage = 'MATERIAL id MOONEY C10=.. C01=.. D1=.. [RHO=..]'
+        call named_real(cards, card, 'C10', material%c10, error); if (allocated(error)) return
+        call named_real(cards, card, 'C01', material%c01, error); if (allocated(error)) return
+        if (material%c10 + material%c01 <= 0.0_dp .or. material%c10 < 0.0_dp .or. material%c01 < 0.0_dp) then
+          call field_error('C10 and C01 must be >= 0 with C10 + C01 > 0 (the initial shear modulus is '// &
+                           '2 (C10 + C01)), got C10 = '//short_real(material%c10)//', C01 = '// &
+                           short_real(material%c01), 'C01'); return
+        end if
+        call read_d1(); if (allocated(error)) return
+      end if
+      material%shear = 2.0_dp*(material%c10 + material%c01)
+      material%bulk = 2.0_dp/material%d1
+      call instantaneous_e_nu(material)
+      if (.not. conditioned(material)) then
+        call field_error(ratio_message(material)); return
+      end if
+      material%long_term_shear = material%shear
+      call check_fields_used(cards, card, error, usage)
+    end subroutine read_hyperelastic
+
+    !> D1 = 2 / K, 1/Pa, > 0.
+    subroutine read_d1()
+      call named_real(cards, card, 'D1', material%d1, error); if (allocated(error)) return
+      if (.not. (material%d1 > 0.0_dp) .or. material%d1 > 1.0_dp) then
+        call field_error('D1 (= 2/K, 1/Pa) must be in (0, 1], got '//short_real(material%d1), 'D1'); return
+      end if
+    end subroutine read_d1
   end subroutine read_material
 
   !> PRONY G=.. BETA=.. (VISCOELASTIC) or PRONY E=.. ALPHA=.. (UNIAXIAL): one term of eq. [12] or [47].

@@ -21,6 +21,10 @@ module visco2d_kinds
   !> element, or B-bar (mean dilatation) against volumetric locking.
   integer, parameter, public :: formulation_standard = 1, formulation_bbar = 2
 
+  !> Kinematics codes (KINEMATICS card): small strain (the paper's, the
+  !> default) or finite deformation (src/finite/).
+  integer, parameter, public :: kinematics_small = 1, kinematics_large = 2
+
   public :: whole_body_factor, energy_basis
 
 contains

@@ -38,6 +38,7 @@ module visco2d_finite_element
   !> The kinematics of one Gauss point in the current configuration.
   type :: finite_point_t
     real(dp) :: deformation(3, 3) = 0.0_dp  !< F: the in-plane block and the hoop stretch F(3, 3)
+    real(dp) :: gradient(3, 3) = 0.0_dp     !< H = F - I from u itself (no cancellation: small strains keep their digits)
     real(dp) :: b(4, 8) = 0.0_dp            !< B at x (d/dr, d/dz, N/r, engineering shear)
     real(dp) :: gradients(2, 4) = 0.0_dp    !< dN_a/dx (row 1: d/dr, row 2: d/dz)
     real(dp) :: shape(4) = 0.0_dp           !< N_a
@@ -77,6 +78,8 @@ contains
       p%shape = n
       ! F_ij = d x_i / d X_j = sum_a x_ia dN_a/dX_j: dN/dX = (dX/dxi)^-T dN/dxi
       inverse = inverse2(reference_jacobian, reference_det)
+      p%gradient = 0.0_dp
+      p%gradient(1:2, 1:2) = matmul(reshape(displacement, [2, 4]), transpose(matmul(inverse, dn)))
       p%deformation = 0.0_dp
       p%deformation(1:2, 1:2) = matmul(current, transpose(matmul(inverse, dn)))
       inverse = inverse2(current_jacobian, current_det)
@@ -96,6 +99,7 @@ contains
           return
         end if
         p%deformation(3, 3) = p%radius/reference_radius
+        p%gradient(3, 3) = dot_product(n, displacement(1:7:2))/reference_radius
         p%b(3, 1:7:2) = n/p%radius
         p%volume = current_det*p%radius
         p%reference_volume = reference_det*reference_radius

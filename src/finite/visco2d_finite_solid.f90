@@ -13,7 +13,7 @@ module visco2d_finite_solid
   use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke, hyperelastic_mooney_rivlin
   use visco2d_quadrilateral, only: gauss_count
   use visco2d_hyperelastic, only: hyperelastic_t, hyperelastic_from_moduli, isochoric_response, volumetric_response, &
-                                  hyperelastic_response, pressure_tangent
+                                  hyperelastic_response, pressure_tangent, volume_change
   use visco2d_finite_element, only: finite_point_t, finite_kinematics, finite_force, finite_tangent, element_volumes
   implicit none
   private
@@ -53,7 +53,7 @@ contains
     type(finite_point_t) :: points(gauss_count)
     type(hyperelastic_t) :: law
     real(dp) :: tangent(4, 4, gauss_count), point_energy, current, reference, gradient(8), ratio, pressure, slope
-    real(dp) :: volumetric_energy
+    real(dp) :: volumetric_energy, change
     integer :: gp
     logical :: mean_dilatation
     force = 0.0_dp
@@ -68,16 +68,23 @@ contains
     if (mean_dilatation) then
       call element_volumes(points, current, reference, gradient)
       ratio = current/reference
-      call volumetric_response(law, ratio, pressure, slope, volumetric_energy)
+      ! theta - 1 = sum (J - 1) dV / V: dv = J dV at each point, and J - 1 from H keeps small strains' digits
+      change = 0.0_dp
+      do gp = 1, gauss_count
+        change = change + volume_change(points(gp)%gradient)*points(gp)%reference_volume
+      end do
+      call volumetric_response(law, ratio, pressure, slope, volumetric_energy, change/reference)
       energy = reference*volumetric_energy
     end if
     do gp = 1, gauss_count
       if (mean_dilatation) then
-        call isochoric_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy)
+        call isochoric_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy, &
+                                points(gp)%gradient)
         stress(1:3, gp) = stress(1:3, gp) + pressure
         tangent(:, :, gp) = tangent(:, :, gp) + pressure_tangent(pressure)
       else
-        call hyperelastic_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy)
+        call hyperelastic_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy, &
+                                   points(gp)%gradient)
       end if
       energy = energy + points(gp)%reference_volume*point_energy
       strain(:, gp) = logarithmic_strain(points(gp)%deformation)

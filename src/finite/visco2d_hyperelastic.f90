@@ -38,7 +38,7 @@ module visco2d_hyperelastic
   private
 
   public :: hyperelastic_t, hyperelastic_from_moduli, isochoric_response, volumetric_response, hyperelastic_response
-  public :: pressure_tangent, voigt_stress, voigt_tangent, identity3
+  public :: pressure_tangent, voigt_stress, voigt_tangent, identity3, volume_change
 
   real(dp), parameter :: identity3(3, 3) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, &
                                                     0.0_dp, 0.0_dp, 1.0_dp], [3, 3])
@@ -67,21 +67,36 @@ contains
   !> element F(1:2, 1:2) is the in-plane block, F(3, 3) the hoop stretch):
   !> Cauchy stress sigma_iso = tau_iso / J (Voigt, Pa), the spatial tangent
   !> c_iso (Voigt, Pa) and W_iso per unit reference volume (J/m^3).
-  pure subroutine isochoric_response(law, deformation, stress, tangent, energy)
+  pure subroutine isochoric_response(law, deformation, stress, tangent, energy, gradient)
     type(hyperelastic_t), intent(in) :: law
     real(dp), intent(in) :: deformation(3, 3)
     real(dp), intent(out) :: stress(4), tangent(4, 4)
     real(dp), intent(out), optional :: energy
-    real(dp) :: jacobian, bbar(3, 3), bbar2(3, 3), taubar(3, 3), tau(3, 3), i1, i2, trace_taubar
-    real(dp) :: c(4, 4), projector(4, 4), fictitious(4, 4)
-    jacobian = determinant3(deformation)
-    bbar = jacobian**(-2.0_dp/3.0_dp)*matmul(deformation, transpose(deformation))
-    bbar2 = matmul(bbar, bbar)
-    i1 = bbar(1, 1) + bbar(2, 2) + bbar(3, 3)
-    i2 = 0.5_dp*(i1**2 - (bbar2(1, 1) + bbar2(2, 2) + bbar2(3, 3)))
-    taubar = 2.0_dp*(law%c10 + i1*law%c01)*bbar - 2.0_dp*law%c01*bbar2
+    real(dp), intent(in), optional :: gradient(3, 3)  !< H = F - I, computed without the cancellation of F - I
+    real(dp) :: h(3, 3), jacobian, scale, bbar(3, 3), deviation(3, 3), bbar2_dev(3, 3), taubar(3, 3), tau(3, 3)
+    real(dp) :: i1_excess, i2_excess, trace_taubar, c(4, 4), projector(4, 4), fictitious(4, 4), trace_deviation
+    ! The stress from bbar - I, never from bbar itself: at strains of 1e-7 (a small load) dev(bbar) would
+    ! lose 7 digits to the cancellation of I; b - I = H + H^T + H H^T and J - 1 keep them all.
+    if (present(gradient)) then
+      h = gradient
+    else
+      h = deformation - identity3
+    end if
+    jacobian = 1.0_dp + volume_change(h)
+    scale = jacobian**(-2.0_dp/3.0_dp)
+    ! bbar - I = J^(-2/3) (b - I) + (J^(-2/3) - 1) I
+    deviation = scale*(h + transpose(h) + matmul(h, transpose(h))) + &
+                power_minus_one(volume_change(h), -2.0_dp/3.0_dp)*identity3
+    trace_deviation = deviation(1, 1) + deviation(2, 2) + deviation(3, 3)
+    bbar = identity3 + deviation
+    i1_excess = trace_deviation                                           ! I1bar - 3
+    i2_excess = 2.0_dp*trace_deviation + 0.5_dp*(trace_deviation**2 - sum(deviation*transpose(deviation)))
+    ! taubar = 2 (C10 + I1bar C01) bbar - 2 C01 bbar^2; its deviator from bbar - I:
+    ! dev bbar = dev(bbar - I), dev bbar^2 = dev(2 (bbar - I) + (bbar - I)^2)
+    bbar2_dev = deviator3(2.0_dp*deviation + matmul(deviation, deviation))
+    tau = 2.0_dp*(law%c10 + (3.0_dp + i1_excess)*law%c01)*deviator3(deviation) - 2.0_dp*law%c01*bbar2_dev
+    taubar = 2.0_dp*(law%c10 + (3.0_dp + i1_excess)*law%c01)*bbar - 2.0_dp*law%c01*matmul(bbar, bbar)
     trace_taubar = taubar(1, 1) + taubar(2, 2) + taubar(3, 3)
-    tau = taubar - trace_taubar/3.0_dp*identity3
     projector = symmetric_identity() - outer(voigt_stress(identity3), voigt_stress(identity3))/3.0_dp
     fictitious = 4.0_dp*law%c01*(outer(voigt_stress(bbar), voigt_stress(bbar)) - push_identity(bbar))
     c = double_contraction(projector, double_contraction(fictitious, projector)) &
@@ -90,33 +105,76 @@ contains
                          outer(voigt_stress(identity3), voigt_stress(tau)))
     stress = voigt_stress(tau)/jacobian
     tangent = c/jacobian
-    if (present(energy)) energy = law%c10*(i1 - 3.0_dp) + law%c01*(i2 - 3.0_dp)
+    if (present(energy)) energy = law%c10*i1_excess + law%c01*i2_excess
   end subroutine isochoric_response
+
+  !> J - 1 of F = I + H (the in-plane block and the hoop stretch), without cancellation.
+  pure real(dp) function volume_change(h)
+    real(dp), intent(in) :: h(3, 3)
+    real(dp) :: in_plane
+    in_plane = h(1, 1) + h(2, 2) + h(1, 1)*h(2, 2) - h(1, 2)*h(2, 1)   ! det(I + H_2x2) - 1
+    volume_change = h(3, 3) + in_plane*(1.0_dp + h(3, 3))
+  end function volume_change
+
+  !> (1 + x)^a - 1 without cancellation: the binomial series to x^5 for
+  !> |x| < 1e-3 (the remainder below 1e-15 of the result), else directly.
+  pure real(dp) function power_minus_one(x, a) result(value)
+    real(dp), intent(in) :: x, a
+    real(dp) :: term
+    integer :: k
+    if (abs(x) >= 1.0e-3_dp) then
+      value = (1.0_dp + x)**a - 1.0_dp
+      return
+    end if
+    value = 0.0_dp
+    term = 1.0_dp
+    do k = 1, 5
+      term = term*(a - real(k - 1, dp))/real(k, dp)*x
+      value = value + term
+    end do
+  end function power_minus_one
+
+  pure function deviator3(a) result(d)
+    real(dp), intent(in) :: a(3, 3)
+    real(dp) :: d(3, 3)
+    d = a - (a(1, 1) + a(2, 2) + a(3, 3))/3.0_dp*identity3
+  end function deviator3
 
   !> The volumetric part U = (J - 1)^2 / D1 at the volume ratio J > 0:
   !> the pressure p = U'(J) (Pa, positive in tension), its slope U''(J)
   !> (Pa) and U (J/m^3 of reference volume).
-  pure subroutine volumetric_response(law, jacobian, pressure, slope, energy)
+  pure subroutine volumetric_response(law, jacobian, pressure, slope, energy, change)
     type(hyperelastic_t), intent(in) :: law
     real(dp), intent(in) :: jacobian
     real(dp), intent(out) :: pressure, slope
     real(dp), intent(out), optional :: energy
-    pressure = 2.0_dp*(jacobian - 1.0_dp)/law%d1
+    real(dp), intent(in), optional :: change   !< J - 1 computed without cancellation (else from jacobian)
+    real(dp) :: excess
+    excess = jacobian - 1.0_dp
+    if (present(change)) excess = change
+    pressure = 2.0_dp*excess/law%d1
     slope = 2.0_dp/law%d1
-    if (present(energy)) energy = (jacobian - 1.0_dp)**2/law%d1
+    if (present(energy)) energy = excess**2/law%d1
   end subroutine volumetric_response
 
   !> The whole law at F, the pressure from the point's own J: Cauchy
   !> stress, spatial tangent (Voigt, Pa) and W (J/m^3 of reference volume).
-  pure subroutine hyperelastic_response(law, deformation, stress, tangent, energy)
+  pure subroutine hyperelastic_response(law, deformation, stress, tangent, energy, gradient)
     type(hyperelastic_t), intent(in) :: law
     real(dp), intent(in) :: deformation(3, 3)
     real(dp), intent(out) :: stress(4), tangent(4, 4)
     real(dp), intent(out), optional :: energy
-    real(dp) :: jacobian, pressure, slope, isochoric_energy, volumetric_energy
-    call isochoric_response(law, deformation, stress, tangent, isochoric_energy)
-    jacobian = determinant3(deformation)
-    call volumetric_response(law, jacobian, pressure, slope, volumetric_energy)
+    real(dp), intent(in), optional :: gradient(3, 3)  !< H = F - I without cancellation (isochoric_response)
+    real(dp) :: jacobian, pressure, slope, isochoric_energy, volumetric_energy, change
+    if (present(gradient)) then
+      call isochoric_response(law, deformation, stress, tangent, isochoric_energy, gradient)
+      change = volume_change(gradient)
+    else
+      call isochoric_response(law, deformation, stress, tangent, isochoric_energy)
+      change = volume_change(deformation - identity3)
+    end if
+    jacobian = 1.0_dp + change
+    call volumetric_response(law, jacobian, pressure, slope, volumetric_energy, change)
     stress(1:3) = stress(1:3) + pressure
     ! J c_vol / J = (p + J U'') 1 (x) 1 - 2 p I
     tangent = tangent + pressure_tangent(pressure) + jacobian*slope*outer(voigt_stress(identity3), &

@@ -6,7 +6,7 @@
 !> (src/base/) computes with them and knows nothing of the cards.
 module visco2d_model
   use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_standard
+  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_standard, kinematics_small
   use visco2d_curve, only: curve_t
   use visco2d_mesh, only: edge_set_none
   implicit none
@@ -23,6 +23,7 @@ module visco2d_model
     integer :: increments = 10                    !< INCREMENTS= of ANALYSIS STATIC: load increments of a plastic solve
     integer :: iterations = 30                    !< ITERATIONS= of ANALYSIS STATIC: Newton iterations allowed per increment
     logical :: full_newton = .false.              !< NEWTON=FULL of ANALYSIS DYNAMIC: the consistent tangent factored each iteration
+    integer :: kinematics = kinematics_small      !< KINEMATICS SMALL | LARGE
   end type settings_t
 
   !> A support: components prescribed at a set of nodes, u = value * curve(t)

@@ -1,0 +1,298 @@
+!> ANALYSIS STATIC with KINEMATICS LARGE: the equilibrium of a hyperelastic
+!> body at finite deformation, the loads (point loads and gravity, dead;
+!> prescribed displacements) applied in `settings%increments` equal
+!> increments (INCREMENTS=, default 10), each solved by Newton's method
+!> with the tangent of visco2d_finite_element (material and stress terms:
+!> quadratic convergence).
+!>
+!> In increment k the load is lambda_k R, lambda_k = k / N, and the
+!> prescribed displacements lambda_k u_p. Newton iteration i solves
+!> K_t du = lambda_k R - f(u) on the free equations (the prescribed values'
+!> increment taken in the first iteration), K_t and f assembled from every
+!> element's response at u. A correction that would invert an element is
+!> halved (up to 20 times) before it is taken. An increment has converged
+!> when both
+!>   |r| <= force_tolerance max(|lambda_k R|, |f|)       (free equations)
+!>   |r . K_t^-1 r| <= energy_tolerance |du_1 . r_0|     (the energy norm of the next correction)
+!> hold, the same tests as the plastic static solve; after ITERATIONS= (default 30) a located error
+!> (the ANALYSIS card, the increment, the iteration, both residuals) is returned, never a result.
+!>
+!> The stored energy is the strain energy W integrated over the reference
+!> body; the external work the trapezoidal sum over the increments of
+!> 1/2 (P_(k-1) + P_k) . (u_k - u_(k-1)), P the applied load on the free
+!> equations and the reactions on the supported ones: W - U is the
+!> trapezoid's O(1/N^2) error plus the force tolerance.
+module visco2d_finite_static
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use visco2d_kinds, only: dp, whole_body_factor
+  use visco2d_error, only: error_t, set_error
+  use visco2d_strings, only: integer_text, short_real
+  use visco2d_mesh, only: mesh_t
+  use visco2d_material, only: material_t
+  use visco2d_model, only: settings_t, loads_t, source_t
+  use visco2d_quadrilateral, only: gauss_count
+  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
+  use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
+                              scatter_add, nodal_field, nodal_average
+  use visco2d_static, only: static_solution_t
+  use visco2d_solve_errors, only: singular_error, not_finite_error
+  use visco2d_record, only: record_t, record_put_integer, record_put_real
+  use visco2d_finite_solid, only: element_response
+  use visco2d_finite_element, only: finite_point_t, finite_kinematics
+  implicit none
+  private
+
+  public :: finite_summary_t, solve_finite_static, finite_record
+
+  real(dp), parameter :: force_tolerance = 1.0e-9_dp    !< |r| relative to the load (and reactions)
+  real(dp), parameter :: energy_tolerance = 1.0e-18_dp  !< |r . K^-1 r| relative to the first iteration's
+  integer, parameter :: halvings = 20                   !< most halvings of a correction that inverts an element
+
+  !> What a finite-deformation static solve adds to the static solution.
+  type :: finite_summary_t
+    integer :: increments = 0                       !< load increments N
+    integer :: iterations = 0                       !< Newton iterations, all increments
+    integer :: iterations_max = 0                   !< the most in one increment
+    integer :: halvings = 0                         !< corrections halved because they inverted an element
+    real(dp), allocatable :: force_residual(:, :)   !< (ITERATIONS, N) |r| / max(|lambda R|, |f|) after each iteration
+    real(dp) :: volume_ratio_min = 1.0_dp           !< the least J = det F at a Gauss point
+    real(dp) :: volume_ratio_max = 1.0_dp           !< the largest J
+    real(dp) :: stretch_min = 1.0_dp                !< the least principal stretch at a Gauss point (in-plane or hoop)
+  end type finite_summary_t
+
+contains
+
+  !> The load-incremented Newton solve (module comment): the static
+  !> solution (displacement, reactions, Cauchy stresses and logarithmic
+  !> strains at the Gauss points, stored energy, external work) and the summary.
+  subroutine solve_finite_static(mesh, materials, settings, loads, source, solution, summary, error)
+    type(mesh_t), intent(in) :: mesh
+    type(material_t), intent(in) :: materials(:)
+    type(settings_t), intent(in) :: settings
+    type(loads_t), intent(in) :: loads
+    type(source_t), intent(in) :: source
+    type(static_solution_t), intent(out) :: solution
+    type(finite_summary_t), intent(out) :: summary
+    type(error_t), allocatable, intent(out) :: error
+    real(dp), allocatable :: load(:), presc(:), u(:), u_start(:), du(:), rhs(:), force(:), force_start(:), r(:)
+    real(dp), allocatable :: target(:), stress(:, :, :), strain(:, :, :)
+    logical, allocatable :: fixed(:)
+    type(band_matrix_t) :: stiffness
+    type(factor_t) :: factor
+    real(dp) :: lambda, energy_first, energy_next, force_ratio, scale, energy
+    integer :: n, k, iteration, info, cut, bad_element
+    logical :: converged, first
+
+    n = settings%increments
+    load = external_load(mesh, settings, loads, 0.0_dp) + gravity_load(mesh, settings, materials, loads)
+    fixed = support_mask(mesh, settings, loads)
+    presc = prescribed_displacement(mesh, loads, 0.0_dp)
+    allocate(u(2*mesh%nnode), stress(4, gauss_count, mesh%nelem), strain(4, gauss_count, mesh%nelem))
+    u = 0.0_dp
+    summary%increments = n
+    allocate(summary%force_residual(settings%iterations, n))
+    summary%force_residual = 0.0_dp
+    solution%external_work = 0.0_dp
+    call evaluate(u, bad_element)                      ! f(0) = 0 and K_t(0), the small-strain stiffness
+    if (bad_element > 0) then
+      call analysis_error('element '//integer_text(mesh%element_id(bad_element))//' is degenerate in the '// &
+                          'undeformed mesh')
+      return
+    end if
+
+    do k = 1, n
+      lambda = real(k, dp)/real(n, dp)
+      u_start = u
+      force_start = force
+      target = lambda*presc
+      energy_first = 0.0_dp
+      converged = .false.
+      first = .true.
+      do iteration = 1, settings%iterations
+        rhs = lambda*load - force
+        if (first) then
+          call band_constrain_rhs(stiffness, fixed, target - u, rhs)
+        else
+          call band_constrain_rhs(stiffness, fixed, 0.0_dp*u, rhs)
+        end if
+        call factor_compute(factor, stiffness, fixed, info, solver_of_card(settings%solver))
+        if (info > 0) then
+          if (k == 1 .and. iteration == 1) then
+            call singular_error(mesh, source, info, error)
+          else
+            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '// &
+              integer_text(n)//' (Newton iteration '//integer_text(iteration)//', equation '//integer_text(info)// &
+              '): the body may have buckled or reached a limit point; give more INCREMENTS=')
+          end if
+          return
+        end if
+        du = rhs
+        call factor_solve(factor, du, info)
+        if (info /= 0) then
+          call set_error(error, solve_failure_text(info))     ! located by the driver
+          return
+        end if
+        if (first) energy_first = abs(sum(merge(0.0_dp, du*rhs, fixed)))
+        first = .false.
+        do cut = 0, halvings                           ! never an inverted element: halve the correction
+          call evaluate(u + du, bad_element)
+          if (bad_element == 0) exit
+          if (cut == halvings) then
+            call analysis_error('element '//integer_text(mesh%element_id(bad_element))//' inverts in load '// &
+              'increment '//integer_text(k)//' of '//integer_text(n)//' (Newton iteration '//integer_text(iteration)// &
+              ', the correction halved '//integer_text(halvings)//' times): the deformation is beyond what this '// &
+              'mesh can follow, or the increments are too large; give more INCREMENTS=')
+            return
+          end if
+          du = 0.5_dp*du
+          summary%halvings = summary%halvings + 1
+        end do
+        u = u + du
+        r = lambda*load - force
+        scale = max(norm2(lambda*load), norm2(force), tiny(1.0_dp))
+        force_ratio = norm2(merge(0.0_dp, r, fixed))/scale
+        summary%force_residual(iteration, k) = force_ratio
+        if (.not. (ieee_is_finite(force_ratio) .and. all(ieee_is_finite(u)))) then
+          call analysis_error('the finite-deformation static solve diverged in load increment '//integer_text(k)// &
+            ' of '//integer_text(n)//' (Newton iteration '//integer_text(iteration)//': the displacement or the '// &
+            'residual is not finite)')
+          return
+        end if
+        du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with the last factor
+        call factor_solve(factor, du, info)
+        if (info /= 0) then
+          call set_error(error, solve_failure_text(info))     ! located by the driver
+          return
+        end if
+        energy_next = abs(sum(merge(0.0_dp, du*r, fixed)))
+        if (force_ratio <= force_tolerance .and. (energy_next <= energy_tolerance*energy_first .or. &
+                                                  energy_first == 0.0_dp)) then
+          converged = .true.
+          exit
+        end if
+      end do
+      if (.not. converged) then
+        call analysis_error('the finite-deformation static solve did not converge in load increment '// &
+          integer_text(k)//' of '//integer_text(n)//': after '//integer_text(settings%iterations)//' Newton '// &
+          'iterations the force residual is '//short_real(force_ratio)//' of the load (tolerance '// &
+          short_real(force_tolerance)//') and the energy norm '//short_real(energy_next/max(energy_first, &
+          tiny(1.0_dp)))//' of the first iteration''s (tolerance '//short_real(energy_tolerance)//'); give more '// &
+          'INCREMENTS= (or ITERATIONS=)')
+        return
+      end if
+      summary%iterations = summary%iterations + iteration
+      summary%iterations_max = max(summary%iterations_max, iteration)
+      solution%external_work = solution%external_work + 0.5_dp*dot_product( &
+        merge(force_start, (lambda - 1.0_dp/n)*load, fixed) + merge(force, lambda*load, fixed), u - u_start)
+    end do
+
+    solution%displacement = nodal_field(mesh, u)
+    solution%reaction = nodal_field(mesh, force - load)
+    solution%strain = strain
+    solution%stress = stress
+    solution%nodal_stress = nodal_average(mesh, stress)
+    solution%strain_energy = energy
+    call deformation_extremes(u)
+    if (.not. all(ieee_is_finite(solution%stress)) .or. .not. ieee_is_finite(solution%strain_energy) .or. &
+        .not. ieee_is_finite(solution%external_work)) &
+      call not_finite_error(source, 'the finite-deformation stress or energy', error)
+
+  contains
+
+    !> Every element's response at the displacement v: the internal force,
+    !> the tangent (in `stiffness`), the stresses, strains and the energy;
+    !> `bad` the first inverted element (0: none), and then nothing is kept.
+    subroutine evaluate(v, bad)
+      real(dp), intent(in) :: v(:)
+      integer, intent(out) :: bad
+      real(dp) :: f(8), ke(8, 8), element_stress(4, gauss_count), element_strain(4, gauss_count), element_energy
+      real(dp), allocatable :: trial_force(:), trial_stress(:, :, :), trial_strain(:, :, :)
+      type(band_matrix_t) :: trial_stiffness
+      real(dp) :: trial_energy
+      integer :: e
+      logical :: valid
+      bad = 0
+      allocate(trial_force(2*mesh%nnode), trial_stress(4, gauss_count, mesh%nelem), &
+               trial_strain(4, gauss_count, mesh%nelem))
+      trial_force = 0.0_dp
+      trial_energy = 0.0_dp
+      call band_create(trial_stiffness, 2*mesh%nnode, mesh%half_bandwidth)
+      do e = 1, mesh%nelem
+        call element_response(settings%geometry, settings%formulation, materials(mesh%element_material(e)), &
+                              mesh%xy(:, mesh%connectivity(:, e)), v(element_dofs(mesh, e)), .true., f, ke, &
+                              element_stress, element_strain, element_energy, valid)
+        if (.not. valid) then
+          bad = e
+          return
+        end if
+        call scatter_add(mesh, e, f, trial_force)
+        call band_add_element(trial_stiffness, element_dofs(mesh, e), ke)
+        trial_stress(:, :, e) = element_stress
+        trial_strain(:, :, e) = element_strain
+        trial_energy = trial_energy + element_energy
+      end do
+      call move_alloc(trial_force, force)
+      call move_alloc(trial_stress, stress)
+      call move_alloc(trial_strain, strain)
+      ! A held equation keeps its diagonal in the constrained system (band_constrain_matrix) and the
+      ! held value's right-hand side is that diagonal times the value; under a large compression the
+      ! stress term can make a held equation's diagonal negative (the free system is still positive
+      ! definite), which Cholesky would refuse: its magnitude holds the value as well.
+      where (fixed) trial_stiffness%ab(1, :) = abs(trial_stiffness%ab(1, :))
+      stiffness = trial_stiffness
+      energy = trial_energy
+    end subroutine evaluate
+
+    !> The least and largest J and the least principal stretch over the Gauss points at v.
+    subroutine deformation_extremes(v)
+      real(dp), intent(in) :: v(:)
+      type(finite_point_t) :: points(gauss_count)
+      real(dp) :: j, c(2, 2), mean, radius
+      integer :: e, gp
+      logical :: valid
+      summary%volume_ratio_min = huge(1.0_dp)
+      summary%volume_ratio_max = -huge(1.0_dp)
+      summary%stretch_min = huge(1.0_dp)
+      do e = 1, mesh%nelem
+        call finite_kinematics(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), v(element_dofs(mesh, e)), &
+                               points, valid)
+        do gp = 1, gauss_count
+          associate (f => points(gp)%deformation)
+          j = f(3, 3)*(f(1, 1)*f(2, 2) - f(1, 2)*f(2, 1))
+          summary%volume_ratio_min = min(summary%volume_ratio_min, j)
+          summary%volume_ratio_max = max(summary%volume_ratio_max, j)
+          c = matmul(transpose(f(1:2, 1:2)), f(1:2, 1:2))
+          mean = 0.5_dp*(c(1, 1) + c(2, 2))
+          radius = hypot(0.5_dp*(c(1, 1) - c(2, 2)), c(1, 2))
+          summary%stretch_min = min(summary%stretch_min, sqrt(max(mean - radius, 0.0_dp)), f(3, 3))
+          end associate
+        end do
+      end do
+    end subroutine deformation_extremes
+
+    !> An error at the ANALYSIS card.
+    subroutine analysis_error(message)
+      character(*), intent(in) :: message
+      integer :: c, line
+      line = 0
+      do c = 1, size(source%keywords)
+        if (source%keywords(c) == 'ANALYSIS') line = source%lines(c)
+      end do
+      call set_error(error, message, file=source%file, line=line, card='ANALYSIS')
+    end subroutine analysis_error
+  end subroutine solve_finite_static
+
+  !> The summary keys of a finite-deformation static solve (doc/outputs.md).
+  subroutine finite_record(summary, record)
+    type(finite_summary_t), intent(in) :: summary
+    type(record_t), intent(inout) :: record
+    call record_put_integer(record, 'load_increments', summary%increments)
+    call record_put_integer(record, 'newton_iterations', summary%iterations)
+    call record_put_integer(record, 'newton_iterations_max', summary%iterations_max)
+    call record_put_integer(record, 'newton_halvings', summary%halvings)
+    call record_put_real(record, 'volume_ratio_min', summary%volume_ratio_min)
+    call record_put_real(record, 'volume_ratio_max', summary%volume_ratio_max)
+    call record_put_real(record, 'stretch_min', summary%stretch_min)
+  end subroutine finite_record
+end module visco2d_finite_static
