@@ -273,6 +273,34 @@ contains
     lines(4) = 'MATERIAL flesh NEOHOOKE C10=2e5 D1=1e-7 C01=1'
     call try_read_deck(path, refused, message, lines)
     call check('NEOHOOKE with C01=: refused (an unused field)', refused)
+    ! HYPERFOAM and its OGDEN terms: mu0 = sum mu, K0 = sum 2 mu (1/3 + nu/(1 - 2 nu))
+    lines = [base(1:3), [character(len=deck_line_length) :: 'MATERIAL foam HYPERFOAM RHO=30', &
+      'OGDEN MU=1.0e5 ALPHA=8 NU=0.1', 'OGDEN MU=2.0e4 ALPHA=-2 NU=0.0'], base(5:)]
+    lines(3) = 'KINEMATICS SMALL'
+    call write_deck(path, lines)
+    call read_deck(path, deck, error)
+    call check('HYPERFOAM with two OGDEN terms: reads (small strain)', .not. allocated(error))
+    if (allocated(error)) print '(a)', '  '//error_text(error)
+    if (.not. allocated(error)) then
+      call check_close('HYPERFOAM: G0 = sum mu_i', deck%materials(1)%shear, 1.2e5_dp, 1.0e-15_dp)
+      call check_close('HYPERFOAM: K0 = sum 2 mu_i (1/3 + beta_i)', deck%materials(1)%bulk, &
+                       2.0e5_dp*(1.0_dp/3.0_dp + 0.1_dp/0.8_dp) + 4.0e4_dp/3.0_dp, 1.0e-14_dp)
+    end if
+    lines(5) = 'OGDEN MU=0 ALPHA=8 NU=0.1'
+    call try_read_deck(path, refused, message, lines)
+    call check_error_location('OGDEN MU = 0', message, path, 5, 0, 'OGDEN', 'MU must be nonzero')
+    lines(5) = 'OGDEN MU=-1.0e5 ALPHA=8 NU=0.1'
+    call try_read_deck(path, refused, message, lines)
+    call check_error_location('OGDEN terms with sum(mu) < 0', message, path, 4, 0, 'MATERIAL', 'both must be positive')
+    lines(5) = 'OGDEN MU=1.0e5 ALPHA=8 NU=0.5'
+    call try_read_deck(path, refused, message, lines)
+    call check_error_location('OGDEN NU = 0.5', message, path, 5, 0, 'OGDEN', 'NU must be in (-1, 0.5)')
+    lines = [base(1:3), [character(len=deck_line_length) :: 'MATERIAL foam HYPERFOAM'], base(5:)]
+    call try_read_deck(path, refused, message, lines)
+    call check_error_location('HYPERFOAM without OGDEN', message, path, 4, 0, 'MATERIAL', 'at least one OGDEN')
+    lines = [base(1:4), [character(len=deck_line_length) :: 'OGDEN MU=1.0e5 ALPHA=8 NU=0.1'], base(5:)]
+    call try_read_deck(path, refused, message, lines)
+    call check_error_location('OGDEN after a NEOHOOKE', message, path, 5, 0, 'OGDEN', 'belong to a HYPERFOAM')
     ! small strain with a hyperelastic material: warned, linearised (G = 2 C10 = 4e5, K = 2/D1 = 2e7)
     lines = base
     lines(3) = 'KINEMATICS SMALL'

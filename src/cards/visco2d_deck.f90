@@ -13,7 +13,8 @@ module visco2d_deck
   use visco2d_strings, only: integer_text, short_real, nearest_word
   use visco2d_cards, only: card_deck_t, read_cards, card_error, positional_word, check_fields_used, field_column, &
                            named_integer, named_word, has_field
-  use visco2d_material_cards, only: read_material, read_prony, finish_material, read_plastic, read_hardening
+  use visco2d_material_cards, only: read_material, read_prony, finish_material, read_plastic, read_hardening, &
+                                    read_ogden
   use visco2d_curve_cards, only: read_curve
   use visco2d_time, only: time_stage_t, read_time
   use visco2d_dynamic_cards, only: dynamic_settings_t, output_request_t, read_wilson, read_initial, read_drop, &
@@ -47,9 +48,9 @@ module visco2d_deck
   public :: plate_t, pad_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(31) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
-    'FORMULATION', 'KINEMATICS', 'SOLVER', 'MATERIAL', 'PRONY', 'PLASTIC', 'HARDENING', 'NODE', 'ELEMENT', 'MESH', 'FIX', &
-    'PRESSURE', 'FORCE', 'GRAVITY', &
+  character(len=11), parameter :: card_keywords(32) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+    'FORMULATION', 'KINEMATICS', 'SOLVER', 'MATERIAL', 'PRONY', 'OGDEN', 'PLASTIC', 'HARDENING', 'NODE', 'ELEMENT', &
+    'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
     'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'PAD', 'STOP', 'PROBE', 'EXPECT', &
     'BRUISE', 'END']
 
@@ -134,6 +135,12 @@ contains
         return
       end if
       call read_prony(cards, card, deck%materials(size(deck%materials)), error)
+    case ('OGDEN')
+      if (.not. follows(deck, reading, i, ['MATERIAL', 'OGDEN   '])) then
+        call card_error(error, cards, card, 'OGDEN must follow its MATERIAL id HYPERFOAM card (or another OGDEN card)')
+        return
+      end if
+      call read_ogden(cards, card, deck%materials(size(deck%materials)), error)
     case ('PLASTIC')
       if (.not. follows(deck, reading, i, ['MATERIAL ', 'PRONY    ', 'PLASTIC  ', 'HARDENING'])) then
         call card_error(error, cards, card, 'PLASTIC must follow its MATERIAL card (or that material''s PRONY cards)')
@@ -177,7 +184,7 @@ contains
     case default
       call card_error(error, cards, card, 'unknown card "'//card%keyword//'"'// &
         suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
-        'GEOMETRY FORMULATION KINEMATICS MATERIAL PRONY PLASTIC HARDENING NODE ELEMENT MESH FIX PRESSURE FORCE '// &
+        'GEOMETRY FORMULATION KINEMATICS MATERIAL PRONY OGDEN PLASTIC HARDENING NODE ELEMENT MESH FIX PRESSURE FORCE '// &
         'GRAVITY CURVE TIME '// &
         'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE PAD STOP PROBE EXPECT BRUISE END)')
     end select

@@ -14,13 +14,13 @@ module visco2d_material_cards
                            has_field, field_column, positional_count
   use visco2d_material, only: material_t, material_kind_elastic, material_kind_viscoelastic, &
                               material_kind_uniaxial, elastic_constants_from_e_nu, bilinear_hardening, &
-                              hyperelastic_neo_hooke, hyperelastic_mooney_rivlin
+                              hyperelastic_neo_hooke, hyperelastic_mooney_rivlin, hyperelastic_foam
   use visco2d_relaxation, only: uniaxial_to_shear
   use visco2d_sorting, only: sorted_order
   implicit none
   private
 
-  public :: read_material, read_prony, finish_material, read_plastic, read_hardening
+  public :: read_material, read_prony, finish_material, read_plastic, read_hardening, read_ogden
 
 contains
 
@@ -29,6 +29,7 @@ contains
   !> MATERIAL id UNIAXIAL NU=.. [RHO=..]         followed by PRONY E=.. ALPHA=.. cards
   !> MATERIAL id NEOHOOKE C10=.. D1=.. [RHO=..]  or E=.. NU=.. or G=.. K=.. (W = C10 (I1bar - 3) + (J - 1)^2 / D1)
   !> MATERIAL id MOONEY C10=.. C01=.. D1=.. [RHO=..]
+  !> MATERIAL id HYPERFOAM [RHO=..]             followed by OGDEN MU=.. ALPHA=.. NU=.. cards (1 to 6)
   subroutine read_material(cards, card, materials, error)
     type(card_deck_t), intent(in) :: cards
     type(card_t), intent(inout) :: card
@@ -38,8 +39,8 @@ contains
     character(:), allocatable :: kind
     integer :: k
     call positional_word(cards, card, 1, 'material id', material%id, error); if (allocated(error)) return
-    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC, UNIAXIAL, NEOHOOKE or MOONEY)', kind, &
-                         error)
+    call positional_word(cards, card, 2, 'material kind (ELASTIC, VISCOELASTIC, UNIAXIAL, NEOHOOKE, MOONEY or '// &
+                         'HYPERFOAM)', kind, error)
     if (allocated(error)) return
     material%line = card%line
     do k = 1, size(materials)
@@ -96,9 +97,15 @@ contains
       allocate(material%uniaxial_young(0), material%uniaxial_rate(0), material%prony_lines(0))
     case ('NEOHOOKE', 'MOONEY')
       call read_hyperelastic(); if (allocated(error)) return
+    case ('HYPERFOAM')
+      material%kind = material_kind_elastic
+      material%hyperelastic = hyperelastic_foam
+      allocate(material%foam_mu(0), material%foam_alpha(0), material%foam_nu(0), material%foam_lines(0))
+      call check_fields_used(cards, card, error, 'MATERIAL id HYPERFOAM [RHO=..], then OGDEN MU=.. ALPHA=.. NU=..')
+      if (allocated(error)) return
     case default
-      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC, UNIAXIAL, NEOHOOKE or '// &
-                      'MOONEY, got "'//kind//'"', field_column(card, '2')); return
+      call card_error(error, cards, card, 'material kind must be ELASTIC, VISCOELASTIC, UNIAXIAL, NEOHOOKE, '// &
+                      'MOONEY or HYPERFOAM, got "'//kind//'"', field_column(card, '2')); return
     end select
     material%card_column = field_column(card, 'K')
     if (material%kind == material_kind_uniaxial) material%card_column = field_column(card, 'NU')
@@ -174,6 +181,46 @@ contains
       end if
     end subroutine read_d1
   end subroutine read_material
+
+  !> OGDEN MU=.. ALPHA=.. NU=..: one term of a HYPERFOAM material (ABAQUS'
+  !> *HYPERFOAM mu_i, alpha_i, nu_i): W gains 2 mu / alpha^2 (lambda1^alpha +
+  !> lambda2^alpha + lambda3^alpha - 3 + (J^(-alpha beta) - 1)/beta), beta = nu/(1 - 2 nu).
+  subroutine read_ogden(cards, card, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    real(dp) :: mu, alpha, nu
+    if (material%hyperelastic /= hyperelastic_foam) then
+      call card_error(error, cards, card, 'OGDEN terms belong to a HYPERFOAM material; material '//material%id// &
+                      ' is not one'); return
+    end if
+    if (size(material%foam_mu) >= 6) then
+      call card_error(error, cards, card, 'a HYPERFOAM material takes at most 6 OGDEN terms (as ABAQUS'' N <= 6)')
+      return
+    end if
+    call named_real(cards, card, 'MU', mu, error); if (allocated(error)) return
+    call named_real(cards, card, 'ALPHA', alpha, error); if (allocated(error)) return
+    call named_real(cards, card, 'NU', nu, error); if (allocated(error)) return
+    call check_fields_used(cards, card, error, 'OGDEN MU=.. ALPHA=.. NU=.. after MATERIAL id HYPERFOAM')
+    if (allocated(error)) return
+    if (.not. (abs(mu) > 0.0_dp .and. abs(mu) < 1.0e12_dp)) then
+      call card_error(error, cards, card, 'MU must be nonzero and below 1e12 Pa in magnitude, got '//short_real(mu), &
+                      field_column(card, 'MU')); return
+    end if
+    if (.not. (abs(alpha) >= 1.0e-3_dp .and. abs(alpha) <= 100.0_dp)) then
+      call card_error(error, cards, card, 'ALPHA must be nonzero, 1e-3 <= |ALPHA| <= 100, got '//short_real(alpha), &
+                      field_column(card, 'ALPHA')); return
+    end if
+    if (.not. (nu > -1.0_dp .and. nu < 0.5_dp)) then
+      call card_error(error, cards, card, 'NU must be in (-1, 0.5), got '//short_real(nu), field_column(card, 'NU'))
+      return
+    end if
+    material%foam_mu = [material%foam_mu, mu]
+    material%foam_alpha = [material%foam_alpha, alpha]
+    material%foam_nu = [material%foam_nu, nu]
+    material%foam_lines = [material%foam_lines, card%line]
+  end subroutine read_ogden
 
   !> PRONY G=.. BETA=.. (VISCOELASTIC) or PRONY E=.. ALPHA=.. (UNIAXIAL): one term of eq. [12] or [47].
   subroutine read_prony(cards, card, material, error)
@@ -310,8 +357,39 @@ contains
     type(material_t), intent(inout) :: material
     type(error_t), allocatable, intent(inout) :: error
     call finish_viscoelastic(cards, material, error); if (allocated(error)) return
+    call finish_foam(cards, material, error); if (allocated(error)) return
     call finish_plastic(cards, material, error)
   end subroutine finish_material
+
+  !> A HYPERFOAM material needs an OGDEN term; its small-strain moduli are
+  !> mu0 = sum mu_i and K0 = sum 2 mu_i (1/3 + beta_i), beta_i = nu_i / (1 - 2 nu_i)
+  !> (the linear pad it becomes in a small-strain run), both positive.
+  subroutine finish_foam(cards, material, error)
+    type(card_deck_t), intent(in) :: cards
+    type(material_t), intent(inout) :: material
+    type(error_t), allocatable, intent(inout) :: error
+    integer :: k
+    if (material%hyperelastic /= hyperelastic_foam) return
+    do k = 1, cards%count
+      if (cards%cards(k)%line == material%line) exit
+    end do
+    if (size(material%foam_mu) == 0) then
+      call card_error(error, cards, cards%cards(k), 'material '//material%id//' needs at least one OGDEN MU=.. '// &
+                      'ALPHA=.. NU=.. card after it'); return
+    end if
+    material%shear = sum(material%foam_mu)
+    material%bulk = sum(2.0_dp*material%foam_mu*(1.0_dp/3.0_dp + material%foam_nu/(1.0_dp - 2.0_dp*material%foam_nu)))
+    if (.not. (material%shear > 0.0_dp .and. material%bulk > 0.0_dp)) then
+      call card_error(error, cards, cards%cards(k), 'material '//material%id//': its OGDEN terms give an initial '// &
+        'shear modulus sum(mu) = '//short_real(material%shear)//' Pa and bulk modulus '//short_real(material%bulk)// &
+        ' Pa; both must be positive'); return
+    end if
+    call instantaneous_e_nu(material)
+    if (.not. conditioned(material)) then
+      call card_error(error, cards, cards%cards(k), ratio_message(material)); return
+    end if
+    material%long_term_shear = material%shear
+  end subroutine finish_foam
 
   !> The hardening curve of a PLASTIC material: a table needs a point; the
   !> bilinear curve needs 0 <= E_t < E (E instantaneous), H = E E_t / (E - E_t).
