@@ -61,6 +61,7 @@ program test_hyperfoam
   call objectivity()
   call parameter_checks()
   call inadmissible_deformation()
+  call example_sets()
   call print_measures()
   call test_summary('test_hyperfoam')
 
@@ -518,8 +519,8 @@ contains
   !> (sigma = P F^T, F_zr = 0, F_zz = 1); dW/dgamma by the 4-point formula with h = 1e-3 (truncation
   !> h^4 |W^(5)|/30 ~ 1e-12 |alpha|^4 relative, round-off eps |W|/h ~ 1e-13: tolerance 1e-8 relative
   !> to the shear stress, plus 1e-8 mu0 where it vanishes). The universal relation of isotropic
-  !> elasticity in simple shear, sigma_11 - sigma_22 = gamma sigma_12 (Rivlin; Truesdell & Noll 1965,
-  !> "The non-linear field theories of mechanics", sec. 54), to 1e-10.
+  !> elasticity in simple shear, sigma_11 - sigma_22 = gamma sigma_12 (Rivlin 1948; Truesdell & Noll 1965,
+  !> "The non-linear field theories of mechanics"), to 1e-10.
   subroutine simple_shear()
     real(dp), parameter :: h = 1.0e-3_dp
     real(dp) :: gamma, f(3, 3), stress(4), tangent(4, 4), derivative, shear, bulk
@@ -764,5 +765,42 @@ contains
     call check('strong_compression_finite', admissible .and. all(ieee_is_finite(stress)) .and. &
                all(ieee_is_finite(tangent)) .and. ieee_is_finite(w))
   end subroutine inadmissible_deformation
+
+  !> The two illustrative pad foams of doc/hyperfoam.md (nu = 0, so the lateral stretch is 1 and the
+  !> nominal stress of uniaxial compression is sum 2 mu_i/alpha_i (lam^alpha_i - 1)/lam): the check accepts
+  !> them, E0 = 2 mu0 (nu0 = 0), and the code's nominal stress sigma_zz (lateral stretch 1, so the
+  !> nominal stress is sigma_zz itself) equals the closed form to 1e-12 at the strains the doc tabulates
+  !> (printed for the doc).
+  subroutine example_sets()
+    type(hyperfoam_t) :: sets(2)
+    character(len=1), parameter :: names(2) = ['A', 'B']
+    real(dp), parameter :: strains(5) = [0.05_dp, 0.2_dp, 0.4_dp, 0.6_dp, 0.8_dp]
+    real(dp) :: stress(4), tangent(4, 4), lam, expected, shear, bulk
+    integer :: n, k, i
+    character(len=120) :: line
+    sets(1) = foam([0.245e6_dp, 0.005e6_dp], [10.0_dp, -2.0_dp], [0.0_dp, 0.0_dp])
+    sets(2) = foam([0.74e6_dp, 0.01e6_dp], [12.0_dp, -2.0_dp], [0.0_dp, 0.0_dp])
+    do n = 1, 2
+      call check('example_set_accepted_'//names(n), len(hyperfoam_check(sets(n))) == 0)
+      call hyperfoam_initial_moduli(sets(n), shear, bulk)
+      write(line, '(a, es10.3, a, es10.3, a, es10.3)') 'example set '//names(n)//': mu0 ', shear, ' K0 ', bulk, &
+        ' E0 ', 9.0_dp*bulk*shear/(3.0_dp*bulk + shear)
+      print '(a)', trim(line)
+      do k = 1, size(strains)
+        lam = 1.0_dp - strains(k)
+        call hyperfoam_response(sets(n), diagonal([1.0_dp, lam, 1.0_dp]), stress, tangent)
+        expected = 0.0_dp
+        do i = 1, size(sets(n)%mu)
+          expected = expected + 2.0_dp*sets(n)%mu(i)/sets(n)%alpha(i)*(lam**sets(n)%alpha(i) - 1.0_dp)/lam
+        end do
+        call check_close('example_set_nominal_'//names(n)//'_'//digit(k), stress(2), expected, rtol=1.0e-12_dp)
+        call check_close('example_set_lateral_free_'//names(n)//'_'//digit(k), abs(stress(1)) + abs(stress(3)), &
+                         0.0_dp, rtol=0.0_dp, atol=1.0e-12_dp*abs(expected))
+        write(line, '(a, f5.2, a, es11.4, a, es11.4, a)') 'example set '//names(n)//': compression ', strains(k), &
+          ' nominal stress ', stress(2), ' Pa, tangent D(2,2) ', tangent(2, 2), ' Pa'
+        print '(a)', trim(line)
+      end do
+    end do
+  end subroutine example_sets
 
 end program test_hyperfoam

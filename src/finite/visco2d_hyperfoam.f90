@@ -14,7 +14,7 @@
 !> tau_a = lam_a dW/dlam_a = sum_i 2 mu_i/a_i (lam_a^a_i - J^(-a_i b_i)), the
 !> Cauchy stresses sigma_a = tau_a/J. The spatial tangent is the principal
 !> form (Bonet & Wood 2008, "Nonlinear Continuum Mechanics for Finite Element
-!> Analysis", 2nd ed., sec. 6.6; Simo & Taylor 1991, CMAME 85):
+!> Analysis", 2nd ed., ch. 6; Simo & Taylor 1991, CMAME 85, 273-310):
 !>
 !>   J c = sum_ab (dtau_a/dln lam_b - 2 tau_a delta_ab) n_a n_a n_b n_b
 !>       + sum_(a/=b) g_ab (n_a n_b n_a n_b + n_a n_b n_b n_a),
