@@ -760,6 +760,17 @@ contains
     call hyperfoam_response(foams(3), f, stress, tangent, w, admissible)
     call check('zero_hoop_not_admissible', .not. admissible .and. all(ieee_is_finite(stress)) .and. &
                all(ieee_is_finite(tangent)))
+    ! A foam without terms or with arrays of unequal length (the caller skipped hyperfoam_check): zeros.
+    call hyperfoam_response(hyperfoam_t(), diagonal([0.9_dp, 0.8_dp, 1.0_dp]), stress, tangent, w, admissible)
+    call check('no_terms_not_admissible', .not. admissible .and. all(stress == 0.0_dp) .and. w == 0.0_dp)
+    call hyperfoam_response(foam([1.0e5_dp, 1.0e4_dp], [2.0_dp], [0.0_dp, 0.0_dp]), diagonal([0.9_dp, 0.8_dp, 1.0_dp]), &
+                            stress, tangent, w, admissible)
+    call check('unequal_lengths_not_admissible', .not. admissible .and. all(tangent == 0.0_dp))
+    ! Overflow: lam^alpha = 1e-3^(-200) = 1e600 is not a double: zeros, never Infinity.
+    call hyperfoam_response(foam([1.0e5_dp], [-200.0_dp], [0.0_dp]), diagonal([1.0e-3_dp, 1.0_dp, 1.0_dp]), &
+                            stress, tangent, w, admissible)
+    call check('overflow_not_admissible', .not. admissible .and. all(stress == 0.0_dp) .and. &
+               all(tangent == 0.0_dp) .and. w == 0.0_dp)
     f = diagonal([0.2_dp, 0.2_dp, 0.2_dp])    ! 99.2 % volume loss: still admissible and finite
     call hyperfoam_response(foams(5), f, stress, tangent, w, admissible)
     call check('strong_compression_finite', admissible .and. all(ieee_is_finite(stress)) .and. &

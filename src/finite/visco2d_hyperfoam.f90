@@ -55,8 +55,10 @@ contains
   !> tensor c_ijkl = J^-1 F_iI F_jJ F_kK F_lL CC_IJKL, CC = 4 d2W/dCdC, in the
   !> same order, the fourth row and column for the pair (1,2) with no factor
   !> 2 (D(4,4) = c_1212). A deformation with det F(1:2,1:2) <= 0, F(3,3) <= 0
-  !> or a value not finite is not admissible: stress, tangent and energy are
-  !> then zero and `admissible` (if present) is false.
+  !> or a value not finite is not admissible, and so is a foam without terms
+  !> or with arrays of unequal length (hyperfoam_check tells why) and a result
+  !> that overflows: stress, tangent and energy are then zero and
+  !> `admissible` (if present) is false, never NaN or Infinity.
   pure subroutine hyperfoam_response(foam, deformation, stress, tangent, energy, admissible)
     type(hyperfoam_t), intent(in) :: foam
     real(dp), intent(in) :: deformation(3, 3)
@@ -73,8 +75,10 @@ contains
     stress = 0.0_dp
     tangent = 0.0_dp
     if (present(energy)) energy = 0.0_dp
+    if (present(admissible)) admissible = .false.
+    if (.not. (allocated(foam%mu) .and. allocated(foam%alpha) .and. allocated(foam%nu))) return
+    if (size(foam%mu) < 1 .or. size(foam%alpha) /= size(foam%mu) .or. size(foam%nu) /= size(foam%mu)) return
     call principal_frame(deformation, stretch, direction, fine)
-    if (present(admissible)) admissible = fine
     if (.not. fine) return
     volume = product(stretch)
     call hyperfoam_principal(foam, stretch, kirchhoff, modulus, shear)
@@ -101,6 +105,14 @@ contains
         tangent(p, q) = c(voigt_i(p), voigt_j(p), voigt_i(q), voigt_j(q))/volume
       end do
     end do
+    fine = all(ieee_is_finite(stress)) .and. all(ieee_is_finite(tangent))
+    if (present(energy)) fine = fine .and. ieee_is_finite(energy)
+    if (.not. fine) then
+      stress = 0.0_dp
+      tangent = 0.0_dp
+      if (present(energy)) energy = 0.0_dp
+    end if
+    if (present(admissible)) admissible = fine
   end subroutine hyperfoam_response
 
   !> The principal Kirchhoff stresses tau_a at the principal stretches, and
