@@ -777,21 +777,23 @@ contains
                all(ieee_is_finite(tangent)) .and. ieee_is_finite(w))
   end subroutine inadmissible_deformation
 
-  !> The two illustrative pad foams of doc/hyperfoam.md (nu = 0, so the lateral stretch is 1 and the
+  !> The three pad foams of doc/hyperfoam.md: the two illustrative sets A and B and the *HYPERFOAM, N=2
+  !> example of the CalculiX manual (C, read as MPa) (nu = 0, so the lateral stretch is 1 and the
   !> nominal stress of uniaxial compression is sum 2 mu_i/alpha_i (lam^alpha_i - 1)/lam): the check accepts
   !> them, E0 = 2 mu0 (nu0 = 0), and the code's nominal stress sigma_zz (lateral stretch 1, so the
   !> nominal stress is sigma_zz itself) equals the closed form to 1e-12 at the strains the doc tabulates
   !> (printed for the doc).
   subroutine example_sets()
-    type(hyperfoam_t) :: sets(2)
-    character(len=1), parameter :: names(2) = ['A', 'B']
+    type(hyperfoam_t) :: sets(3)
+    character(len=1), parameter :: names(3) = ['A', 'B', 'C']
     real(dp), parameter :: strains(5) = [0.05_dp, 0.2_dp, 0.4_dp, 0.6_dp, 0.8_dp]
     real(dp) :: stress(4), tangent(4, 4), lam, expected, shear, bulk
     integer :: n, k, i
     character(len=120) :: line
     sets(1) = foam([0.245e6_dp, 0.005e6_dp], [10.0_dp, -2.0_dp], [0.0_dp, 0.0_dp])
     sets(2) = foam([0.74e6_dp, 0.01e6_dp], [12.0_dp, -2.0_dp], [0.0_dp, 0.0_dp])
-    do n = 1, 2
+    sets(3) = foam([0.164861e6_dp, 2.302e-5_dp*1.0e6_dp], [8.88413_dp, -4.81798_dp], [0.0_dp, 0.0_dp])
+    do n = 1, size(sets)
       call check('example_set_accepted_'//names(n), len(hyperfoam_check(sets(n))) == 0)
       call hyperfoam_initial_moduli(sets(n), shear, bulk)
       write(line, '(a, es10.3, a, es10.3, a, es10.3)') 'example set '//names(n)//': mu0 ', shear, ' K0 ', bulk, &
