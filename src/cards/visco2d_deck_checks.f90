@@ -7,7 +7,7 @@ module visco2d_deck_checks
   use visco2d_error, only: error_t
   use visco2d_strings, only: integer_text, message_real, short_real
   use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, range_t, in_range, range_text
-  use visco2d_material, only: has_memory, hyperelastic_none, hyperelastic_name, hyperelastic_foam
+  use visco2d_material, only: has_memory, hyperelastic_none, hyperelastic_name
   use visco2d_dynamic_cards, only: standard_gravity
   use visco2d_contact_cards, only: stop_name, stop_at_tend, stop_at_max_deformation, stop_at_separation
   use visco2d_mesh, only: edge_set_name
@@ -199,7 +199,7 @@ contains
   end subroutine check_locking
 
   !> KINEMATICS LARGE runs what src/finite/ solves so far: ANALYSIS STATIC of
-  !> elastic or hyperelastic bodies under point loads, gravity and prescribed
+  !> elastic or hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) bodies under point loads, gravity and prescribed
   !> displacements. Anything else is refused at its card, with what to do;
   !> a hyperelastic material in a small-strain run warns (it is linearised).
   subroutine check_kinematics(deck, error)
@@ -224,19 +224,13 @@ contains
     do k = 1, size(deck%materials)
       if (deck%materials(k)%plastic) then
         call line_error(error, deck, deck%materials(k)%plastic_line, 'plasticity (PLASTIC) is small-strain only; '// &
-          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY) materials')
-        return
-      end if
-      if (deck%materials(k)%hyperelastic == hyperelastic_foam) then
-        call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//': the '// &
-          'HYPERFOAM law at finite deformation is not in this version (a small-strain deck runs its '// &
-          'linearisation); KINEMATICS LARGE takes ELASTIC, NEOHOOKE and MOONEY materials', '2')
+          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) materials')
         return
       end if
       if (has_memory(deck%materials(k))) then
         call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//' relaxes in '// &
           'time (PRONY terms with BETA > 0): a viscoelastic law at finite strain is not in this version; '// &
-          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY) materials', '2')
+          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) materials', '2')
         return
       end if
     end do

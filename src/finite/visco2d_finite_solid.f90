@@ -4,17 +4,21 @@
 !> of visco2d_finite_element: internal force, tangent stiffness, Cauchy
 !> stresses, logarithmic strains and the stored energy.
 !>
+!> A HYPERFOAM material is visco2d_hyperfoam's law, pointwise (a foam is
+!> compressible: the mean dilatation is for the nearly incompressible flesh).
 !> An ELASTIC material under KINEMATICS LARGE is the neo-Hookean law of its
 !> own G and K (C10 = G / 2, D1 = 2 / K): the same small-strain limit, and
 !> unlike the St Venant-Kirchhoff extension of Hooke's law it does not
 !> soften in compression.
 module visco2d_finite_solid
   use visco2d_kinds, only: dp, formulation_bbar
-  use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke, hyperelastic_mooney_rivlin
+  use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke, hyperelastic_mooney_rivlin, &
+                              hyperelastic_foam
   use visco2d_quadrilateral, only: gauss_count
   use visco2d_hyperelastic, only: hyperelastic_t, hyperelastic_from_moduli, isochoric_response, volumetric_response, &
                                   hyperelastic_response, pressure_tangent, volume_change
   use visco2d_finite_element, only: finite_point_t, finite_kinematics, finite_force, finite_tangent, element_volumes
+  use visco2d_hyperfoam, only: hyperfoam_t, hyperfoam_response
   implicit none
   private
 
@@ -63,6 +67,10 @@ contains
     energy = 0.0_dp
     call finite_kinematics(geometry, xy, displacement, points, valid)
     if (.not. valid) return
+    if (material%hyperelastic == hyperelastic_foam) then     ! compressible: pointwise, whatever FORMULATION says
+      call foam_element(geometry, material, points, with_stiffness, force, stiffness, stress, strain, energy, valid)
+      return
+    end if
     law = law_of_material(material)
     mean_dilatation = formulation == formulation_bbar
     if (mean_dilatation) then
@@ -94,6 +102,38 @@ contains
     stiffness = finite_tangent(geometry, points, stress, tangent)
     if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
   end subroutine element_response
+
+  !> element_response for a HYPERFOAM material: visco2d_hyperfoam's law at
+  !> every point; a point it cannot take (an overflow at an extreme
+  !> compression) makes the element invalid.
+  pure subroutine foam_element(geometry, material, points, with_stiffness, force, stiffness, stress, strain, energy, &
+                               valid)
+    integer, intent(in) :: geometry
+    type(material_t), intent(in) :: material
+    type(finite_point_t), intent(in) :: points(gauss_count)
+    logical, intent(in) :: with_stiffness
+    real(dp), intent(inout) :: force(8), stiffness(8, 8), stress(4, gauss_count), strain(4, gauss_count), energy
+    logical, intent(out) :: valid
+    type(hyperfoam_t) :: foam
+    real(dp) :: tangent(4, 4, gauss_count), point_energy
+    integer :: gp
+    logical :: admissible
+    foam%mu = material%foam_mu
+    foam%alpha = material%foam_alpha
+    foam%nu = material%foam_nu
+    valid = .true.
+    do gp = 1, gauss_count
+      call hyperfoam_response(foam, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy, admissible)
+      if (.not. admissible) then
+        valid = .false.
+        return
+      end if
+      energy = energy + points(gp)%reference_volume*point_energy
+      strain(:, gp) = logarithmic_strain(points(gp)%deformation)
+    end do
+    force = finite_force(points, stress)
+    if (with_stiffness) stiffness = finite_tangent(geometry, points, stress, tangent)
+  end subroutine foam_element
 
   !> The logarithmic (Hencky) strain ln V = 1/2 ln(F F^T) of an in-plane F
   !> with a hoop stretch, as (rr, zz, tt, 2 rz): the in-plane block from the
