@@ -4,7 +4,7 @@
 !> and the one-line note on stderr before a run estimated to be long.
 module visco2d_estimate
   use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, kinematics_large
   use visco2d_error, only: error_t, set_error
   use visco2d_deck, only: deck_t, analysis_static, analysis_quasistatic, analysis_dynamic
   use visco2d_deck_types, only: solver_card_default, solver_card_cholmod
@@ -21,8 +21,9 @@ module visco2d_estimate
   !> factorization each; the shipped static contact runs take 3 to 15).
   integer, parameter :: static_contact_iterations = 10
   !> Newton iterations assumed per load increment of a STATIC run with a
-  !> PLASTIC material (one factorization each; measured 1 to 4, 3.5 on
-  !> test/fuzz/seed_plastic_static.inp, on the plate or not).
+  !> PLASTIC material or KINEMATICS LARGE (one factorization each; measured
+  !> 1 to 4, 3.5 on test/fuzz/seed_plastic_static.inp, on the plate or not;
+  !> 3 and 3.45 on the finite-deformation cylinders of doc/finite.md).
   integer, parameter :: static_plastic_iterations = 4
 
 contains
@@ -82,7 +83,8 @@ contains
                         written_snapshots=written, &
                         sparse=deck%settings%solver == solver_card_default .or. &
                                deck%settings%solver == solver_card_cholmod)
-    if (analysis == budget_static .and. any(deck%materials%plastic)) then
+    if (analysis == budget_static .and. (any(deck%materials%plastic) .or. &
+                                         deck%settings%kinematics == kinematics_large)) then
       estimate%seconds = real(deck%settings%increments, dp)*static_plastic_iterations*estimate%seconds
     else if (analysis == budget_static .and. plate) then
       estimate%seconds = static_contact_iterations*estimate%seconds
@@ -150,7 +152,8 @@ contains
     integer :: line
     call time_limit(limit, origin)
     if (limit <= 0.0_dp .or. size%seconds <= limit) return
-    if (deck%analysis == analysis_static .and. any(deck%materials%plastic)) then
+    if (deck%analysis == analysis_static .and. (any(deck%materials%plastic) .or. &
+                                                deck%settings%kinematics == kinematics_large)) then
       what = 'this run is estimated to take roughly '//seconds_text(size%seconds)//' ('// &
         count_text(int(deck%settings%increments, int64))//' load increments of '//count_text(size%equations)// &
         ' equations, half-bandwidth '//count_text(size%half_bandwidth)//'), more than the limit of '// &
