@@ -170,7 +170,7 @@ contains
     do k = 1, nmat
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
     end do
-    stepper%contact_on = deck%plate%line > 0
+    stepper%contact_on = deck%plate%line > 0 .or. deck%body%line > 0   ! the plate, or a second BODY
     do k = 1, nmat
       if (materials(k)%plastic .and. any(mesh%element_material == k)) stepper%plastic = .true.
     end do
