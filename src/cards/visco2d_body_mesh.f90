@@ -22,7 +22,7 @@ module visco2d_body_mesh
   implicit none
   private
 
-  public :: append_body, body_surface
+  public :: append_body, body_surface, contact_card_line, contact_card_name
 
 contains
 
@@ -115,4 +115,25 @@ contains
     end do
     surface = surface(sorted_order(xy(1, surface)))
   end function body_surface
+
+  !> The line of the card a contact error is located at: the BODY card with
+  !> a second body, else the PAD card (`surface`: an error of the pad's
+  !> constraints) or the PLATE card.
+  pure integer function contact_card_line(deck, surface) result(line)
+    type(deck_t), intent(in) :: deck
+    logical, intent(in) :: surface
+    line = deck%plate%line
+    if (surface) line = deck%pad%line
+    if (deck%body%line > 0) line = deck%body%line
+  end function contact_card_line
+
+  !> The keyword of that card: 'BODY', 'PAD' or 'PLATE'.
+  pure function contact_card_name(deck, surface) result(name)
+    type(deck_t), intent(in) :: deck
+    logical, intent(in) :: surface
+    character(:), allocatable :: name
+    name = 'PLATE'
+    if (surface) name = 'PAD'
+    if (deck%body%line > 0) name = 'BODY'
+  end function contact_card_name
 end module visco2d_body_mesh

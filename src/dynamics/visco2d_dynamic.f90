@@ -74,6 +74,7 @@ module visco2d_dynamic
   use visco2d_dynamic_record, only: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, &
                                     keep_state, insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary, &
                                     warn_unwritten_fields
+  use visco2d_body_mesh, only: contact_card_line, contact_card_name
   implicit none
   private
 
@@ -248,7 +249,8 @@ contains
         return
       else if (info < 0) then
         call set_error(error, 'the contact capacitance matrix is not positive definite (equation '// &
-          integer_text(-info)//' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+          integer_text(-info)//' of the held set)', file=deck%cards%file, line=contact_card_line(deck, .false.), &
+        card=contact_card_name(deck, .false.))
         return
       end if
     end do
