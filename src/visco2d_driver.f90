@@ -82,7 +82,11 @@ contains
         trim(merge('STICK', 'SLIP ', deck%plate%stick))//', RELEASE='//trim(merge('YES', 'NO ', deck%plate%release))
       if (deck%analysis == analysis_dynamic) print '(a)', '  stop at         '//stop_name(deck%stop_at)
     end if
-    if (deck%pad%first_node > 0) print '(a)', '  pad             '//message_real(deck%pad%thickness)//' m of ' &
+    if (deck%body%line > 0) print '(a)', '  second body     sphere R = '//message_real(deck%body%radius)//' m of '// &
+      deck%body%material//', VZ = '//message_real(deck%body%velocity)//' m/s, '// &
+      integer_text(deck%mesh%nnode - deck%pad%first_node + 1)//' nodes, '// &
+      integer_text(deck%mesh%nelem - deck%pad%first_element + 1)//' elements'
+    if (deck%pad%line > 0) print '(a)', '  pad             '//message_real(deck%pad%thickness)//' m of ' &
       //deck%pad%material// &
       ', top at z = '//message_real(deck%plate%z)//' m, '//integer_text(deck%mesh%nnode - deck%pad%first_node + 1)//' nodes, '// &
       integer_text(deck%mesh%nelem - deck%pad%first_element + 1)//' elements, bottom '// &

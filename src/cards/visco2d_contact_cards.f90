@@ -1,18 +1,19 @@
 !> The cards of the contact extension: PLATE (a rigid flat plate), PAD (a
-!> deformable layer on it, meshed by visco2d_pad_mesh) and STOP (when a
-!> dynamic run ends). Each reader checks its own card; visco2d_deck
+!> deformable layer on it, meshed by visco2d_pad_mesh), BODY (a second
+!> deformable body under the first, meshed by visco2d_body_mesh) and STOP
+!> (when a dynamic run ends). Each reader checks its own card; visco2d_deck
 !> checks how the cards fit together.
 module visco2d_contact_cards
   use visco2d_kinds, only: dp
   use visco2d_error, only: error_t
-  use visco2d_ranges, only: length_range, pad_length_range
-  use visco2d_strings, only: short_real
+  use visco2d_ranges, only: length_range, pad_length_range, speed_range
+  use visco2d_strings, only: short_real, integer_text
   use visco2d_cards, only: card_t, card_deck_t, card_error, named_real, named_word, positional_word, &
-                           check_fields_used, has_field, field_column
+                           check_fields_used, has_field, field_column, named_integer
   implicit none
   private
 
-  public :: plate_t, pad_t, read_plate, read_pad, read_stop, stop_name
+  public :: plate_t, pad_t, body_t, read_plate, read_pad, read_body, read_stop, stop_name
   public :: stop_at_tend, stop_at_max_deformation, stop_at_separation
 
   integer, parameter :: stop_at_tend = 1             !< run to the end of the last TIME card
@@ -52,7 +53,92 @@ module visco2d_contact_cards
     integer, allocatable :: bottom(:)    !< the bottom's nodes (on the rigid plate)
   end type pad_t
 
+  !> BODY SPHERE R=.. MAT=id [LEVEL=L] [VZ=..] [GAP=..] [SLIP | STICK]
+  !> [RELEASE=YES|NO]: a second deformable body, a sphere of radius R
+  !> meshed like MESH SPHERE R=.. LEVEL=L (the contact grid) but mirrored,
+  !> its contact pole on top, on the axis under the first body: its top pole
+  !> GAP below the first body's lowest node, its initial velocity VZ (m/s,
+  !> positive up). Contact from the first body's surface nodes onto its
+  !> upper surface (node to segment, visco2d_contact). Its nodes and
+  !> elements follow the first body's in the mesh (visco2d_body_mesh fills
+  !> in the mesh part: deck%pad%first_node, first_element, surface).
+  type :: body_t
+    real(dp) :: radius = 0.0_dp      !< m
+    integer :: level = 1             !< the sphere grid's level (1..7)
+    character(:), allocatable :: material    !< MAT= id
+    real(dp) :: velocity = 0.0_dp    !< m/s, VZ= (positive up, toward the first body)
+    real(dp) :: gap = 0.0_dp         !< m, GAP=: from the first body's lowest node down to the top pole
+    logical :: stick = .false.       !< STICK: contact nodes tied in r and z; SLIP (default): in z only
+    logical :: release = .true.      !< RELEASE=YES (default): a pair whose force turns tensile lets go
+    integer :: line = 0              !< 0: no second body
+    integer :: material_index = 0    !< into deck%materials (once the mesh has the body)
+  end type body_t
+
 contains
+
+  !> BODY SPHERE R=.. MAT=id [LEVEL=L] [VZ=..] [GAP=..] [SLIP | STICK] [RELEASE=YES|NO].
+  subroutine read_body(cards, card, body, error)
+    type(card_deck_t), intent(in) :: cards
+    type(card_t), intent(inout) :: card
+    type(body_t), intent(inout) :: body
+    type(error_t), allocatable, intent(inout) :: error
+    character(:), allocatable :: word
+    character(len=*), parameter :: form = 'BODY SPHERE R=.. MAT=id [LEVEL=L] [VZ=..] [GAP=..] [SLIP | STICK] '// &
+                                          '[RELEASE=YES|NO]'
+    call positional_word(cards, card, 1, 'shape (SPHERE)', word, error); if (allocated(error)) return
+    if (word /= 'SPHERE') then
+      call card_error(error, cards, card, 'the second body''s shape must be SPHERE (the only one so far), got "'// &
+                      word//'" (expected: '//form//')', field_column(card, '1')); return
+    end if
+    call positional_word(cards, card, 2, 'contact kind (SLIP or STICK)', word, error, optional_field=.true.)
+    if (allocated(error)) return
+    select case (word)
+    case ('', 'SLIP')
+      body%stick = .false.
+    case ('STICK')
+      body%stick = .true.
+    case default
+      call card_error(error, cards, card, 'contact kind must be SLIP or STICK, got "'//word//'"', &
+                      field_column(card, '2')); return
+    end select
+    if (.not. has_field(card, 'R')) then
+      call card_error(error, cards, card, 'missing field R= (the second body''s radius; expected: '//form//')'); return
+    end if
+    if (.not. has_field(card, 'MAT')) then
+      call card_error(error, cards, card, 'missing field MAT= (the second body''s material; expected: '//form//')')
+      return
+    end if
+    call named_real(cards, card, 'R', body%radius, error, range=pad_length_range); if (allocated(error)) return
+    call named_integer(cards, card, 'LEVEL', body%level, error, default=1); if (allocated(error)) return
+    if (body%level < 1 .or. body%level > 7) then
+      call card_error(error, cards, card, 'LEVEL must be in 1..7, got '//integer_text(body%level), &
+                      field_column(card, 'LEVEL')); return
+    end if
+    call named_word(cards, card, 'MAT', body%material, error); if (allocated(error)) return
+    if (len(body%material) > 32) then
+      call card_error(error, cards, card, 'MAT id longer than 32 characters', field_column(card, 'MAT')); return
+    end if
+    call named_real(cards, card, 'VZ', body%velocity, error, default=0.0_dp, range=speed_range)
+    if (allocated(error)) return
+    call named_real(cards, card, 'GAP', body%gap, error, default=0.0_dp, range=length_range)
+    if (allocated(error)) return
+    if (body%gap < 0.0_dp) then
+      call card_error(error, cards, card, 'GAP must be 0 or more (the bodies may not overlap at the start), got '// &
+                      short_real(body%gap)//' m', field_column(card, 'GAP')); return
+    end if
+    call named_word(cards, card, 'RELEASE', word, error, default='YES'); if (allocated(error)) return
+    select case (word)
+    case ('YES')
+      body%release = .true.
+    case ('NO')
+      body%release = .false.
+    case default
+      call card_error(error, cards, card, 'RELEASE must be YES or NO, got "'//word//'"', &
+                      field_column(card, 'RELEASE')); return
+    end select
+    call check_fields_used(cards, card, error, form); if (allocated(error)) return
+    body%line = card%line
+  end subroutine read_body
 
   !> PAD THICKNESS=.. MAT=id [WIDTH=..] [SIZE=..] [BOTTOM=BONDED|SLIP].
   subroutine read_pad(cards, card, pad, error)

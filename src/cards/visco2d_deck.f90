@@ -20,12 +20,14 @@ module visco2d_deck
   use visco2d_dynamic_cards, only: dynamic_settings_t, output_request_t, read_wilson, read_initial, read_drop, &
                                    read_gravity, read_output, read_formulation, theta_unconditional, &
                                    read_integrator
-  use visco2d_contact_cards, only: plate_t, pad_t, read_plate, read_pad, read_stop, stop_name, stop_at_tend, &
+  use visco2d_contact_cards, only: plate_t, pad_t, body_t, read_plate, read_pad, read_body, read_stop, stop_name, &
+                                   stop_at_tend, &
                                    stop_at_max_deformation, stop_at_separation
   use visco2d_bruise_cards, only: read_bruise, check_bruise_cards, criterion_plastic
   use visco2d_mesh_cards, only: mesh_input_t, read_node_card, read_element_card, read_mesh_card
   use visco2d_mesh_build, only: build_mesh
   use visco2d_pad_mesh, only: append_pad
+  use visco2d_body_mesh, only: append_body
   use visco2d_deck_types, only: deck_t, settings_t, loads_t, source_t, fix_t, pressure_t, force_t, probe_t, &
                                 expect_t, warning_t, &
                                 analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, &
@@ -45,14 +47,14 @@ module visco2d_deck
   public :: dynamic_settings_t, output_request_t
   public :: analysis_static, analysis_quasistatic, analysis_dynamic, analysis_name, geometry_name, total_steps
   public :: formulation_name, initial_velocity
-  public :: plate_t, pad_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
+  public :: plate_t, pad_t, body_t, stop_at_tend, stop_at_max_deformation, stop_at_separation, stop_name
 
   !> Every card keyword a deck may use.
-  character(len=11), parameter :: card_keywords(32) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
+  character(len=11), parameter :: card_keywords(33) = [character(len=11) :: 'TITLE', 'ANALYSIS', 'GEOMETRY', &
     'FORMULATION', 'KINEMATICS', 'SOLVER', 'MATERIAL', 'PRONY', 'OGDEN', 'PLASTIC', 'HARDENING', 'NODE', 'ELEMENT', &
     'MESH', 'FIX', 'PRESSURE', 'FORCE', 'GRAVITY', &
     'CURVE', 'TIME', 'WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'OUTPUT', 'PLATE', 'PAD', 'STOP', 'PROBE', 'EXPECT', &
-    'BRUISE', 'END']
+    'BRUISE', 'BODY', 'END']
 
   !> What read_deck keeps while it reads the cards: the mesh cards, the
   !> targets still to resolve and the lines of the once-only cards.
@@ -124,7 +126,7 @@ contains
     select case (card%keyword)
     case ('TITLE', 'ANALYSIS', 'GEOMETRY', 'FORMULATION', 'KINEMATICS', 'SOLVER')
       call read_model_card(deck, reading, i, error)
-    case ('WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'GRAVITY', 'OUTPUT', 'PLATE', 'PAD', 'STOP')
+    case ('WILSON', 'INTEGRATOR', 'INITIAL', 'DROP', 'GRAVITY', 'OUTPUT', 'PLATE', 'PAD', 'BODY', 'STOP')
       call read_motion_card(deck, i, error)
     case ('MATERIAL')
       call read_material(cards, card, deck%materials, error); if (allocated(error)) return
@@ -186,7 +188,7 @@ contains
         suggestion(nearest_word(card%keyword, card_keywords))//' (known: TITLE ANALYSIS '// &
         'GEOMETRY FORMULATION KINEMATICS MATERIAL PRONY OGDEN PLASTIC HARDENING NODE ELEMENT MESH FIX PRESSURE FORCE '// &
         'GRAVITY CURVE TIME '// &
-        'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE PAD STOP PROBE EXPECT BRUISE END)')
+        'WILSON INTEGRATOR INITIAL DROP OUTPUT PLATE PAD BODY STOP PROBE EXPECT BRUISE END)')
     end select
     end associate
   end subroutine read_card
@@ -346,6 +348,9 @@ contains
     case ('PAD')
       call once(deck, i, deck%pad%line, error); if (allocated(error)) return
       call read_pad(cards, card, deck%pad, error)
+    case ('BODY')
+      call once(deck, i, deck%body%line, error); if (allocated(error)) return
+      call read_body(cards, card, deck%body, error)
     case ('STOP')
       call once(deck, i, deck%stop_line, error); if (allocated(error)) return
       call read_stop(cards, card, deck%stop_at, error); if (allocated(error)) return
@@ -462,6 +467,10 @@ contains
           deck%materials(m)%id//') in ANALYSIS STATIC takes frictionless contact only so far: give the PLATE '// &
           'card (line '//integer_text(deck%plate%line)//') SLIP'); return
       end if
+    else if (deck%body%line > 0) then
+      call card_error(error, deck%cards, deck%cards%cards(k), 'plasticity (PLASTIC, material '// &
+        deck%materials(m)%id//') with a second BODY (line '//integer_text(deck%body%line)//') is not available '// &
+        'yet: the two bodies are elastic or viscoelastic'); return
     else if (deck%analysis == analysis_dynamic .and. deck%pad%line > 0) then
       do j = 1, size(deck%materials)
         if (.not. (deck%materials(j)%plastic .and. pad_material(deck, deck%materials(j)%id))) cycle
@@ -600,6 +609,9 @@ contains
     call check_plate_supports(deck, error); if (allocated(error)) return
     if (deck%pad%line > 0) then                       ! the pad's mesh after the body's (its checks need the body)
       call append_pad(deck, error); if (allocated(error)) return
+    end if
+    if (deck%body%line > 0) then                      ! the second body after the first (placed under it)
+      call append_body(deck, error); if (allocated(error)) return
     end if
     call check_locking(deck)
     call check_meaning(deck, reading%analysis_line)

@@ -109,13 +109,28 @@ contains
       call line_error(error, deck, deck%pad%line, 'PAD needs ANALYSIS STATIC or DYNAMIC (QUASISTATIC has no '// &
                       'contact search)'); return
     end if
+    call check_body_card(deck, error); if (allocated(error)) return
     if (deck%stop_line == 0) then
       if (deck%plate%line > 0 .and. deck%analysis == analysis_dynamic) deck%stop_at = stop_at_max_deformation
+      if (deck%body%line > 0 .and. deck%body%release) deck%stop_at = stop_at_separation
       return
     end if
     if (deck%analysis /= analysis_dynamic) then
       call line_error(error, deck, deck%stop_line, 'STOP needs ANALYSIS DYNAMIC (this deck is '// &
                       analysis_name(deck%analysis)//')'); return
+    end if
+    if (deck%body%line > 0) then
+      if (deck%stop_at == stop_at_max_deformation) then
+        call line_error(error, deck, deck%stop_line, 'STOP AT=MAXDEFORMATION needs a PLATE (the paper''s criterion '// &
+                        'of a body on the plate); two bodies (BODY, line '//integer_text(deck%body%line)//') stop '// &
+                        'at SEPARATION or TEND', 'AT'); return
+      end if
+      if (deck%stop_at == stop_at_separation .and. .not. deck%body%release) then
+        call line_error(error, deck, deck%stop_line, 'STOP AT=SEPARATION needs BODY ... RELEASE=YES (line '// &
+                        integer_text(deck%body%line)//'): without it the bodies are held together for good', 'AT')
+        return
+      end if
+      return
     end if
     if (deck%stop_at /= stop_at_tend .and. deck%plate%line == 0) then
       call line_error(error, deck, deck%stop_line, 'STOP AT='//stop_name(deck%stop_at)// &
@@ -127,6 +142,33 @@ contains
                       'leaves the plate', 'AT'); return
     end if
   end subroutine check_contact_cards
+
+  !> A second BODY: two free bodies head on, so far in ANALYSIS DYNAMIC,
+  !> without a PLATE, a PAD or GRAVITY (each refused at the BODY card).
+  subroutine check_body_card(deck, error)
+    type(deck_t), intent(in) :: deck
+    type(error_t), allocatable, intent(inout) :: error
+    if (deck%body%line == 0) return
+    if (deck%analysis /= analysis_dynamic) then
+      call line_error(error, deck, deck%body%line, 'BODY needs ANALYSIS DYNAMIC (this deck is '// &
+                      analysis_name(deck%analysis)//'; two bodies pressed together statically are not available yet)')
+      return
+    end if
+    if (deck%plate%line > 0) then
+      call line_error(error, deck, deck%body%line, 'BODY with a PLATE (line '//integer_text(deck%plate%line)// &
+                      ') is not available yet: the two bodies are free (head on, no plate); leave out the PLATE card')
+      return
+    end if
+    if (deck%pad%line > 0) then
+      call line_error(error, deck, deck%body%line, 'BODY with a PAD (line '//integer_text(deck%pad%line)// &
+                      ') is not available yet: the two bodies are free (head on, no plate or pad)'); return
+    end if
+    if (deck%gravity_line > 0) then
+      call line_error(error, deck, deck%body%line, 'BODY with GRAVITY (line '//integer_text(deck%gravity_line)// &
+                      ') is not available yet: the two free bodies fly without it (DROP gives the first body its '// &
+                      'speed)'); return
+    end if
+  end subroutine check_body_card
 
   !> The body starts on or above the plate: no node below z = Z.
   subroutine check_plate_position(deck, error)

@@ -13,7 +13,7 @@ module visco2d_deck_types
   use visco2d_model, only: settings_t, fix_t, pressure_t, force_t, loads_t, probe_t, time_stage_t, source_t, &
                            stage_total_steps
   use visco2d_dynamic_cards, only: dynamic_settings_t, output_request_t, standard_gravity
-  use visco2d_contact_cards, only: plate_t, pad_t, stop_at_tend
+  use visco2d_contact_cards, only: plate_t, pad_t, body_t, stop_at_tend
   use visco2d_bruise_cards, only: bruise_card_t
   use visco2d_mesh, only: mesh_t
   implicit none
@@ -71,6 +71,10 @@ module visco2d_deck_types
     integer :: kinematics_line = 0                 !< line of the KINEMATICS card (0: none)
     type(plate_t) :: plate                        !< PLATE (contact extension); plate%line = 0: none
     type(pad_t) :: pad                            !< PAD on the plate (visco2d_pad_mesh); pad%line = 0: none
+    !> BODY, a second deformable body (visco2d_body_mesh); body%line = 0: none. Its mesh part is
+    !> marked by pad%first_node, pad%first_element and pad%surface (with pad%line = 0): the
+    !> pad's machinery (node-to-segment contact, the inelastic projection) serves it
+    type(body_t) :: body
     integer :: stop_at = stop_at_tend             !< STOP AT= (MAXDEFORMATION by default with a PLATE in DYNAMIC)
     integer :: stop_line = 0
     type(bruise_card_t), allocatable :: bruises(:) !< BRUISE cards (visco2d_bruise); none: no envelopes kept

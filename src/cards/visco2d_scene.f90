@@ -15,7 +15,7 @@ module visco2d_scene
   type :: effects_t
     logical :: inertia = .false.       !< mass and Wilson-theta stepping (ANALYSIS DYNAMIC)
     logical :: viscoelastic = .false.  !< Prony history per Gauss point (a material with memory, beta > 0, in use)
-    logical :: contact = .false.       !< rigid-plate contact search (a PLATE card)
+    logical :: contact = .false.       !< contact search (a PLATE card, or a second BODY)
     logical :: gravity = .false.       !< body force rho g (a GRAVITY card)
     logical :: pad = .false.           !< a deformable pad on the plate (a PAD card)
   end type effects_t
@@ -32,7 +32,7 @@ contains
     effects = effects_t()
     effects%inertia = deck%analysis == analysis_dynamic
     effects%gravity = deck%loads%gravity > 0.0_dp
-    effects%contact = deck%plate%line > 0
+    effects%contact = deck%plate%line > 0 .or. deck%body%line > 0
     effects%pad = deck%pad%line > 0
     do k = 1, size(deck%materials)
       if (has_memory(deck%materials(k)) .and. any(deck%mesh%element_material == k)) effects%viscoelastic = .true.

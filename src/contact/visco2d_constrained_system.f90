@@ -22,6 +22,7 @@ module visco2d_constrained_system
   use visco2d_lapack, only: dgels
   use visco2d_pad_mesh, only: body_nodes
   use visco2d_contact, only: contact_t
+  use visco2d_body_mesh, only: contact_card_line, contact_card_name
   implicit none
   private
 
@@ -86,7 +87,8 @@ contains
     if (info > 0) then
       call set_error(error, singular_message(deck%mesh, info)//'; with a PAD the body may rest on the pad '// &
         'alone only if it cannot move otherwise than up and down: fix what else is free', &
-        file=deck%cards%file, line=deck%pad%line, card='PAD')
+        file=deck%cards%file, line=contact_card_line(deck, .true.), &
+        card=contact_card_name(deck, .true.))
       return
     end if
     call capacitance_reset(system%capacitance, size(system%load))
@@ -223,7 +225,8 @@ contains
     if (allocated(error)) return
     if (info > 0) then
       call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//integer_text(info)// &
-                     ' of the held set)', file=deck%cards%file, line=deck%pad%line, card='PAD')
+                     ' of the held set)', file=deck%cards%file, line=contact_card_line(deck, .true.), &
+        card=contact_card_name(deck, .true.))
       return
     end if
     if (system%anchor > 0) then
@@ -267,14 +270,16 @@ contains
     end do
     if (chosen == 0) then
       call set_error(error, 'the body has lifted off the pad, which alone holds it: it would be free', &
-                     file=deck%cards%file, line=deck%pad%line, card='PAD')
+                     file=deck%cards%file, line=contact_card_line(deck, .true.), &
+        card=contact_card_name(deck, .true.))
       return
     end if
     call anchor_body(deck, system, chosen, info, error)
     if (allocated(error)) return
     if (info > 0) then
       call set_error(error, singular_message(deck%mesh, info)//' (the body resting on the pad, anchored at another '// &
-                     'contact node)', file=deck%cards%file, line=deck%pad%line, card='PAD')
+                     'contact node)', file=deck%cards%file, line=contact_card_line(deck, .true.), &
+        card=contact_card_name(deck, .true.))
       return
     end if
     call capacitance_reset(system%capacitance, size(system%load))
@@ -345,7 +350,8 @@ contains
       call dgels('N', m + 2, m + 2, 1, matrix, m + 2, right, m + 2, work, size(work), info)
       if (info /= 0) then
         call set_error(error, 'the contact system of the body resting on the pad is singular', &
-                       file=deck%cards%file, line=deck%pad%line, card='PAD')
+                       file=deck%cards%file, line=contact_card_line(deck, .true.), &
+        card=contact_card_name(deck, .true.))
         u = w
         return
       end if

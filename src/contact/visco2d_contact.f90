@@ -14,6 +14,15 @@
 !> a multi-point constraint that visco2d_capacitance imposes with equal and
 !> opposite forces on the body node and the segment.
 !>
+!> With a second BODY (visco2d_body_mesh) the surface under the first body
+!> is the second body's upper surface, curved: the same node-to-segment
+!> constraint, with the gap measured from the undeformed surface under the
+!> node, z_s = (1 - s) z(a) + s z(b), instead of Z:
+!>   g = z + u_z - z_s - [(1 - s) u_z(a) + s u_z(b)].
+!> In the small-displacement frame of the module (each node against the
+!> segment under its undeformed r) this is the gap of two spheres head on,
+!> g ~ r^2/(2 R*) near the axis, 1/R* = 1/R1 + 1/R2.
+!>
 !> This module holds the contact state and search used by the dynamics, and
 !> the contact pressure recovered from the nodal reactions (a consistent
 !> boundary-mass projection), the contact radius and force. The static
@@ -57,6 +66,10 @@ module visco2d_contact
     integer, allocatable :: partner(:, :)
     real(dp), allocatable :: weight(:, :)
     integer :: pad_axis = 0                     !< the pad's surface node on the axis (its compression)
+    !> (nnode) the undeformed z of the surface under each node, from which its gap is
+    !> measured: Z (the plate's, or the pad's top) everywhere, except under a second BODY
+    real(dp), allocatable :: surface_z(:)
+    logical :: body = .false.                   !< the surface is a second BODY's (curved, free)
     integer :: iterations = 0                   !< increments repeated because the contact set changed
   end type contact_t
 
@@ -75,6 +88,10 @@ contains
     contact%z_plate = deck%plate%z
     contact%stick = deck%plate%stick
     contact%release = deck%plate%release
+    if (deck%body%line > 0) then                      ! two free bodies: the BODY card's contact kind
+      contact%stick = deck%body%stick
+      contact%release = deck%body%release
+    end if
     contact%tolerance = geometry_tolerance*mesh%size
     sides = boundary_sides(mesh, body_elements(deck))   ! the body's: a pad is what it touches
     allocate(contact%edges(2, size(sides, 2)), boundary(mesh%nnode))
@@ -107,8 +124,10 @@ contains
     allocate(contact%partner(2, 2*mesh%nnode), contact%weight(2, 2*mesh%nnode))
     contact%partner = 0
     contact%weight = 0.0_dp
+    contact%surface_z = spread(contact%z_plate, 1, mesh%nnode)
     end associate
     if (deck%pad%first_node > 0) call pad_partners(deck, contact)
+    if (deck%body%line > 0) call body_surface_heights(deck, contact)
   end subroutine contact_create
 
   !> Under each candidate, the pad surface segment that contains its
@@ -147,6 +166,29 @@ contains
     end associate
   end subroutine pad_partners
 
+  !> Under a second BODY: the undeformed z of its surface under each
+  !> candidate, (1 - s) z(a) + s z(b) on the segment that contact%partner
+  !> names (with the weights (1 - s, s) of the z equation).
+  subroutine body_surface_heights(deck, contact)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(inout) :: contact
+    integer, allocatable :: node_of(:)
+    integer :: i, k, node, equation
+    contact%body = .true.
+    allocate(node_of(deck%mesh%nnode))
+    node_of(deck%mesh%equation) = [(i, i = 1, deck%mesh%nnode)]    ! band position -> node
+    do i = 1, size(contact%candidates)
+      node = contact%candidates(i)
+      equation = node_dof(deck%mesh, node, 2)
+      if (contact%partner(1, equation) == 0) cycle            ! beyond the second body's surface
+      contact%surface_z(node) = 0.0_dp
+      do k = 1, 2
+        if (contact%partner(k, equation) > 0) contact%surface_z(node) = contact%surface_z(node) + &
+          contact%weight(k, equation)*deck%mesh%xy(2, node_of((contact%partner(k, equation) + 1)/2))
+      end do
+    end do
+  end subroutine body_surface_heights
+
   !> sum_k w_k f(partner_k) for component `component` (1: r, 2: z) of the
   !> nodal field f (band order): the pad surface's value under a body node
   !> (0 for the rigid plate, or a node beyond the pad).
@@ -174,7 +216,7 @@ contains
     type(contact_t), intent(in) :: contact
     real(dp), intent(in) :: u(:)
     integer, intent(in) :: node
-    gap = deck%mesh%xy(2, node) + u(node_dof(deck%mesh, node, 2)) - contact%z_plate
+    gap = deck%mesh%xy(2, node) + u(node_dof(deck%mesh, node, 2)) - contact%surface_z(node)
     if (.not. contact%pad) return
     if (contact%partner(1, node_dof(deck%mesh, node, 2)) == 0) then     ! beyond the pad
       gap = huge(1.0_dp)

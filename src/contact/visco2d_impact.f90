@@ -17,6 +17,7 @@ module visco2d_impact
   use visco2d_contact, only: contact_t, contact_count, contact_pressure, contact_force, contact_radius, &
                              nearest_free_node, pad_compression
   use visco2d_hertz, only: put_hertz_summary
+  use visco2d_two_bodies, only: put_two_body_hertz
   use visco2d_record, only: record_t, record_put, record_put_real, record_put_integer, record_column, record_warn
   use visco2d_sorting, only: sorted_order
   implicit none
@@ -70,16 +71,31 @@ module visco2d_impact
     real(dp) :: pad_compression = 0.0_dp, pad_compression_max = 0.0_dp, t_pad_compression_max = 0.0_dp
     !> the largest compressive -sigma_z at a Gauss point of the pad, Pa, and when
     real(dp) :: pad_stress = 0.0_dp, pad_stress_max = 0.0_dp, t_pad_stress_max = 0.0_dp
+    !> A second BODY: alpha is the approach of the two centres of mass; its
+    !> lumped masses (band order, 0 off it), total (per radian), centre of
+    !> mass displacement and velocity now, at the step before, at first
+    !> contact and at separation; the top pole of its surface.
+    logical :: second = .false.
+    real(dp), allocatable :: mass2(:)
+    real(dp) :: body2_mass = 0.0_dp
+    real(dp) :: u2 = 0.0_dp, v2 = 0.0_dp, u2_previous = 0.0_dp, v2_previous = 0.0_dp
+    real(dp) :: u2_contact = 0.0_dp, v2_contact = 0.0_dp, v2_separation = 0.0_dp
+    integer :: pole2 = 0
+    !> each body's own deformation on the axis: u_z(pole 1) - u_z,cm1 and u_z,cm2 - u_z(pole 2)
+    !> (both bodies translate rigidly before contact), m, and their maxima
+    real(dp) :: deformation1 = 0.0_dp, deformation1_max = 0.0_dp, deformation2 = 0.0_dp, deformation2_max = 0.0_dp
   end type impact_t
 
 contains
 
   !> The impact state at t = 0: the centre node (nearest the centre of mass;
   !> on the axis in axisymmetry) and the initial acceleration there.
-  subroutine impact_start(deck, mass, a, impact)
+  subroutine impact_start(deck, mass, a, impact, mass2, v)
     type(deck_t), intent(in) :: deck
     real(dp), intent(in) :: mass(:), a(:)   !< lumped mass and acceleration, band order
     type(impact_t), intent(out) :: impact
+    !> with a second BODY: its lumped masses (band order, 0 off it) and the initial velocity
+    real(dp), intent(in), optional :: mass2(:), v(:)
     real(dp) :: centre(2)
     integer :: node
     associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
@@ -102,7 +118,15 @@ contains
     impact%r_at_force_max = deck%mesh%xy(1, :)
     impact%r_at_alpha_max = deck%mesh%xy(1, :)
     impact%stop_reason = 'end of time'
-    impact%pad = deck%pad%first_node > 0
+    impact%pad = deck%pad%line > 0
+    impact%second = deck%body%line > 0
+    if (impact%second .and. present(mass2) .and. present(v)) then
+      impact%mass2 = mass2
+      impact%body2_mass = sum(mass2(2::2))
+      impact%pole2 = deck%pad%surface(1)
+      impact%v2 = dot_product(mass2(2::2), v(2::2))/impact%body2_mass
+      impact%v2_previous = impact%v2
+    end if
     impact%accel_centre = a(node_dof(deck%mesh, impact%centre_node, 2))
     associate (nodal_mass => nodal_field(deck%mesh, mass))               ! (2, nnode), node order
     impact%mass_z = nodal_mass(2, :)
@@ -167,14 +191,27 @@ contains
     logical, intent(out) :: new_alpha_max, new_q_max
     real(dp) :: s(4), since
     integer :: nearest, k
+    logical :: first
     new_alpha_max = .false.
     new_q_max = .false.
     associate (m => impact)
     m%contact_nodes = contact_count(contact)
+    first = .false.
     if (m%t_contact < 0.0_dp .and. m%contact_nodes > 0) then
+      first = .true.
       m%t_contact = t - dt + touch_fraction*dt
       m%u_cm_contact = cm_start(1) + touch_fraction*(cm(1) - cm_start(1))
       m%v_cm_contact = cm_start(2) + touch_fraction*(cm(2) - cm_start(2))
+    end if
+    if (m%second) then                             ! the second body's centre of mass
+      m%u2_previous = m%u2
+      m%v2_previous = m%v2
+      m%u2 = dot_product(m%mass2(2::2), u(2::2))/m%body2_mass
+      m%v2 = dot_product(m%mass2(2::2), v(2::2))/m%body2_mass
+      if (first) then
+        m%u2_contact = m%u2_previous + touch_fraction*(m%u2 - m%u2_previous)
+        m%v2_contact = m%v2_previous + touch_fraction*(m%v2 - m%v2_previous)
+      end if
     end if
     m%force = contact_force(deck, contact, reaction)
     call contact_pressure(deck, contact, reaction, m%pressure, m%q)
@@ -195,8 +232,16 @@ contains
     if (m%t_contact < 0.0_dp) return
     since = t - m%t_contact
     m%contact_nodes_max = max(m%contact_nodes_max, m%contact_nodes)
-    m%pad_compression = pad_compression(deck, contact, u)
-    m%alpha = m%u_cm_contact - cm(1) - m%pad_compression        ! on a pad: the body's own deformation
+    if (m%second) then                                            ! two bodies: the approach of their centres
+      m%alpha = m%u_cm_contact - cm(1) + (m%u2 - m%u2_contact)
+      m%deformation1 = u(node_dof(deck%mesh, contact%pole, 2)) - cm(1)
+      m%deformation2 = m%u2 - u(node_dof(deck%mesh, m%pole2, 2))
+      m%deformation1_max = max(m%deformation1_max, m%deformation1)
+      m%deformation2_max = max(m%deformation2_max, m%deformation2)
+    else
+      m%pad_compression = pad_compression(deck, contact, u)
+      m%alpha = m%u_cm_contact - cm(1) - m%pad_compression        ! on a pad: the body's own deformation
+    end if
     if (m%alpha > m%alpha_max) then
       m%have_before = m%t_alpha_max > 0.0_dp .or. m%alpha_max > 0.0_dp   ! a sample before this one since contact
       m%alpha_before = m%alpha_previous
@@ -237,7 +282,8 @@ contains
     m%radius_max = max(m%radius_max, m%radius)
     m%accel_cm_max = max(m%accel_cm_max, cm(3))
     ! The paper's criterion: the free node nearest the plate moves up.
-    nearest = nearest_free_node(deck, contact, u)
+    nearest = 0
+    if (.not. m%second) nearest = nearest_free_node(deck, contact, u)   ! the plate's criterion only
     if (.not. m%paper_fired .and. nearest > 0) then
       if (v(node_dof(deck%mesh, nearest, 2)) > 0.0_dp) then
         m%paper_fired = .true.
@@ -251,7 +297,15 @@ contains
         m%stop_reason = 'maximum deformation'
       end if
     case (stop_at_separation)
-      if (m%contact_nodes == 0 .and. cm(2) > 0.0_dp) then
+      if (m%second) then                    ! two bodies: no contact and moving apart
+        if (m%contact_nodes == 0 .and. cm(2) - m%v2 > 0.0_dp) then
+          m%stopped = .true.
+          m%stop_reason = 'separation'
+          m%t_separation = since
+          m%v_separation = cm(2)
+          m%v2_separation = m%v2
+        end if
+      else if (m%contact_nodes == 0 .and. cm(2) > 0.0_dp) then
         m%stopped = .true.
         m%stop_reason = 'separation'
         m%t_separation = since
@@ -374,12 +428,14 @@ contains
 
   !> History columns of an impact (t_ms and alpha_mm are filled by impact_summary).
   !> With a pad, also its compression at the axis.
-  pure function impact_columns(pad) result(columns)
-    logical, intent(in) :: pad
+  !> With a second BODY, its centre of mass (displacement, velocity).
+  pure function impact_columns(pad, second) result(columns)
+    logical, intent(in) :: pad, second
     character(len=18), allocatable :: columns(:)
     columns = [character(len=18) :: 't_ms', 'alpha_mm', 'force_N', 'q_MPa', 'q_surface_MPa', 'contact_radius_mm', &
                'accel_center_g', 'n_contact']
     if (pad) columns = [character(len=18) :: columns, 'pad_compression_mm']
+    if (second) columns = [character(len=18) :: columns, 'body2_uz_cm_m', 'body2_vz_cm_m_s']
   end function impact_columns
 
   !> The values of impact_columns now.
@@ -389,6 +445,7 @@ contains
     row = [0.0_dp, 0.0_dp, impact%force, 1.0e-6_dp*impact%q, 1.0e-6_dp*impact%q_surface, 1.0e3_dp*impact%radius, &
            impact%accel_centre/g_unit, real(impact%contact_nodes, dp)]
     if (impact%pad) row = [row, 1.0e3_dp*impact%pad_compression]
+    if (impact%second) row = [row, impact%u2, impact%v2]
   end function impact_row
 
   !> The impact keys of the summary (doc/outputs.md), the Hertz reference for
@@ -403,14 +460,26 @@ contains
     integer :: row, t_column, uz_column, t_ms_column, alpha_column, k
     real(dp) :: alpha_peak, t_peak
     associate (m => impact)
-    call record_put_real(record, 'plate_z_m', deck%plate%z)
-    call record_put(record, 'plate', trim(merge('STICK', 'SLIP ', deck%plate%stick))// &
-                    trim(merge(' RELEASE=YES', ' RELEASE=NO ', deck%plate%release)))
+    if (m%second) then
+      call record_put(record, 'contact_pair', 'BODY '//trim(merge('STICK', 'SLIP ', deck%body%stick))// &
+                      trim(merge(' RELEASE=YES', ' RELEASE=NO ', deck%body%release)))
+      call record_put_real(record, 'body2_mass_kg', mass_factor(deck)*m%body2_mass)
+      call record_put_real(record, 'body2_uz_cm_m', m%u2)
+      call record_put_real(record, 'body2_vz_cm_m_s', m%v2)
+    else
+      call record_put_real(record, 'plate_z_m', deck%plate%z)
+      call record_put(record, 'plate', trim(merge('STICK', 'SLIP ', deck%plate%stick))// &
+                      trim(merge(' RELEASE=YES', ' RELEASE=NO ', deck%plate%release)))
+    end if
     call record_put(record, 'stop_at', stop_name(deck%stop_at))
     call record_put(record, 'stop_reason', m%stop_reason)
     call record_put_integer(record, 'contact_iterations', contact%iterations)
     call record_put_integer(record, 'contact_nodes_max', m%contact_nodes_max)
-    if (m%t_contact < 0.0_dp) then
+    if (m%t_contact < 0.0_dp .and. m%second) then
+      call record_warn(record, 'the bodies never touched (BODY GAP = '//short_real(deck%body%gap)// &
+        ' m): no contact results', file=deck%cards%file, line=deck%body%line, card='BODY')
+      call record_put(record, 'contact', 'none')
+    else if (m%t_contact < 0.0_dp) then
       call record_warn(record, 'the body never touched the plate (PLATE Z = '//short_real(deck%plate%z)// &
         ' m): no contact results', file=deck%cards%file, line=deck%plate%line, card='PLATE')
       call record_put(record, 'contact', 'none')
@@ -453,13 +522,32 @@ contains
         call record_put_real(record, 't_probe_'//deck%probes(k)%name//'_sensor_accel_max_ms', &
                              1.0e3_dp*m%t_sensor_max(k))
       end do
-      if (m%t_separation >= 0.0_dp) then
+      if (m%second) then
+        call record_put_real(record, 'body2_impact_velocity_m_s', m%v2_contact)
+        call record_put_real(record, 'approach_speed_m_s', m%v2_contact - m%v_cm_contact)
+        call record_put_real(record, 'deformation1_max_mm', 1.0e3_dp*m%deformation1_max)
+        call record_put_real(record, 'deformation2_max_mm', 1.0e3_dp*m%deformation2_max)
+      end if
+      if (m%t_separation >= 0.0_dp .and. m%second) then
+        call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*m%t_separation)
+        call record_put_real(record, 'rebound_velocity_m_s', m%v_separation)
+        call record_put_real(record, 'body2_rebound_velocity_m_s', m%v2_separation)
+        call record_put_real(record, 'separation_speed_m_s', m%v_separation - m%v2_separation)
+        call record_put_real(record, 'coefficient_of_restitution', (m%v_separation - m%v2_separation)/ &
+                             max(m%v2_contact - m%v_cm_contact, tiny(1.0_dp)))
+        call record_put_real(record, 'energy_absorbed_J', 0.5_dp*mass*(m%v_cm_contact**2 - m%v_separation**2) + &
+          0.5_dp*mass_factor(deck)*m%body2_mass*(m%v2_contact**2 - m%v2_separation**2))
+      else if (m%t_separation >= 0.0_dp) then
         call record_put_real(record, 'contact_duration_ms', 1.0e3_dp*m%t_separation)
         call record_put_real(record, 'rebound_velocity_m_s', m%v_separation)
         call record_put_real(record, 'coefficient_of_restitution', m%v_separation/max(-m%v_cm_contact, tiny(1.0_dp)))
         call record_put_real(record, 'energy_absorbed_J', 0.5_dp*mass*(m%v_cm_contact**2 - m%v_separation**2))
       end if
-      call put_hertz_summary(deck, record, mass, m%v_cm_contact)
+      if (m%second) then
+        call put_two_body_hertz(deck, record, mass, mass_factor(deck)*m%body2_mass, m%v2_contact - m%v_cm_contact)
+      else
+        call put_hertz_summary(deck, record, mass, m%v_cm_contact)
+      end if
       call pressure_table(m, deck, record)
     end if
     if (m%stop_reason == 'end of time' .and. deck%stop_at /= stop_at_tend) call record_warn(record, &
@@ -478,6 +566,9 @@ contains
         1.0e3_dp*(m%u_cm_contact - record%history(uz_column, row))
       if (m%pad) record%history(alpha_column, row) = record%history(alpha_column, row) - &
         record%history(record_column(record, 'pad_compression_mm'), row)
+      if (m%second .and. m%t_contact >= 0.0_dp) record%history(alpha_column, row) = &
+        record%history(alpha_column, row) + 1.0e3_dp*(record%history(record_column(record, 'body2_uz_cm_m'), row) - &
+                                                      m%u2_contact)
     end do
     end associate
   end subroutine impact_summary
@@ -516,6 +607,13 @@ contains
   pure integer function stop_line(deck)
     type(deck_t), intent(in) :: deck
     stop_line = deck%stop_line
-    if (stop_line == 0) stop_line = deck%plate%line
+    if (stop_line == 0) stop_line = max(deck%plate%line, deck%body%line)
   end function stop_line
+
+  !> Whole-body masses from per-radian ones: 2 pi in axisymmetry (a BODY's geometry).
+  pure real(dp) function mass_factor(deck) result(factor)
+    type(deck_t), intent(in) :: deck
+    factor = 1.0_dp
+    if (deck%settings%geometry == geometry_axisymmetric) factor = 2.0_dp*pi
+  end function mass_factor
 end module visco2d_impact

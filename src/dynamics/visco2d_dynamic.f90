@@ -74,6 +74,7 @@ module visco2d_dynamic
   use visco2d_dynamic_record, only: kept_state_t, dynamic_log_t, log_create, log_row, log_snapshot, log_field_times, &
                                     keep_state, insert_kept_snapshot, stored_energy, centre_of_mass, put_end_summary, &
                                     warn_unwritten_fields
+  use visco2d_body_mesh, only: contact_card_line, contact_card_name
   implicit none
   private
 
@@ -112,7 +113,11 @@ contains
     call stepper_create(deck, stepper, hold)
     call initial_state(deck, stepper, state)
     associate (body_mass => merge(0.0_dp, stepper%mass, stepper%pad))    ! the body's, not a PAD's
-    if (stepper%contact_on) call impact_start(deck, body_mass, state%a, measures%impact)
+    if (stepper%contact_on .and. deck%body%line > 0) then                ! a second BODY: its masses too
+      call impact_start(deck, body_mass, state%a, measures%impact, merge(stepper%mass, 0.0_dp, stepper%pad), state%v)
+    else if (stepper%contact_on) then
+      call impact_start(deck, body_mass, state%a, measures%impact)
+    end if
     call balance_start(measures%book, stepper%mass, state%v)
     call log_create(deck, body_mass, stepper%contact_on, record, measures%log)
     end associate
@@ -198,6 +203,8 @@ contains
     state%v(2::2) = velocity(2)
     end associate
     state%v = merge(0.0_dp, state%v, stepper%fixed .or. stepper%pad)   ! a PAD starts at rest
+    if (deck%body%line > 0) state%v(2::2) = merge(deck%body%velocity, state%v(2::2), &   ! a second BODY at its VZ
+                                                  stepper%pad(2::2) .and. .not. stepper%fixed(2::2))
     state%internal = internal_force(deck%mesh, deck%settings, state%stress)
     state%load = external_load(deck%mesh, deck%settings, deck%loads, 0.0_dp)
     state%a = (state%load + stepper%gravity - state%internal)/stepper%mass
@@ -242,7 +249,8 @@ contains
         return
       else if (info < 0) then
         call set_error(error, 'the contact capacitance matrix is not positive definite (equation '// &
-          integer_text(-info)//' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+          integer_text(-info)//' of the held set)', file=deck%cards%file, line=contact_card_line(deck, .false.), &
+        card=contact_card_name(deck, .false.))
         return
       end if
     end do

@@ -79,7 +79,8 @@ contains
     columns = [character(len=48) :: 'step', 't_s', 'max_displacement_m', 'uz_cm_m', 'vz_cm_m_s', &
                'az_cm_m_s2', 'kinetic_J', 'strain_J', 'dissipated_J', 'external_work_J', 'gravity_work_J', &
                'balance_error_J', 'reaction_r_N', 'reaction_z_N']
-    if (contact_on) columns = [character(len=48) :: columns, impact_columns(deck%pad%first_node > 0), 'contact_loss_J']
+    if (contact_on) columns = [character(len=48) :: columns, impact_columns(deck%pad%line > 0, deck%body%line > 0), &
+                               'contact_loss_J']
     do p = 1, size(deck%probes)
       do k = 1, size(probe_columns)
         columns = [character(len=48) :: columns, deck%probes(p)%name//'_'//trim(probe_columns(k))]
@@ -122,7 +123,7 @@ contains
                  sum(state%reaction(2::2))]]
     first = 15
     if (log%contact_on) then
-      columns_impact = size(impact_columns(impact%pad))
+      columns_impact = size(impact_columns(impact%pad, impact%second))
       row(first:first + columns_impact - 1) = impact_row(impact)
       row(first + columns_impact) = log%basis_factor*book%contact_loss
       first = first + columns_impact + 1

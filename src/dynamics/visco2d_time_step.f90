@@ -57,6 +57,7 @@ module visco2d_time_step
   use visco2d_integrators, only: integrator_t, substep_t, integrator_create, solve_interval, mass_coefficient, &
                                  inertia_load, solve_point_inertia, update_kinematics
   use visco2d_dynamic_state, only: dynamic_state_t
+  use visco2d_body_mesh, only: contact_card_line, contact_card_name
   implicit none
   private
 
@@ -170,7 +171,7 @@ contains
     do k = 1, nmat
       if (has_memory(materials(k)) .and. any(mesh%element_material == k)) stepper%memory = .true.
     end do
-    stepper%contact_on = deck%plate%line > 0
+    stepper%contact_on = deck%plate%line > 0 .or. deck%body%line > 0   ! the plate, or a second BODY
     do k = 1, nmat
       if (materials(k)%plastic .and. any(mesh%element_material == k)) stepper%plastic = .true.
     end do
@@ -511,10 +512,12 @@ contains
     if (allocated(error)) return
     if (info > 0) then
       call set_error(error, 'the effective stiffness is not positive definite at equation '//integer_text(info)// &
-        ' after a contact change', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+        ' after a contact change', file=deck%cards%file, line=contact_card_line(deck, .false.), &
+        card=contact_card_name(deck, .false.))
     else if (info < 0) then
       call set_error(error, 'the contact capacitance matrix is not positive definite (equation '//integer_text(-info)// &
-        ' of the held set)', file=deck%cards%file, line=deck%plate%line, card='PLATE')
+        ' of the held set)', file=deck%cards%file, line=contact_card_line(deck, .false.), &
+        card=contact_card_name(deck, .false.))
     end if
   end subroutine new_contact_set
 
@@ -552,7 +555,8 @@ contains
     if (info /= 0) then
       call set_error(error, 'the pad contact constraints are dependent (equation '//integer_text(info)// &
         ' of the held set): two body nodes hold the same pad surface equation in the same way', &
-        file=deck%cards%file, line=deck%pad%line, card='PAD')
+        file=deck%cards%file, line=contact_card_line(deck, .true.), &
+        card=contact_card_name(deck, .true.))
       return
     end if
     stepper%du = vectors(:, 1)

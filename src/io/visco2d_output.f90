@@ -179,6 +179,10 @@ contains
     call h5_write(writer, group, 'node_ids', deck%mesh%node_id)
     call h5_write(writer, group, 'element_ids', deck%mesh%element_id)
     call h5_write(writer, group, 'element_material', deck%mesh%element_material)
+    if (deck%body%line > 0) then                   ! two bodies: which one each node and element belongs to
+      call h5_write(writer, group, 'node_body', body_index(deck%mesh%nnode, deck%pad%first_node))
+      call h5_write(writer, group, 'element_body', body_index(deck%mesh%nelem, deck%pad%first_element))
+    end if
     call h5_close_group(writer, group)
 
     group = h5_group(writer, writer%file, 'summary')
@@ -244,4 +248,12 @@ contains
     call h5_close_file(writer)
     if (len(writer%failed) > 0) call set_error(error, writer%failed, file=path)
   end subroutine write_results_h5
+
+  !> 1 for the entities 1..first - 1 (the first body), 2 from `first` on (the second BODY).
+  pure function body_index(count, first) result(body)
+    integer, intent(in) :: count, first
+    integer :: body(count)
+    integer :: k
+    body = [(merge(1, 2, k < first), k = 1, count)]
+  end function body_index
 end module visco2d_output

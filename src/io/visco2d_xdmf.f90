@@ -157,6 +157,10 @@ contains
     call put_item(out, nodes//' 2', 'Float', '8', '/mesh/nodes')
     call text_put(out, '        </Geometry>')
     call put_attribute(out, 'material', 'Scalar', 'Cell', elements, 'Int', '4', '/mesh/element_material')
+    if (deck%body%line > 0) then                   ! two bodies: 1 the first, 2 the BODY card's
+      call put_attribute(out, 'body', 'Scalar', 'Cell', elements, 'Int', '4', '/mesh/element_body')
+      call put_attribute(out, 'node_body', 'Scalar', 'Node', nodes, 'Int', '4', '/mesh/node_body')
+    end if
     view = '/'//view_group//'/'//snapshot%name
     call put_attribute(out, 'displacement', 'Vector', 'Node', nodes//' 3', 'Float', '8', view//'/displacement')
     if (allocated(snapshot%velocity)) &
