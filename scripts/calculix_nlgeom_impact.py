@@ -147,7 +147,14 @@ def uniaxial_check(folder, ccx, p=TABLE1, h=0.01, strain=-0.3):
 
 # ---------------------------------------------------------------- visco2d
 def visco2d_deck(path, V, level, dt, p=TABLE1):
-    """Table 1's deck (inputs/table1_elastic.inp) at speed V, frictionless (SLIP) as the CalculiX contact."""
+    """Table 1's deck (inputs/table1_elastic.inp) at speed V, frictionless with release (SLIP RELEASE=YES)
+    as the CalculiX contact, to 1.35 Hertz t_m (past the window CalculiX runs, 1.3 visco2d t_m), with
+    field snapshots every 2 dt from 0.6 Hertz t_m (for the peak shear over time)."""
+    M = sphere_mass(p["R"], p["rho"])
+    t_h = hertz.maxima(p["E"], p["nu"], p["R"], M, V)[1]
+    t_end = math.ceil(1.35 * t_h / dt) * dt
+    times = np.arange(math.ceil(0.6 * t_h / dt), int(round(t_end / dt)), 2) * dt
+    fields = ",".join(f"{t:.6g}" for t in times)
     with open(path, "w") as f:
         f.write(f"""TITLE Table 1 sphere, V = {V:.6g} m/s, frictionless, to maximum deformation (CalculiX NLGEOM check)
 ANALYSIS DYNAMIC
@@ -157,10 +164,9 @@ MESH SPHERE R={p['R']:g} LEVEL={level}
 INITIAL VZ={-V:.10g} AZ={-G_ACC:g}
 GRAVITY G={G_ACC:g}
 WILSON THETA=1.4
-TIME DT={dt:g} TEND=4e-3
-PLATE Z=0 SLIP
-STOP AT=MAXDEFORMATION
-OUTPUT EVERY=1
+TIME DT={dt:g} TEND={t_end:.6g}
+PLATE Z=0 SLIP RELEASE=YES
+OUTPUT EVERY=1 FIELDS={fields}
 END
 """)
 
@@ -179,30 +185,50 @@ def max_shear_2d(sig):
 VISCO2D_POINT = (0, 1, 3, 2)
 
 
-def visco2d_results(vcase, R):
+def largest_strain(sig, E, nu):
+    """The largest principal-strain magnitude of axisymmetric elastic stresses (..., 4), as visco2d's
+    small-strain warning measures it (visco2d_advice largest_strain): the strain from Hooke's law
+    inverted, e = ((1 + nu) s - nu tr(s) I)/E, gamma_rz = 2 (1 + nu) tau_rz / E."""
+    tr = sig[..., 0] + sig[..., 1] + sig[..., 2]
+    er, ez, et = (((1 + nu) * sig[..., i] - nu * tr) / E for i in range(3))
+    gamma = 2 * (1 + nu) * sig[..., 3] / E
+    c, r = 0.5 * (er + ez), np.hypot(0.5 * (er - ez), 0.5 * gamma)
+    return float(np.max(np.maximum(np.abs(c) + r, np.abs(et))))
+
+
+def visco2d_results(vcase, R, p=TABLE1):
     """visco2d's impact maxima and its Gauss-point peak shear (the same recovery as CalculiX's below)."""
     import h5py
     s = case.read_typed_summary(vcase)
     nodes, elements, _ = read_mesh(vcase)
     _, xy, _ = gauss_weights(nodes, elements)
-    best = None
+    best, at_alpha, strain = None, None, 0.0
+    t_m = s["t_alpha_max_ms"] * 1e-3
     with h5py.File(os.path.join(vcase, "results.h5"), "r") as f:
         for name in f["fields"]:
             g = f["fields"][name]
-            if g.attrs.get("time_from_contact", -1.0) <= 0:
+            t = float(g.attrs.get("time_from_contact", -1.0))
+            if t <= 0:
                 continue
-            tau = max_shear_2d(g["stress_gauss"][...])
+            sig = g["stress_gauss"][...]
+            tau = max_shear_2d(sig)
             e, k = np.unravel_index(int(np.argmax(tau)), tau.shape)
-            if best is None or tau[e, k] > best[0]:
-                best = (float(tau[e, k]), float(g.attrs["time_from_contact"]), xy[e, VISCO2D_POINT[k]])
+            item = (float(tau[e, k]), t, xy[e, VISCO2D_POINT[k]], largest_strain(sig, p["E"], p["nu"]))
+            if best is None or item[0] > best[0]:
+                best = item
+            if at_alpha is None or abs(t - t_m) < abs(at_alpha[1] - t_m):
+                at_alpha = item
+            strain = max(strain, item[3])
     res = dict(alpha_max_mm=s["alpha_max_mm"], t_alpha_max_ms=s["t_alpha_max_ms"], force_max_N=s["force_max_N"],
                contact_radius_mm=s["contact_radius_max_mm"], max_shear_nodal_MPa=s["max_shear_max_Pa"] / 1e6,
                hertz_alpha_max_mm=s["hertz_alpha_max_mm"], hertz_force_max_N=s["hertz_force_max_N"],
                hertz_contact_radius_mm=s["hertz_contact_radius_mm"], hertz_q_max_MPa=s["hertz_q_max_MPa"],
                mass_kg=s["mass_kg"], cpu_s=float(s["cpu_s"]))
     if best is not None:
-        res.update(shear_at_alpha_MPa=best[0] / 1e6, shear_max_MPa=best[0] / 1e6, t_shear_max_ms=best[1] * 1e3,
-                   shear_depth_mm=best[2][1] * 1e3, shear_r_mm=best[2][0] * 1e3)
+        res.update(shear_max_MPa=best[0] / 1e6, t_shear_max_ms=best[1] * 1e3,
+                   shear_depth_mm=best[2][1] * 1e3, shear_r_mm=best[2][0] * 1e3,
+                   shear_at_alpha_MPa=at_alpha[0] / 1e6, shear_at_alpha_depth_mm=at_alpha[2][1] * 1e3,
+                   t_snapshot_at_alpha_ms=at_alpha[1] * 1e3, strain_at_alpha=at_alpha[3], strain_max=strain)
     res["alpha_over_R"] = res["alpha_max_mm"] * 1e-3 / R
     return res
 
@@ -337,6 +363,9 @@ def ccx_results(folder, job, nodes, elements, ids, h, dt, slave):
                alpha_reached_end=bool(int(np.argmax(alpha)) == len(alpha) - 1))
     # the Gauss-point max shear (Cauchy stress with NLGEOM) in ENEAR at every printed increment
     best, at_alpha = None, None
+    if stress:
+        # the printed increment nearest alpha_m (S may be printed every few increments)
+        k_alpha = min(stress, key=lambda k: abs(t1 + k * dt - t_c - t_m))
     for k in sorted(stress):
         S = np.array(stress[k])
         e, k2 = gauss_point_index(S)
@@ -364,13 +393,37 @@ def ccx_results(folder, job, nodes, elements, ids, h, dt, slave):
 
 
 # ---------------------------------------------------------------- one drop
-def run_drop(folder, exe, ccx, drop, level, dt, models, p=TABLE1, stress_every=1):
+def run_or_reuse(ccx, folder, job, reuse):
+    """run_ccx, or with reuse a finished earlier run of the identical deck (its .dat and a log that
+    ends with ccx's total time): (wall s, CPU s; the earlier run's from its .cpu file, else its log's
+    total time)."""
+    log = os.path.join(folder, job + ".log")
+    if reuse and os.path.exists(os.path.join(folder, job + ".dat")) and os.path.exists(log):
+        text = open(log).read()
+        if "*ERROR" in text:
+            # the earlier run of this deck failed: the same failure, not a second attempt
+            tail = "\n".join(text.splitlines()[-15:])
+            raise RuntimeError(f"ccx failed on {folder}/{job}.inp (an earlier run, reused):\n{tail}")
+        if "Total CalculiX Time" in text:
+            side = os.path.join(folder, job + ".cpu")
+            if os.path.exists(side):
+                wall, cpu = (float(x) for x in open(side).read().split())
+                return wall, cpu
+            total = float(text.split("Total CalculiX Time:")[1].split()[0])
+            return total, total
+    wall, cpu, _ = run_ccx(ccx, folder, job)
+    with open(os.path.join(folder, job + ".cpu"), "w") as f:
+        f.write(f"{wall:.3f} {cpu:.3f}\n")
+    return wall, cpu
+
+
+def run_drop(folder, exe, ccx, drop, level, dt, models, p=TABLE1, stress_every=1, reuse=False):
     """visco2d and the CalculiX models of one drop: {model: results}."""
     os.makedirs(folder, exist_ok=True)
     deck = os.path.join(folder, f"v_{drop['name']}.inp")
     visco2d_deck(deck, drop["V"], level, dt, p)
     vcase, _ = run_visco2d(exe, deck, folder)
-    out = {"visco2d": visco2d_results(vcase, p["R"])}
+    out = {"visco2d": visco2d_results(vcase, p["R"], p)}
     v = out["visco2d"]
     print(f"  visco2d: alpha_m {v['alpha_max_mm']:.4f} mm ({v['alpha_over_R']:.4f} R), F_m {v['force_max_N']:.2f} N, "
           f"tau {v.get('shear_max_MPa', float('nan')):.4f} MPa", flush=True)
@@ -386,10 +439,12 @@ def run_drop(folder, exe, ccx, drop, level, dt, models, p=TABLE1, stress_every=1
     t_end = math.ceil((1.3 * v["t_alpha_max_ms"] * 1e-3 + 4 * dt) / dt) * dt
     for model in models:
         job = f"ccx_{drop['name']}_{model}"
-        ccx_deck(os.path.join(folder, job + ".inp"), model, nodes, elements, ids, drop["h"], penalty, sigma_inf,
-                 t_end, dt, near, p, stress_every)
+        inp = os.path.join(folder, job + ".inp")
+        old = open(inp).read() if os.path.exists(inp) else None
+        ccx_deck(inp, model, nodes, elements, ids, drop["h"], penalty, sigma_inf, t_end, dt, near, p, stress_every)
+        reuse_this = reuse and old == open(inp).read()
         try:
-            wall, cpu, _ = run_ccx(ccx, folder, job)
+            wall, cpu = run_or_reuse(ccx, folder, job, reuse_this)
         except RuntimeError as error:
             print(error, flush=True)
             out[model] = {"failed": str(error).splitlines()[0]}
@@ -416,7 +471,8 @@ def relative(a, b):
     return (a - b) / abs(b)
 
 
-ERROR_KEYS = (("alpha_max_mm", "alpha_m"), ("force_max_N", "F_m"), ("shear_max_MPa", "tau_max"))
+ERROR_KEYS = (("alpha_max_mm", "alpha_m"), ("force_max_N", "F_m"), ("shear_at_alpha_MPa", "tau_alpha"),
+              ("shear_max_MPa", "tau_max"))
 
 
 def error_rows(results, reference="neohooke", compared=("visco2d", "linear", "svk")):
@@ -427,7 +483,7 @@ def error_rows(results, reference="neohooke", compared=("visco2d", "linear", "sv
         ref = res.get(reference)
         if not ref or "failed" in ref:
             continue
-        row = dict(drop=name, alpha_over_R=ref["alpha_over_R"])
+        row = dict(drop=name, alpha_over_R=ref["alpha_over_R"], strain_max=res.get("visco2d", {}).get("strain_at_alpha"))
         for m in compared:
             for key, short in ERROR_KEYS:
                 row[f"{m}_{short}"] = relative(res.get(m, {}).get(key), ref.get(key))
@@ -436,7 +492,7 @@ def error_rows(results, reference="neohooke", compared=("visco2d", "linear", "sv
 
 
 def write_error_csv(path, rows, compared=("visco2d", "linear", "svk")):
-    cols = ["alpha_over_R"] + [f"{m}_{s}" for m in compared for _, s in ERROR_KEYS]
+    cols = ["alpha_over_R", "strain_max"] + [f"{m}_{s}" for m in compared for _, s in ERROR_KEYS]
     with open(path, "w") as f:
         f.write(",".join(cols) + "\n")
         for r in rows:
@@ -455,7 +511,9 @@ def pct(x):
 QUANT = [("alpha_max_mm", "alpha_m (mm)"), ("t_alpha_max_ms", "t at alpha_m (ms)"), ("force_max_N", "F_m (N)"),
          ("contact_radius_mm", "contact radius at alpha_m (mm)"), ("shear_at_alpha_MPa", "max shear at alpha_m (MPa)"),
          ("shear_max_MPa", "max shear, over time (MPa)"), ("shear_depth_mm", "its depth, undeformed (mm)"),
-         ("shear_depth_deformed_mm", "its height above the plate, deformed (mm)"), ("cpu_s", "CPU (s)")]
+         ("shear_depth_deformed_mm", "its height above the plate, deformed (mm)"),
+         ("strain_at_alpha", "largest principal strain at alpha_m (visco2d's warning measure)"),
+         ("strain_max", "largest principal strain, over time"), ("cpu_s", "CPU (s)")]
 
 
 def hertz_shear_peak(nu, q0, a):
@@ -493,6 +551,8 @@ def main():
     ap.add_argument("--levels", default="2,3,4", help="levels of --convergence")
     ap.add_argument("--drops", default="", help="comma list of drop names to run (default all)")
     ap.add_argument("--models", default=",".join(MODELS))
+    ap.add_argument("--reuse", action="store_true", help="parse a finished earlier ccx run of an identical deck instead of rerunning it")
+    ap.add_argument("--no-halving", action="store_true", help="--convergence without the dt/2 run")
     ap.add_argument("--exe", default=os.path.join(ROOT, "build", "install", "bin", "visco2d"))
     ap.add_argument("--ccx", default=shutil.which("ccx"))
     args = ap.parse_args()
@@ -507,12 +567,15 @@ def main():
     if args.convergence:
         table1 = [d for d in drops if d["name"] == "table1"][0]
         runs = [(f"level {lv}, dt {args.dt:g}", int(lv), args.dt) for lv in args.levels.split(",")]
-        runs.append((f"level {args.level}, dt {args.dt / 2:g}", args.level, args.dt / 2))
+        if not args.no_halving:
+            runs.append((f"level {args.level}, dt {args.dt / 2:g}", args.level, args.dt / 2))
         conv = []
         for label, lv, dt in runs:
             print(f"convergence: {label}", flush=True)
             folder = os.path.join(out, "convergence", f"L{lv}_dt{dt:g}")
-            conv.append((label, run_drop(folder, args.exe, ccx, table1, lv, dt, ["neohooke"])))
+            # level 4: S every 5th increment (the .dat of level 3 with S at every one is 190 MB)
+            conv.append((label, run_drop(folder, args.exe, ccx, table1, lv, dt, ["neohooke"], reuse=args.reuse,
+                                         stress_every=1 if lv <= 3 else 5)))
         with open(os.path.join(out, "convergence.json"), "w") as f:
             json.dump([(l, {m: {k: x for k, x in r.items() if k != "history"} for m, r in res.items()}) for l, res in conv],
                       f, indent=1)
@@ -538,7 +601,8 @@ def main():
         if wanted and drop["name"] not in wanted:
             continue
         print(f"drop {drop['name']}: V {drop['V']:.4f} m/s, h {drop['h']:.4g} m, Hertz alpha/R {drop['hertz_ratio']:.4f}", flush=True)
-        results.append((drop["name"], run_drop(os.path.join(out, drop["name"]), args.exe, ccx, drop, args.level, args.dt, models)))
+        results.append((drop["name"], run_drop(os.path.join(out, drop["name"]), args.exe, ccx, drop, args.level, args.dt, models,
+                                               reuse=args.reuse)))
         with open(os.path.join(out, "results.json"), "w") as f:
             json.dump([(n, {m: {k: x for k, x in r.items() if k != "history"} for m, r in res.items()}) for n, res in results],
                       f, indent=1)
@@ -562,11 +626,13 @@ def main():
     rows = error_rows(results)
     if rows:
         report.append("## Relative error against CalculiX neo-Hookean NLGEOM\n")
-        report.append("| alpha_m/R | visco2d alpha_m | visco2d F_m | visco2d max shear | linear alpha_m | linear F_m | "
-                      "linear max shear | SVK alpha_m | SVK F_m | SVK max shear |")
-        report.append("|---:|" + "---:|" * 9)
+        head = "| alpha_m/R | visco2d largest strain |"
+        for m in ("visco2d", "linear", "SVK"):
+            head += f" {m} alpha_m | {m} F_m | {m} shear at alpha_m | {m} shear over time |"
+        report.append(head)
+        report.append("|---:|" + "---:|" * 13)
         for r in rows:
-            report.append(f"| {r['alpha_over_R']:.4f} | " + " | ".join(
+            report.append(f"| {r['alpha_over_R']:.4f} | {f4(r['strain_max'], '.3f')} | " + " | ".join(
                 pct(r[f"{m}_{s}"]) for m in ("visco2d", "linear", "svk") for _, s in ERROR_KEYS) + " |")
         write_error_csv(os.path.join(out, "small_strain_error.csv"), rows)
     text = "\n".join(report) + "\n"

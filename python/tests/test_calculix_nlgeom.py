@@ -117,6 +117,11 @@ def test_max_shear_and_contact_radius():
     # the boundary leaves the plate y = 0 between the 2nd and 3rd node: y from -1 to +1 over r 2 -> 4
     assert nl.contact_radius(np.array([0.0, 2.0, 4.0]), np.array([-2.0, -1.0, 1.0])) == pytest.approx(3.0)
     assert nl.contact_radius(np.array([0.0, 2.0]), np.array([1.0, 2.0])) == 0.0
+    # uniaxial stress -E e in z: principal strains (-e, nu e, nu e); the largest magnitude e
+    e = 0.01
+    assert nl.largest_strain(np.array([[0.0, -E * e, 0.0, 0.0]]), E, NU) == pytest.approx(e, rel=1e-12)
+    # pure shear tau_rz: strains +-(1 + nu) tau / E
+    assert nl.largest_strain(np.array([[0.0, 0.0, 0.0, 1e5]]), E, NU) == pytest.approx((1 + NU) * 1e5 / E, rel=1e-12)
 
 
 def fmt(x):
@@ -183,17 +188,37 @@ def test_results_parsed_from_a_dat_file(tmp_path):
 
 
 def test_error_rows_and_csv(tmp_path):
-    ref = dict(alpha_over_R=0.1, alpha_max_mm=2.0, force_max_N=100.0, shear_max_MPa=1.0)
-    res = [("d1", {"neohooke": ref, "visco2d": dict(alpha_max_mm=2.02, force_max_N=99.0, shear_max_MPa=0.9),
-                   "linear": dict(alpha_max_mm=1.98, force_max_N=101.0, shear_max_MPa=0.95),
+    ref = dict(alpha_over_R=0.1, alpha_max_mm=2.0, force_max_N=100.0, shear_at_alpha_MPa=0.8, shear_max_MPa=1.0)
+    res = [("d1", {"neohooke": ref,
+                   "visco2d": dict(alpha_max_mm=2.02, force_max_N=99.0, shear_at_alpha_MPa=0.76, shear_max_MPa=0.9,
+                                   strain_at_alpha=0.12),
+                   "linear": dict(alpha_max_mm=1.98, force_max_N=101.0, shear_at_alpha_MPa=0.78, shear_max_MPa=0.95),
                    "svk": {"failed": "diverged"}})]
     rows = nl.error_rows(res)
+    assert rows[0]["strain_max"] == 0.12
     assert rows[0]["visco2d_alpha_m"] == pytest.approx(0.01)
     assert rows[0]["linear_F_m"] == pytest.approx(0.01)
+    assert rows[0]["visco2d_tau_alpha"] == pytest.approx(-0.05)
     assert rows[0]["visco2d_tau_max"] == pytest.approx(-0.1)
     assert rows[0]["svk_alpha_m"] is None
     cols = nl.write_error_csv(str(tmp_path / "e.csv"), rows)
     text = (tmp_path / "e.csv").read_text().splitlines()
-    assert text[0].split(",") == cols and cols[0] == "alpha_over_R"
-    assert text[1].split(",")[:4] == ["0.1", "0.01", "-0.01", "-0.1"]
-    assert text[1].endswith(",,,")
+    assert text[0].split(",") == cols and cols[:3] == ["alpha_over_R", "strain_max", "visco2d_alpha_m"]
+    assert len(cols) == 2 + 3 * 4
+    assert text[1].split(",")[:6] == ["0.1", "0.12", "0.01", "-0.01", "-0.05", "-0.1"]
+    assert text[1].endswith(",,,,")
+
+
+def test_visco2d_deck(tmp_path):
+    path = tmp_path / "v.inp"
+    nl.visco2d_deck(str(path), 0.9982, 2, 1e-5)
+    lines = path.read_text().splitlines()
+    assert "INITIAL VZ=-0.9982 AZ=-9.8" in lines and "MESH SPHERE R=0.0366 LEVEL=2" in lines
+    assert "PLATE Z=0 SLIP RELEASE=YES" in lines
+    assert "MATERIAL apple ELASTIC E=1.811e+07 NU=0.219 RHO=756.85" in lines
+    # to 1.35 Hertz t_m (1.6179 ms), snapshots every 2 dt from 0.6 t_m
+    assert "TIME DT=1e-05 TEND=0.00219" in lines
+    fields = [x for x in lines if x.startswith("OUTPUT")][0].split("FIELDS=")[1].split(",")
+    times = np.array([float(x) for x in fields])
+    assert times[0] == pytest.approx(0.98e-3) and times[-1] < 2.19e-3
+    assert np.diff(times) == pytest.approx(2e-5)
