@@ -252,7 +252,9 @@ def ccx_deck(path, model, nodes, elements, ids, h, penalty, sigma_inf, t_end, dt
     """The CalculiX deck: visco2d's mesh lifted by h, falling from rest under gravity (step 1, 100
     increments, to 2 dt before contact; the *INITIAL CONDITIONS velocity does not move expanded CAX4
     nodes in ccx 2.20, doc/calculix_plastic.md), then the impact at the fixed dt (step 2) to t_end after
-    step 1, printing U of the sphere, RF of the plate, and S in the elements `near` the contact."""
+    step 1, printing U of the sphere, RF of the plate, and S in the elements `near` the contact.
+    stress_every > 1 thins every print of step 2, not only S (ccx 2.20 applies an *EL PRINT's
+    FREQUENCY to the *NODE PRINT too): ccx_results then cannot find first contact."""
     _, t1 = free_fall_times(h, dt)
     nl = ", NLGEOM" if model in ("svk", "neohooke") else ""
     lines = ["*HEADING", f"Table 1 sphere, {model}, drop {h:.6g} m, visco2d's mesh"]
@@ -348,6 +350,9 @@ def ccx_results(folder, job, nodes, elements, ids, h, dt, slave):
     vz = np.gradient(uz, t_abs)
     zp = h + upole
     j = int(np.nonzero(zp <= 0)[0][0])
+    if j == 0:
+        raise ValueError(f"{job}.dat: the pole is already on the plate at the first printed increment "
+                         "(U must be printed at every increment from 2 dt before contact)")
     s_ = zp[j - 1] / (zp[j - 1] - zp[j])
     t_c = t_abs[j - 1] + s_ * dt
     uz_c = uz[j - 1] + s_ * (uz[j] - uz[j - 1])
@@ -417,7 +422,8 @@ def run_or_reuse(ccx, folder, job, reuse):
     return wall, cpu
 
 
-def run_drop(folder, exe, ccx, drop, level, dt, models, p=TABLE1, stress_every=1, reuse=False):
+def run_drop(folder, exe, ccx, drop, level, dt, models, p=TABLE1, stress_every=1, reuse=False, near_cut=(0.6, 0.45),
+             t_end_factor=1.3):
     """visco2d and the CalculiX models of one drop: {model: results}."""
     os.makedirs(folder, exist_ok=True)
     deck = os.path.join(folder, f"v_{drop['name']}.inp")
@@ -432,11 +438,11 @@ def run_drop(folder, exe, ccx, drop, level, dt, models, p=TABLE1, stress_every=1
     nodes, elements, ids = read_mesh(vcase)
     from calculix_common import slave_nodes
     slave = slave_nodes(nodes, elements, 0.4 * p["R"])
-    near = near_elements(nodes, elements, p["R"])
+    near = near_elements(nodes, elements, p["R"], *near_cut)
     p0, aH = v["hertz_q_max_MPa"] * 1e6, v["hertz_alpha_max_mm"] * 1e-3
     penalty, sigma_inf = p0 / (1e-3 * aH), 0.0025 * p0
     # step 2 ends well after visco2d's maximum (St Venant-Kirchhoff is softer: later)
-    t_end = math.ceil((1.3 * v["t_alpha_max_ms"] * 1e-3 + 4 * dt) / dt) * dt
+    t_end = math.ceil((t_end_factor * v["t_alpha_max_ms"] * 1e-3 + 4 * dt) / dt) * dt
     for model in models:
         job = f"ccx_{drop['name']}_{model}"
         inp = os.path.join(folder, job + ".inp")
@@ -573,9 +579,12 @@ def main():
         for label, lv, dt in runs:
             print(f"convergence: {label}", flush=True)
             folder = os.path.join(out, "convergence", f"L{lv}_dt{dt:g}")
-            # level 4: S every 5th increment (the .dat of level 3 with S at every one is 190 MB)
+            # level 4: S in a smaller region (r < 0.3 R, z < 0.2 R: the peak is at 0.09 R depth, 0.02 R
+            # from the axis) and to 1.1 t_m, not 1.3 (the .dat of level 3 with S in r < 0.6 R, z < 0.45 R
+            # is 190 MB); a FREQUENCY on *EL PRINT would apply to the U of *NODE PRINT too (ccx 2.20)
+            fine = lv >= 4
             conv.append((label, run_drop(folder, args.exe, ccx, table1, lv, dt, ["neohooke"], reuse=args.reuse,
-                                         stress_every=1 if lv <= 3 else 5)))
+                                         near_cut=(0.3, 0.2) if fine else (0.6, 0.45), t_end_factor=1.1 if fine else 1.3)))
         with open(os.path.join(out, "convergence.json"), "w") as f:
             json.dump([(l, {m: {k: x for k, x in r.items() if k != "history"} for m, r in res.items()}) for l, res in conv],
                       f, indent=1)

@@ -187,6 +187,17 @@ def test_results_parsed_from_a_dat_file(tmp_path):
     assert not r["alpha_reached_end"]
 
 
+def test_first_contact_before_the_first_sample_is_an_error(tmp_path):
+    # the pole already on the plate at the first printed increment: no first-contact time to interpolate
+    nodes, elements, ids = small_mesh()
+    h, dt = 0.05, 1e-5
+    _, t1 = nl.free_fall_times(h, dt)
+    motion = -h - 1e-6 * np.arange(1, 11)
+    write_dat(tmp_path / "job.dat", nodes, ids, h, dt, t1, motion, np.zeros(10), lambda k: [])
+    with pytest.raises(ValueError, match="already on the plate at the first printed increment"):
+        nl.ccx_results(str(tmp_path), "job", nodes, elements, ids, h, dt, [0, 1, 2])
+
+
 def test_error_rows_and_csv(tmp_path):
     ref = dict(alpha_over_R=0.1, alpha_max_mm=2.0, force_max_N=100.0, shear_at_alpha_MPa=0.8, shear_max_MPa=1.0)
     res = [("d1", {"neohooke": ref,
