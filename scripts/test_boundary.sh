@@ -45,10 +45,13 @@ fi
 # material), the surface's cards on a line of their own after PLATE.
 sed -e 's/^MESH SPHERE R=0.03 LEVEL=3 /MESH SPHERE R=${radius} LEVEL=1 MAT=peach/' \
     -e 's/^DROP HEIGHT=0.2/DROP HEIGHT=${height}/' -e 's/^BRUISE \(.*\)$/BRUISE \1 MAT=peach/' \
-    -e 's/^STOP AT=SEPARATION/${surface}\nSTOP AT=SEPARATION/' "$root/inputs/peach_drop.inp" > peach.inp
+    -e 's/^STOP AT=SEPARATION/${surface}\nSTOP AT=SEPARATION/' \
+    -e 's/STRESS=0.3e6/STRESS=0.2e6/' "$root/inputs/peach_drop.inp" > peach.inp
+# (a failure stress of 0.2 MPa: the onset on steel, near 2 cm, stays below alpha/R = 4.5 %, where the
+#  approach warning starts, so that the steel cells are the ones without warnings)
 check template_made "the sed of inputs/peach_drop.inp did not make 3 placeholders" \
   test "$(grep -o '\${[a-z]*}' peach.inp | wc -l)" = 3
-foam='MATERIAL foam ELASTIC E=3e6 NU=0.3 RHO=100; PAD THICKNESS=0.01 MAT=foam'
+foam='MATERIAL foam ELASTIC E=1e6 NU=0.3 RHO=100; PAD THICKNESS=0.01 MAT=foam'
 grid=(peach.inp --param height=0.01:2.0 --param radius=0.025,0.035 --surface steel=none --surface "foam=$foam"
       --when 'bruise_volume_cm3>0' --tol 0.02 --x-scale 1000 --x-label 'fruit radius (mm)')
 
@@ -117,7 +120,7 @@ for row in csv.DictReader(open("grid/boundary.csv")):
     if (row["surface"] == "foam" and not warned) or (row["surface"] == "steel" and not clean):
         sys.exit(1)'
 check warned_text_marks "grid/boundary.txt: $(first_lines grid/boundary.txt)" \
-  bash -c 'grep -q "^radius=0.025 .*\] \*1$" grid/boundary.txt && grep -q "^1) PAD: the largest principal strain" grid/boundary.txt'
+  bash -c 'grep -q "^radius=0.025 .*\] \*1\( \*[0-9]*\)*$" grid/boundary.txt && grep -q "^1) PAD: the largest principal strain" grid/boundary.txt'
 python3 - grid/boundary.png > png.log 2>&1 <<'PY'
 import struct, sys, zlib
 data = open(sys.argv[1], 'rb').read()
