@@ -13,7 +13,7 @@ module visco2d_solve_errors
   implicit none
   private
 
-  public :: check_balance, singular_message, singular_error, node_text, card_at_line, not_finite_error
+  public :: check_balance, singular_message, singular_error, node_text, card_at_line, not_finite_error, analysis_error
 
 contains
 
@@ -124,6 +124,17 @@ contains
     type(source_t), intent(in) :: source
     character(*), intent(in) :: what
     type(error_t), allocatable, intent(inout) :: error
+    call analysis_error(source, error, what//' is not finite (NaN or Inf): the loads, moduli or prescribed values '// &
+      'overflow double precision; check their magnitudes. No results were written.')
+  end subroutine not_finite_error
+
+  !> An error of the solve located at the deck's ANALYSIS card (its first;
+  !> line 0 when the source has none): a Newton solve that did not converge,
+  !> a singular tangent, a result not finite.
+  subroutine analysis_error(source, error, message)
+    type(source_t), intent(in) :: source
+    type(error_t), allocatable, intent(inout) :: error
+    character(*), intent(in) :: message
     integer :: k, line
     line = 0
     if (allocated(source%lines)) then
@@ -134,8 +145,6 @@ contains
         end if
       end do
     end if
-    call set_error(error, what//' is not finite (NaN or Inf): the loads, moduli or prescribed values '// &
-      'overflow double precision; check their magnitudes. No results were written.', file=source%file, &
-      line=line, card='ANALYSIS')
-  end subroutine not_finite_error
+    call set_error(error, message, file=source%file, line=line, card='ANALYSIS')
+  end subroutine analysis_error
 end module visco2d_solve_errors

@@ -36,7 +36,7 @@ module visco2d_finite_static
   use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
                               scatter_add, nodal_field, nodal_average
   use visco2d_static, only: static_solution_t
-  use visco2d_solve_errors, only: singular_error, not_finite_error
+  use visco2d_solve_errors, only: singular_error, not_finite_error, analysis_error
   use visco2d_record, only: record_t, record_put_integer, record_put_real
   use visco2d_finite_solid, only: element_response
   use visco2d_finite_element, only: finite_point_t, finite_kinematics
@@ -96,7 +96,8 @@ contains
     solution%external_work = 0.0_dp
     call evaluate(u, bad_element)                      ! f(0) = 0 and K_t(0), the small-strain stiffness
     if (bad_element > 0) then
-      call analysis_error('element '//integer_text(mesh%element_id(bad_element))//' is degenerate in the '// &
+      call analysis_error(source, error, &
+        'element '//integer_text(mesh%element_id(bad_element))//' is degenerate in the '// &
                           'undeformed mesh')
       return
     end if
@@ -121,7 +122,8 @@ contains
           if (k == 1 .and. iteration == 1) then
             call singular_error(mesh, source, info, error)
           else
-            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '// &
+            call analysis_error(source, error, &
+              'the tangent stiffness is singular in load increment '//integer_text(k)//' of '// &
               integer_text(n)//' (Newton iteration '//integer_text(iteration)//', equation '//integer_text(info)// &
               '): the body may have buckled or reached a limit point; give more INCREMENTS=')
           end if
@@ -139,7 +141,8 @@ contains
           call evaluate(u + du, bad_element)
           if (bad_element == 0) exit
           if (cut == halvings) then
-            call analysis_error('element '//integer_text(mesh%element_id(bad_element))//' inverts in load '// &
+            call analysis_error(source, error, &
+              'element '//integer_text(mesh%element_id(bad_element))//' inverts in load '// &
               'increment '//integer_text(k)//' of '//integer_text(n)//' (Newton iteration '//integer_text(iteration)// &
               ', the correction halved '//integer_text(halvings)//' times): the deformation is beyond what this '// &
               'mesh can follow, or the increments are too large; give more INCREMENTS=')
@@ -154,7 +157,8 @@ contains
         force_ratio = norm2(merge(0.0_dp, r, fixed))/scale
         summary%force_residual(iteration, k) = force_ratio
         if (.not. (ieee_is_finite(force_ratio) .and. all(ieee_is_finite(u)))) then
-          call analysis_error('the finite-deformation static solve diverged in load increment '//integer_text(k)// &
+          call analysis_error(source, error, &
+            'the finite-deformation static solve diverged in load increment '//integer_text(k)// &
             ' of '//integer_text(n)//' (Newton iteration '//integer_text(iteration)//': the displacement or the '// &
             'residual is not finite)')
           return
@@ -173,7 +177,7 @@ contains
         end if
       end do
       if (.not. converged) then
-        call analysis_error('the finite-deformation static solve did not converge in load increment '// &
+        call analysis_error(source, error, 'the finite-deformation static solve did not converge in load increment '// &
           integer_text(k)//' of '//integer_text(n)//': after '//integer_text(settings%iterations)//' Newton '// &
           'iterations the force residual is '//short_real(force_ratio)//' of the load (tolerance '// &
           short_real(force_tolerance)//') and the energy norm '//short_real(energy_next/max(energy_first, &
@@ -271,16 +275,6 @@ contains
       end do
     end subroutine deformation_extremes
 
-    !> An error at the ANALYSIS card.
-    subroutine analysis_error(message)
-      character(*), intent(in) :: message
-      integer :: c, line
-      line = 0
-      do c = 1, size(source%keywords)
-        if (source%keywords(c) == 'ANALYSIS') line = source%lines(c)
-      end do
-      call set_error(error, message, file=source%file, line=line, card='ANALYSIS')
-    end subroutine analysis_error
   end subroutine solve_finite_static
 
   !> The summary keys of a finite-deformation static solve (doc/outputs.md).

@@ -44,7 +44,7 @@ module visco2d_plastic_static
                               prescribed_displacement, &
                               scatter_add, nodal_field, nodal_average, node_dof
   use visco2d_static, only: static_solution_t
-  use visco2d_solve_errors, only: singular_error, not_finite_error
+  use visco2d_solve_errors, only: singular_error, not_finite_error, analysis_error
   use visco2d_plasticity, only: return_result_t, consistent_tangent, deviatoric_norm, viscoplastic_update
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients
   use visco2d_record, only: record_t, record_put_integer, record_put_real
@@ -205,7 +205,8 @@ contains
           if (k == 1 .and. iteration == 1) then
             call singular_error(mesh, source, info, error)
           else
-            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '//integer_text(n)// &
+            call analysis_error(source, error, &
+              'the tangent stiffness is singular in load increment '//integer_text(k)//' of '//integer_text(n)// &
               ' (Newton iteration '//integer_text(iteration)//', equation '//integer_text(info) &
                 //'): the load is probably above '// &
               'the limit load of the perfectly plastic body (give a hardening TANGENT= or SLOPE=, or less load)')
@@ -227,7 +228,8 @@ contains
         force_ratio = norm2(merge(0.0_dp, r, fixed))/scale
         summary%force_residual(iteration, k) = force_ratio
         if (.not. (ieee_is_finite(force_ratio) .and. all(ieee_is_finite(u)))) then
-          call analysis_error('the plastic static solve diverged in load increment '//integer_text(k)//' of '//integer_text(n)// &
+          call analysis_error(source, error, &
+            'the plastic static solve diverged in load increment '//integer_text(k)//' of '//integer_text(n)// &
             ' (Newton iteration '//integer_text(iteration)//': the displacement or the residual is not finite)')
           return
         end if
@@ -252,7 +254,8 @@ contains
         end if
       end do
       if (.not. converged) then
-        call analysis_error('the plastic static solve did not converge in load increment '//integer_text(k)//' of '// &
+        call analysis_error(source, error, &
+          'the plastic static solve did not converge in load increment '//integer_text(k)//' of '// &
           integer_text(n)//': after '//integer_text(max_iterations)//' Newton iterations the force residual is '// &
           short_real(force_ratio)//' of the load (tolerance '//short_real(force_tolerance)//') and the energy '// &
           'norm '//short_real(energy_next/max(energy_first, tiny(1.0_dp)))//' of the first iteration''s '// &
@@ -351,7 +354,8 @@ contains
           if (k == 1 .and. pass == 1) then
             call singular_error(mesh, source, info, error)
           else
-            call analysis_error('the tangent stiffness is singular in load increment '//integer_text(k)//' of '// &
+            call analysis_error(source, error, &
+              'the tangent stiffness is singular in load increment '//integer_text(k)//' of '// &
               integer_text(n)//' (the contact predictor, equation '//integer_text(info)//')')
           end if
           return
@@ -396,7 +400,8 @@ contains
       if (violations == 0) return
       changes = changes + 1
       if (changes > 50 + 10*size(plate%candidates)) then
-        call analysis_error('the contact set on the PLATE does not settle in load increment '//integer_text(k)// &
+        call analysis_error(source, error, &
+          'the contact set on the PLATE does not settle in load increment '//integer_text(k)// &
           ' of '//integer_text(n)//' ('//integer_text(changes - 1)//' changes, '//integer_text(violations)// &
           ' node(s) still through the plate or pulling): give more INCREMENTS=')
       end if
@@ -498,16 +503,6 @@ contains
       end do
     end subroutine evaluate
 
-    !> An error at the ANALYSIS card.
-    subroutine analysis_error(message)
-      character(*), intent(in) :: message
-      integer :: c, line
-      line = 0
-      do c = 1, size(source%keywords)
-        if (source%keywords(c) == 'ANALYSIS') line = source%lines(c)
-      end do
-      call set_error(error, message, file=source%file, line=line, card='ANALYSIS')
-    end subroutine analysis_error
   end subroutine solve_plastic_static
 
   !> The deviatoric part (s_r, s_z, s_theta, s_rz) of a stress.
