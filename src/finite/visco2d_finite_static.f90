@@ -31,15 +31,14 @@ module visco2d_finite_static
   use visco2d_material, only: material_t
   use visco2d_model, only: settings_t, loads_t, source_t
   use visco2d_quadrilateral, only: gauss_count
-  use visco2d_banded, only: band_matrix_t, band_create, band_add_element, band_constrain_rhs
+  use visco2d_banded, only: band_matrix_t, band_constrain_rhs
   use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
-  use visco2d_assembly, only: element_dofs, external_load, gravity_load, support_mask, prescribed_displacement, &
-                              scatter_add, nodal_field, nodal_average
+  use visco2d_assembly, only: external_load, gravity_load, support_mask, prescribed_displacement, &
+                              nodal_field, nodal_average
   use visco2d_static, only: static_solution_t
   use visco2d_solve_errors, only: singular_error, not_finite_error, analysis_error
   use visco2d_record, only: record_t, record_put_integer, record_put_real
-  use visco2d_finite_solid, only: element_response
-  use visco2d_finite_element, only: finite_point_t, finite_kinematics
+  use visco2d_finite_assembly, only: finite_assemble, strain_extremes
   implicit none
   private
 
@@ -197,45 +196,27 @@ contains
     solution%stress = stress
     solution%nodal_stress = nodal_average(mesh, stress)
     solution%strain_energy = energy
-    call deformation_extremes(u)
+    call strain_extremes(strain, summary%volume_ratio_min, summary%volume_ratio_max, summary%stretch_min)
     if (.not. all(ieee_is_finite(solution%stress)) .or. .not. ieee_is_finite(solution%strain_energy) .or. &
         .not. ieee_is_finite(solution%external_work)) &
       call not_finite_error(source, 'the finite-deformation stress or energy', error)
 
   contains
 
-    !> Every element's response at the displacement v: the internal force,
-    !> the tangent (in `stiffness`), the stresses, strains and the energy;
-    !> `bad` the first inverted element (0: none), and then nothing is kept.
+    !> Every element's response at the displacement v (finite_assemble): the
+    !> internal force, the tangent (in `stiffness`), the stresses, strains and
+    !> the energy; `bad` the first inverted element (0: none), and then nothing is kept.
     subroutine evaluate(v, bad)
       real(dp), intent(in) :: v(:)
       integer, intent(out) :: bad
-      real(dp) :: f(8), ke(8, 8), element_stress(4, gauss_count), element_strain(4, gauss_count), element_energy
       real(dp), allocatable :: trial_force(:), trial_stress(:, :, :), trial_strain(:, :, :)
       type(band_matrix_t) :: trial_stiffness
       real(dp) :: trial_energy
-      integer :: e
-      logical :: valid
-      bad = 0
       allocate(trial_force(2*mesh%nnode), trial_stress(4, gauss_count, mesh%nelem), &
                trial_strain(4, gauss_count, mesh%nelem))
-      trial_force = 0.0_dp
-      trial_energy = 0.0_dp
-      call band_create(trial_stiffness, 2*mesh%nnode, mesh%half_bandwidth)
-      do e = 1, mesh%nelem
-        call element_response(settings%geometry, settings%formulation, materials(mesh%element_material(e)), &
-                              mesh%xy(:, mesh%connectivity(:, e)), v(element_dofs(mesh, e)), .true., f, ke, &
-                              element_stress, element_strain, element_energy, valid)
-        if (.not. valid) then
-          bad = e
-          return
-        end if
-        call scatter_add(mesh, e, f, trial_force)
-        call band_add_element(trial_stiffness, element_dofs(mesh, e), ke)
-        trial_stress(:, :, e) = element_stress
-        trial_strain(:, :, e) = element_strain
-        trial_energy = trial_energy + element_energy
-      end do
+      call finite_assemble(mesh, materials, settings, v, trial_force, trial_stress, trial_strain, trial_energy, bad, &
+                           trial_stiffness)
+      if (bad > 0) return
       call move_alloc(trial_force, force)
       call move_alloc(trial_stress, stress)
       call move_alloc(trial_strain, strain)
@@ -247,33 +228,6 @@ contains
       stiffness = trial_stiffness
       energy = trial_energy
     end subroutine evaluate
-
-    !> The least and largest J and the least principal stretch over the Gauss points at v.
-    subroutine deformation_extremes(v)
-      real(dp), intent(in) :: v(:)
-      type(finite_point_t) :: points(gauss_count)
-      real(dp) :: j, c(2, 2), mean, radius
-      integer :: e, gp
-      logical :: valid
-      summary%volume_ratio_min = huge(1.0_dp)
-      summary%volume_ratio_max = -huge(1.0_dp)
-      summary%stretch_min = huge(1.0_dp)
-      do e = 1, mesh%nelem
-        call finite_kinematics(settings%geometry, mesh%xy(:, mesh%connectivity(:, e)), v(element_dofs(mesh, e)), &
-                               points, valid)
-        do gp = 1, gauss_count
-          associate (f => points(gp)%deformation)
-          j = f(3, 3)*(f(1, 1)*f(2, 2) - f(1, 2)*f(2, 1))
-          summary%volume_ratio_min = min(summary%volume_ratio_min, j)
-          summary%volume_ratio_max = max(summary%volume_ratio_max, j)
-          c = matmul(transpose(f(1:2, 1:2)), f(1:2, 1:2))
-          mean = 0.5_dp*(c(1, 1) + c(2, 2))
-          radius = hypot(0.5_dp*(c(1, 1) - c(2, 2)), c(1, 2))
-          summary%stretch_min = min(summary%stretch_min, sqrt(max(mean - radius, 0.0_dp)), f(3, 3))
-          end associate
-        end do
-      end do
-    end subroutine deformation_extremes
 
   end subroutine solve_finite_static
 
