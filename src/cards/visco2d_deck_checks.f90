@@ -240,10 +240,12 @@ contains
     end do
   end subroutine check_locking
 
-  !> KINEMATICS LARGE runs what src/finite/ solves so far: ANALYSIS STATIC of
-  !> elastic or hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) bodies under point loads, gravity and prescribed
-  !> displacements. Anything else is refused at its card, with what to do;
-  !> a hyperelastic material in a small-strain run warns (it is linearised).
+  !> KINEMATICS LARGE runs what src/finite/ solves so far: elastic or
+  !> hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) bodies under point loads,
+  !> gravity and prescribed displacements, ANALYSIS STATIC, or ANALYSIS
+  !> DYNAMIC with or without the rigid PLATE. Anything else is refused at its
+  !> card, with what to do; a hyperelastic material in a small-strain run
+  !> warns (it is linearised).
   subroutine check_kinematics(deck, error)
     type(deck_t), intent(inout) :: deck
     type(error_t), allocatable, intent(inout) :: error
@@ -258,9 +260,9 @@ contains
       end do
       return
     end if
-    if (deck%analysis /= analysis_static) then
-      call line_error(error, deck, deck%kinematics_line, 'KINEMATICS LARGE solves ANALYSIS STATIC so far; '// &
-        analysis_name(deck%analysis)//' is small-strain only (remove the card, or make the deck STATIC)', '1')
+    if (deck%analysis /= analysis_static .and. deck%analysis /= analysis_dynamic) then
+      call line_error(error, deck, deck%kinematics_line, 'KINEMATICS LARGE solves ANALYSIS STATIC and DYNAMIC; '// &
+        analysis_name(deck%analysis)//' is small-strain only (remove the card, or make the deck STATIC or DYNAMIC)', '1')
       return
     end if
     do k = 1, size(deck%materials)
@@ -282,9 +284,15 @@ contains
         'load by FORCE, GRAVITY or a prescribed displacement (FIX ... UZ=)')
       return
     end if
-    if (deck%plate%line > 0) then
-      call line_error(error, deck, deck%plate%line, 'contact with the PLATE at finite deformation is not in this '// &
-        'version (KINEMATICS LARGE): prescribe the displacement of the contact side (FIX ... UZ=) instead')
+    if (deck%plate%line > 0 .and. deck%analysis == analysis_static) then
+      call line_error(error, deck, deck%plate%line, 'static contact with the PLATE at finite deformation is not in '// &
+        'this version (KINEMATICS LARGE runs the PLATE in ANALYSIS DYNAMIC): prescribe the displacement of the '// &
+        'contact side (FIX ... UZ=) instead')
+      return
+    end if
+    if (deck%body%line > 0) then
+      call line_error(error, deck, deck%body%line, 'a second BODY at finite deformation is not in this version '// &
+        '(KINEMATICS LARGE)')
       return
     end if
     if (deck%pad%line > 0) then

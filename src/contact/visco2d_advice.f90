@@ -36,7 +36,7 @@
 !> t and q within 1 %); only the stress wave the first contact sends into the
 !> body is smoothed.
 module visco2d_advice
-  use visco2d_kinds, only: dp, pi, geometry_axisymmetric
+  use visco2d_kinds, only: dp, pi, geometry_axisymmetric, kinematics_large
   use visco2d_strings, only: integer_text, message_real, compact_real
   use visco2d_deck, only: deck_t, warning_t, analysis_dynamic, initial_velocity
   use visco2d_record, only: record_t, record_warn, record_real
@@ -274,6 +274,7 @@ contains
   !> the body's elements, `pad_strain` over a PAD's, each located at its
   !> material's card), or for a generated round body on the plate an approach
   !> alpha_max above approach_warning_level of R (its pole curvature radius).
+  !> None with KINEMATICS LARGE: the run is then not small-strain.
   subroutine deformation_warnings(deck, record, strain, pad_strain)
     type(deck_t), intent(in) :: deck
     type(record_t), intent(inout) :: record
@@ -281,6 +282,7 @@ contains
     real(dp) :: alpha, radius
     integer :: k, line
     logical :: found
+    if (deck%settings%kinematics == kinematics_large) return   ! finite deformation: no small-strain error to warn of
     if (strain > strain_warning_level) then
       line = 0
       if (allocated(deck%materials)) then

@@ -506,6 +506,7 @@ contains
     call bruise_report(measures%bruise, deck, record)
     if (stepper%plastic .and. .not. envelopes_wanted(deck)) call bruise_plastic_field(deck, state%ebar, record)
     if (stepper%plastic) call put_plastic_summary(stepper, deck, record, state, log%basis_factor, error)
+    if (stepper%finite) call put_finite_summary(stepper, record)
     if (allocated(error)) return
     ! Beyond the small-strain model: the largest principal strain at the end
     ! and at maximum deformation, and the approach against the radius.
@@ -571,4 +572,20 @@ contains
     if (allocated(error)) return
     if (found) call record_put_real(record, 'residual_flattening_mm', 1.0e3_dp*shortening)
   end subroutine put_plastic_summary
+
+  !> The keys of a run with KINEMATICS LARGE (doc/outputs.md): the
+  !> equilibrium iterations of the steps, the corrections halved because they
+  !> inverted an element, and the extremes of the deformation over the run
+  !> (the least and largest volume ratio J, the least principal stretch).
+  subroutine put_finite_summary(stepper, record)
+    type(stepper_t), intent(in) :: stepper
+    type(record_t), intent(inout) :: record
+    call record_put_integer(record, 'equilibrium_iterations', stepper%iterations)
+    call record_put_integer(record, 'equilibrium_iterations_max', stepper%iterations_max)
+    if (stepper%full_newton) call record_put_integer(record, 'tangent_factorizations', stepper%tangent_factorizations)
+    call record_put_integer(record, 'newton_halvings', stepper%halvings)
+    call record_put_real(record, 'volume_ratio_min', stepper%volume_ratio_min)
+    call record_put_real(record, 'volume_ratio_max', stepper%volume_ratio_max)
+    call record_put_real(record, 'stretch_min', stepper%stretch_min)
+  end subroutine put_finite_summary
 end module visco2d_dynamic

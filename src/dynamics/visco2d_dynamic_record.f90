@@ -3,7 +3,7 @@
 !> and the kept states at maximum deformation and pressure), the stored
 !> strain energy and the summary keys of the end state.
 module visco2d_dynamic_record
-  use visco2d_kinds, only: dp, whole_body_factor, energy_basis
+  use visco2d_kinds, only: dp, whole_body_factor, energy_basis, kinematics_large
   use visco2d_strings, only: integer_text, message_real, short_real
   use visco2d_deck, only: deck_t, total_steps, stop_name
   use visco2d_element, only: gauss_count
@@ -255,7 +255,8 @@ contains
 
   !> Strain energy stored in the springs: per Gauss point
   !> K theta^2/2 + G_inf e:e + sum_m G_m C_m:C_m (C_m = the history of term m,
-  !> whose spring carries s_m = 2 G_m C_m), times |J| r.
+  !> whose spring carries s_m = 2 G_m C_m), times |J| r; with KINEMATICS
+  !> LARGE the hyperelastic W of the state (visco2d_finite_assembly).
   real(dp) function stored_energy(deck, operators, state, memory) result(energy)
     type(deck_t), intent(in) :: deck
     type(operators_t), intent(in) :: operators
@@ -264,6 +265,8 @@ contains
     real(dp), parameter :: no_history(4, 0) = 0.0_dp
     real(dp) :: elastic(4)
     integer :: e, g, nterm, slot
+    energy = state%strain_energy                    ! KINEMATICS LARGE: W, evaluated with the stresses
+    if (deck%settings%kinematics == kinematics_large) return
     energy = 0.0_dp
     do e = 1, deck%mesh%nelem
       associate (material => deck%materials(deck%mesh%element_material(e)))

@@ -25,5 +25,9 @@ module visco2d_dynamic_state
     !> plastic strain ebar (gauss_count, nelem) and the plastic strain
     !> (4, gauss_count, nelem, engineering shear), both 0 off the plastic materials.
     real(dp), allocatable :: ebar(:, :), plastic_strain(:, :, :)
+    !> With KINEMATICS LARGE only: the stored energy W of the hyperelastic
+    !> bodies at U (J per radian in axisymmetry); strain is then the
+    !> logarithmic strain and stress the Cauchy stress.
+    real(dp) :: strain_energy = 0.0_dp
   end type dynamic_state_t
 end module visco2d_dynamic_state

@@ -31,7 +31,7 @@
 !> The stages time themselves for `--timing` (visco2d_timers).
 module visco2d_time_step
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use visco2d_kinds, only: dp
+  use visco2d_kinds, only: dp, kinematics_large
   use visco2d_error, only: error_t, set_error
   use visco2d_strings, only: integer_text, short_real
   use visco2d_deck, only: deck_t
@@ -58,6 +58,7 @@ module visco2d_time_step
                                  inertia_load, solve_point_inertia, update_kinematics
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_body_mesh, only: contact_card_line, contact_card_name
+  use visco2d_finite_assembly, only: finite_assemble, strain_extremes
   implicit none
   private
 
@@ -146,6 +147,17 @@ module visco2d_time_step
     integer :: iterations_max = 0                  !< the most in one solve
     integer :: iterated_solves = 0                 !< solves in which a Gauss point yielded
     real(dp) :: plastic_dissipation = 0.0_dp       !< sum of plastic_work over the sub-steps, J per radian
+    !> With KINEMATICS LARGE (finite): the internal force, the Cauchy stresses
+    !> and the logarithmic strains are those of the hyperelastic bodies at U
+    !> (visco2d_finite_assembly), and every solve is iterated to equilibrium
+    !> as a plastic one is (equilibrium_iterations); the stored energy W at
+    !> the sub-step's end and at the solve point, the element an evaluation
+    !> found inverted (0: none), and the extremes of the deformation over the run.
+    logical :: finite = .false.
+    real(dp) :: energy_next = 0.0_dp, energy_solve = 0.0_dp
+    integer :: inverted = 0
+    real(dp) :: volume_ratio_min = 1.0_dp, volume_ratio_max = 1.0_dp, stretch_min = 1.0_dp
+    integer :: halvings = 0                        !< corrections halved because they inverted an element
   end type stepper_t
 
 contains
@@ -175,6 +187,13 @@ contains
     do k = 1, nmat
       if (materials(k)%plastic .and. any(mesh%element_material == k)) stepper%plastic = .true.
     end do
+    stepper%finite = deck%settings%kinematics == kinematics_large
+    if (stepper%finite) then
+      stepper%iterations_allowed = deck%settings%iterations
+      stepper%full_newton = deck%settings%full_newton
+      allocate(stepper%residual(n), stepper%correction(n), stepper%no_values(n))
+      stepper%no_values = 0.0_dp
+    end if
     if (stepper%plastic) then
       stepper%iterations_allowed = deck%settings%iterations
       stepper%full_newton = deck%settings%full_newton
@@ -452,7 +471,7 @@ contains
       if (stepper%contact_on) call adjusted_displacements(stepper, deck, state%u, row%theta)
       call solve_held(stepper, r, error)
       if (allocated(error)) return
-      if (stepper%plastic) call equilibrium_iterations(stepper, deck, r, state, error)
+      if (stepper%plastic .or. stepper%finite) call equilibrium_iterations(stepper, deck, r, state, error)
       if (allocated(error)) return
       if (stepper%contact_on) call solve_point_reactions(stepper, r, state, start)
       call update_kinematics(row, point%length, stepper%solution, state%u, state%v, state%a, start%u, start%v, &
@@ -467,6 +486,12 @@ contains
         return
       end if
       call trial_stresses(stepper, deck, point, state)
+      if (stepper%inverted > 0) then
+        call set_error(error, 'element '//integer_text(deck%mesh%element_id(stepper%inverted))//' inverts at the '// &
+          'end of the step (KINEMATICS LARGE): the deformation is beyond what this mesh can follow in one step; '// &
+          'use a smaller DT or a finer mesh')
+        return
+      end if
       stepper%reaction_next = merge(stepper%mass*(state%a + stepper%da) + stepper%internal_next - stepper%load_next &
                                     - stepper%gravity, 0.0_dp, rigid_reactions(stepper))
       if (.not. stepper%contact_on) exit
@@ -607,7 +632,7 @@ contains
     associate (point => stepper%points(r), p => stepper%held_rows)
     inertia = solve_point_inertia(point%row, point%h, stepper%solution, state%u, state%v, state%a, start%u, start%v)
     stepper%reaction_solve = 0.0_dp
-    if (stepper%plastic) then                       ! the residual of the converged iteration
+    if (stepper%plastic .or. stepper%finite) then   ! the residual of the converged iteration
       stepper%reaction_solve(p) = -stepper%residual(p)
     else
       stepper%reaction_solve(p) = band_multiply_rows(point%effective, stepper%solution, p) - stepper%effective_load(p)
@@ -628,7 +653,11 @@ contains
     type(dynamic_state_t), intent(in) :: state
     integer :: yielded
     call timer_start(phase_constitutive)
-    if (stepper%plastic) then             ! the return mapping at the sub-step's end (history_length: absent without memory)
+    if (stepper%finite) then              ! the bodies at U + dU; increments: the change of the logarithmic strain
+      call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%du, stepper%internal_next, &
+                           stepper%trial, stepper%increments, stepper%energy_next, stepper%inverted)
+      stepper%increments = stepper%increments - state%strain
+    else if (stepper%plastic) then        ! the return mapping at the sub-step's end (history_length: absent without memory)
       call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
                                 stepper%du, point%shear, point%bulk, state%stress, state%ebar, stepper%increments, &
                                 stepper%trial, stepper%internal_next, stepper%trial_ebar, stepper%plastic_increments, &
@@ -683,7 +712,7 @@ contains
     integer, intent(in) :: r
     type(dynamic_state_t), intent(in) :: state
     type(error_t), allocatable, intent(inout) :: error
-    real(dp), allocatable :: base(:), previous(:), difference(:), linear(:), reduced(:)
+    real(dp), allocatable :: base(:), previous(:), difference(:), linear(:), reduced(:), taken(:)
     logical, allocatable :: free(:)
     logical :: predicted
     real(dp) :: c, kept, energy_first, energy, force_ratio, scale, relaxation, denominator
@@ -704,10 +733,18 @@ contains
     linear = stepper%solution
     predicted = allocated(stepper%plastic_correction)
     if (predicted) stepper%solution = stepper%solution + merge(stepper%plastic_correction, 0.0_dp, free)
+    allocate(taken(size(stepper%solution)))
+    taken = 0.0_dp
     do iteration = 1, stepper%iterations_allowed
       call timer_start(phase_constitutive)
-      call plastic_solve_point(stepper, deck, point, state, yielded)
+      if (stepper%finite) then                       ! always iterated: f(U) is nonlinear
+        call finite_solve_point(stepper, deck, state, iteration, taken, error)
+        yielded = 1
+      else
+        call plastic_solve_point(stepper, deck, point, state, yielded)
+      end if
       call timer_stop(phase_constitutive)
+      if (allocated(error)) return
       stepper%residual = base - c*stepper%mass*stepper%solution - kept*stepper%internal_solve
       if (iteration == 1 .and. yielded == 0 .and. .not. predicted) exit   ! elastic: the linear solve is the answer
       scale = sqrt(max(sum(base**2, mask=free), kept**2*sum(stepper%internal_solve**2, mask=free), &
@@ -724,14 +761,14 @@ contains
       end if
       energy = abs(sum(stepper%correction*reduced, mask=free))
       if (.not. (ieee_is_finite(force_ratio) .and. ieee_is_finite(energy))) then
-        call set_error(error, 'the equilibrium iteration of the plastic step diverged (iteration '// &
+        call set_error(error, 'the equilibrium iteration of the '//step_name(stepper)//' diverged (iteration '// &
           integer_text(iteration)//': the residual is not finite); use a smaller DT')
         return
       end if
       if (force_ratio <= dynamic_force_tolerance .and. energy <= dynamic_energy_tolerance*max(energy_first, tiny(1.0_dp))) &
         exit
       if (iteration == stepper%iterations_allowed) then
-        call set_error(error, 'the equilibrium iteration of the plastic step did not converge: after '// &
+        call set_error(error, 'the equilibrium iteration of the '//step_name(stepper)//' did not converge: after '// &
           integer_text(iteration)//' iterations the force residual is '//short_real(force_ratio)// &
           ' of the step''s forces (tolerance '//short_real(dynamic_force_tolerance)//') and the energy norm '// &
           short_real(energy/max(energy_first, tiny(1.0_dp)))//' of the first solve''s (tolerance '// &
@@ -744,7 +781,8 @@ contains
         if (denominator > 0.0_dp) relaxation = -relaxation*dot_product(previous, difference)/denominator
       end if
       previous = stepper%correction
-      stepper%solution = stepper%solution + relaxation*stepper%correction
+      taken = relaxation*stepper%correction
+      stepper%solution = stepper%solution + taken
     end do
     if (yielded > 0 .or. predicted) then
       stepper%iterations = stepper%iterations + iteration
@@ -773,14 +811,19 @@ contains
     type(error_t), allocatable, intent(inout) :: error
     integer :: info
     call timer_start(phase_assembly)
-    if (.not. allocated(stepper%point_tangents)) allocate(stepper%point_tangents(4, 4, gauss_count, deck%mesh%nelem))
-    call plastic_point_tangents(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
-                                stepper%solution, point%shear_h, point%bulk_h, state%stress, state%ebar, &
-                                stepper%point_tangents, stepper%history_h)   ! history_h: absent without memory
-    call assemble_point_tangents(deck%mesh, stepper%operators%b, stepper%operators%weight, stepper%point_tangents, &
-                                 stepper%tangent)
+    if (.not. stepper%finite) then                 ! KINEMATICS LARGE: K_t(U) came with f(U) (finite_solve_point)
+      if (.not. allocated(stepper%point_tangents)) allocate(stepper%point_tangents(4, 4, gauss_count, deck%mesh%nelem))
+      call plastic_point_tangents(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
+                                  stepper%solution, point%shear_h, point%bulk_h, state%stress, state%ebar, &
+                                  stepper%point_tangents, stepper%history_h)   ! history_h: absent without memory
+      call assemble_point_tangents(deck%mesh, stepper%operators%b, stepper%operators%weight, stepper%point_tangents, &
+                                   stepper%tangent)
+    end if
     stepper%tangent%ab = kept*stepper%tangent%ab
     stepper%tangent%ab(1, :) = stepper%tangent%ab(1, :) + c*stepper%mass
+    ! A supported equation keeps its diagonal only to hold its value: the stress term of a finite deformation
+    ! may make it negative, which Cholesky would refuse; its magnitude holds the value as well.
+    if (stepper%finite) where (stepper%supports) stepper%tangent%ab(1, :) = abs(stepper%tangent%ab(1, :))
     call timer_stop(phase_assembly)
     call timer_start(phase_factorization)
     call factor_compute(stepper%tangent_factor, stepper%tangent, stepper%supports, info, stepper%solver)
@@ -793,7 +836,7 @@ contains
     call timer_stop(phase_factorization)
     if (allocated(error)) return
     if (info /= 0) then
-      call set_error(error, 'the consistent tangent of the plastic step is not positive definite (equation '// &
+      call set_error(error, 'the consistent tangent of the '//step_name(stepper)//' is not positive definite (equation '// &
         integer_text(abs(info))//'): the flesh softens faster than the step can follow; use NEWTON=MODIFIED or a '// &
         'smaller DT')
       return
@@ -868,6 +911,57 @@ contains
     if (present(yielded)) yielded = count
   end subroutine plastic_solve_point
 
+  !> KINEMATICS LARGE: the bodies at the solve point, U_t + dU (dU in
+  !> stepper%solution): f into internal_solve, the Cauchy stresses, the
+  !> logarithmic strains and W into stress_solve, strain_solve,
+  !> energy_solve, and with NEWTON=FULL K_t(U) into stepper%tangent. An
+  !> iterate that inverts an element takes back half of the last correction
+  !> (`taken`, halved here; up to `halvings` times); the linear solve's
+  !> iterate (iteration 1) cannot be taken back: an error.
+  subroutine finite_solve_point(stepper, deck, state, iteration, taken, error)
+    type(stepper_t), intent(inout) :: stepper
+    type(deck_t), intent(in) :: deck
+    type(dynamic_state_t), intent(in) :: state
+    integer, intent(in) :: iteration
+    real(dp), intent(inout) :: taken(:)
+    type(error_t), allocatable, intent(inout) :: error
+    integer, parameter :: halvings = 20
+    integer :: cut
+    if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
+                                                        stepper%increments_solve, mold=state%stress)
+    if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
+    do cut = 0, halvings
+      if (stepper%full_newton) then
+        call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
+                             stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
+                             stepper%inverted, stepper%tangent)
+      else
+        call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
+                             stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
+                             stepper%inverted)
+      end if
+      if (stepper%inverted == 0) return
+      if (iteration == 1 .or. cut == halvings) exit
+      taken = 0.5_dp*taken
+      stepper%solution = stepper%solution - taken
+      stepper%halvings = stepper%halvings + 1
+    end do
+    call set_error(error, 'element '//integer_text(deck%mesh%element_id(stepper%inverted))//' inverts at the '// &
+      'solve point (KINEMATICS LARGE, equilibrium iteration '//integer_text(iteration)//'): the deformation is '// &
+      'beyond what this mesh can follow in one step; use a smaller DT or a finer mesh')
+  end subroutine finite_solve_point
+
+  !> What the iterated step is, for its messages.
+  pure function step_name(stepper) result(name)
+    type(stepper_t), intent(in) :: stepper
+    character(:), allocatable :: name
+    if (stepper%finite) then
+      name = 'finite-deformation step'
+    else
+      name = 'plastic step'
+    end if
+  end function step_name
+
   !> The stresses, strains and (with memory) histories at the solve point
   !> t + h of row r, from the start state and the solution dU_h with the
   !> moduli and the history stress over h (eqs. [13], [14], [23], [24]):
@@ -892,6 +986,7 @@ contains
     if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
+    if (stepper%finite) return                      ! finite_solve_point's last evaluation is at this solution
     if (stepper%plastic) then                       ! the last evaluation of equilibrium_iterations is at this solution
       stepper%history_solve = state%history
       if (stepper%memory) call commit_history(deck%mesh%element_material, stepper%history_solve, point%over_h, &
@@ -920,6 +1015,7 @@ contains
     integer, intent(in) :: r
     type(dynamic_state_t), intent(inout) :: state
     real(dp), intent(in) :: t_next
+    real(dp) :: volume_ratio_min, volume_ratio_max, stretch_min
     state%strain = state%strain + stepper%increments
     if (stepper%plastic) then                       ! the histories take the elastic part de - de_p (eq. [24])
       stepper%plastic_dissipation = stepper%plastic_dissipation + &
@@ -934,6 +1030,13 @@ contains
       call commit_history(deck%mesh%element_material, state%history, stepper%points(r)%over_length, stepper%increments)
     end if
     state%stress = stepper%trial
+    if (stepper%finite) then                        ! KINEMATICS LARGE: W and the extremes of the deformation
+      state%strain_energy = stepper%energy_next
+      call strain_extremes(state%strain, volume_ratio_min, volume_ratio_max, stretch_min)
+      stepper%volume_ratio_min = min(stepper%volume_ratio_min, volume_ratio_min)
+      stepper%volume_ratio_max = max(stepper%volume_ratio_max, volume_ratio_max)
+      stepper%stretch_min = min(stepper%stretch_min, stretch_min)
+    end if
     state%a = state%a + stepper%da                                    ! eqs. [40]-[42]
     state%v = state%v + stepper%dv
     state%u = state%u + stepper%du
