@@ -59,6 +59,7 @@ module visco2d_time_step
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_body_mesh, only: contact_card_line, contact_card_name
   use visco2d_finite_assembly, only: finite_assemble, strain_extremes
+  use visco2d_finite_force, only: finite_reference_t, finite_reference_create, lean_forces, gradient_strains
   implicit none
   private
 
@@ -154,6 +155,8 @@ module visco2d_time_step
     !> the sub-step's end and at the solve point, the element an evaluation
     !> found inverted (0: none), and the extremes of the deformation over the run.
     logical :: finite = .false.
+    type(finite_reference_t) :: reference          !< the reference configuration of the lean pass (visco2d_finite_force)
+    real(dp), allocatable :: gradient_next(:, :, :), gradient_solve(:, :, :)   !< H of the lean pass, (5, gauss, nelem)
     real(dp) :: energy_next = 0.0_dp, energy_solve = 0.0_dp
     integer :: inverted = 0
     real(dp) :: volume_ratio_min = 1.0_dp, volume_ratio_max = 1.0_dp, stretch_min = 1.0_dp
@@ -193,6 +196,8 @@ contains
       stepper%full_newton = deck%settings%full_newton
       allocate(stepper%residual(n), stepper%correction(n), stepper%no_values(n))
       stepper%no_values = 0.0_dp
+      stepper%reference = finite_reference_create(mesh, materials, deck%settings)
+      allocate(stepper%gradient_next(5, gauss_count, mesh%nelem), stepper%gradient_solve(5, gauss_count, mesh%nelem))
     end if
     if (stepper%plastic) then
       stepper%iterations_allowed = deck%settings%iterations
@@ -654,8 +659,14 @@ contains
     integer :: yielded
     call timer_start(phase_constitutive)
     if (stepper%finite) then              ! the bodies at U + dU; increments: the change of the logarithmic strain
-      call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%du, stepper%internal_next, &
-                           stepper%trial, stepper%increments, stepper%energy_next, stepper%inverted)
+      if (stepper%reference%lean) then
+        call lean_forces(stepper%reference, deck%mesh, state%u + stepper%du, stepper%internal_next, stepper%trial, &
+                         stepper%energy_next, stepper%inverted, stepper%gradient_next)
+        if (stepper%inverted == 0) call gradient_strains(stepper%gradient_next, stepper%increments)
+      else
+        call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%du, stepper%internal_next, &
+                             stepper%trial, stepper%increments, stepper%energy_next, stepper%inverted)
+      end if
       stepper%increments = stepper%increments - state%strain
     else if (stepper%plastic) then        ! the return mapping at the sub-step's end (history_length: absent without memory)
       call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
@@ -935,6 +946,9 @@ contains
         call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                              stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
                              stepper%inverted, stepper%tangent)
+      else if (stepper%reference%lean) then          ! the strains later, at the converged iterate (solve_point_state)
+        call lean_forces(stepper%reference, deck%mesh, state%u + stepper%solution, stepper%internal_solve, &
+                         stepper%stress_solve, stepper%energy_solve, stepper%inverted, stepper%gradient_solve)
       else
         call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                              stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
@@ -986,7 +1000,11 @@ contains
     if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
-    if (stepper%finite) return                      ! finite_solve_point's last evaluation is at this solution
+    if (stepper%finite) then                        ! finite_solve_point's last evaluation is at this solution
+      if (stepper%reference%lean .and. .not. stepper%full_newton) &
+        call gradient_strains(stepper%gradient_solve, stepper%strain_solve)
+      return
+    end if
     if (stepper%plastic) then                       ! the last evaluation of equilibrium_iterations is at this solution
       stepper%history_solve = state%history
       if (stepper%memory) call commit_history(deck%mesh%element_material, stepper%history_solve, point%over_h, &

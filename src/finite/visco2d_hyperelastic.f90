@@ -38,7 +38,7 @@ module visco2d_hyperelastic
   private
 
   public :: hyperelastic_t, hyperelastic_from_moduli, isochoric_response, volumetric_response, hyperelastic_response
-  public :: pressure_tangent, voigt_stress, voigt_tangent, identity3, volume_change
+  public :: pressure_tangent, voigt_stress, voigt_tangent, identity3, volume_change, power_minus_one
 
   real(dp), parameter :: identity3(3, 3) = reshape([1.0_dp, 0.0_dp, 0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, &
                                                     0.0_dp, 0.0_dp, 1.0_dp], [3, 3])

@@ -1,0 +1,225 @@
+!> The internal force of the bodies at finite deformation without their
+!> tangent: the lean pass that the dynamic step's equilibrium iterations
+!> (modified Newton) and its sub-step ends evaluate several times a step,
+!> for meshes whose every element is neo-Hookean (NEOHOOKE, or ELASTIC as
+!> the neo-Hookean law of its G and K) and pointwise (no mean dilatation).
+!> It computes what visco2d_finite_solid's element_response computes for
+!> those elements (the same formulas: b - I and J - 1 from H = du/dX, so
+!> small strains keep their digits), with the reference-configuration
+!> quantities (dN/dX, R, dV at the Gauss points) computed once, and neither
+!> the spatial tangent nor the logarithmic strain; the strain comes from
+!> the displacement gradients it keeps, when it is wanted (gradient_strains,
+!> computed without the cancellation of 1 + strain: exact at small strains).
+!>
+!> At a Gauss point, with H the displacement gradient (in-plane block and
+!> hoop H33 = u_r / R) and J = det(I + H):
+!>   sigma = 2 C10 J^(-5/3) dev(b - I) + 2 (J - 1)/D1 1      (visco2d_hyperelastic, C01 = 0)
+!>   f_a  += J dV (B_a^T sigma),  B_a of the current configuration (dN_a/dx = F^-T dN_a/dX, N_a/r)
+!>   W    += dV (C10 (I1bar - 3) + (J - 1)^2/D1)
+!> test_finite_dynamic checks it against element_response to round-off.
+module visco2d_finite_force
+  use, intrinsic :: iso_c_binding, only: c_double
+  use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_bbar
+  use visco2d_mesh, only: mesh_t
+  use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke
+  use visco2d_model, only: settings_t
+  use visco2d_quadrilateral, only: gauss_count, gauss_xi, gauss_eta, shape_functions
+  use visco2d_hyperelastic, only: hyperelastic_t, power_minus_one
+  use visco2d_finite_solid, only: law_of_material
+  implicit none
+  private
+
+  public :: finite_reference_t, finite_reference_create, lean_forces, gradient_strains
+
+  !> ln(1 + x) of the C library (C99), exact for small x: Fortran 2008 has no such intrinsic.
+  interface
+    pure function log1p(x) bind(c, name='log1p') result(value)
+      import :: c_double
+      real(c_double), value, intent(in) :: x
+      real(c_double) :: value
+    end function log1p
+  end interface
+
+  !> The reference configuration at the Gauss points and the constants of
+  !> each element's law; `lean` false when an element is not neo-Hookean
+  !> and pointwise (then the caller evaluates element_response instead).
+  type :: finite_reference_t
+    logical :: lean = .false.
+    logical :: axisymmetric = .true.
+    real(dp) :: shape(4, gauss_count) = 0.0_dp       !< N_a at the Gauss points
+    real(dp), allocatable :: gradients(:, :, :, :)   !< dN_a/dX_j (j, a, gauss, element)
+    real(dp), allocatable :: radius(:, :)            !< R at the point (gauss, element; 1 in plane strain)
+    real(dp), allocatable :: volume(:, :)            !< dV = det(dX/dxi) R (gauss, element)
+    real(dp), allocatable :: c10(:), d1(:)           !< the element's neo-Hookean constants
+  end type finite_reference_t
+
+contains
+
+  !> The reference quantities of the mesh, and whether the lean pass applies.
+  !> An element degenerate in the undeformed mesh makes it not apply (the
+  !> general evaluation then reports it).
+  pure function finite_reference_create(mesh, materials, settings) result(reference)
+    type(mesh_t), intent(in) :: mesh
+    type(material_t), intent(in) :: materials(:)
+    type(settings_t), intent(in) :: settings
+    type(finite_reference_t) :: reference
+    type(hyperelastic_t) :: law
+    real(dp) :: n(4), dn(2, 4), xy(2, 4), jacobian(2, 2), det, inverse(2, 2)
+    integer :: e, g
+    reference%axisymmetric = settings%geometry == geometry_axisymmetric
+    reference%lean = settings%formulation /= formulation_bbar
+    allocate(reference%gradients(2, 4, gauss_count, mesh%nelem), reference%radius(gauss_count, mesh%nelem), &
+             reference%volume(gauss_count, mesh%nelem), reference%c10(mesh%nelem), reference%d1(mesh%nelem))
+    do g = 1, gauss_count
+      call shape_functions(gauss_xi(g), gauss_eta(g), n, dn)
+      reference%shape(:, g) = n
+    end do
+    do e = 1, mesh%nelem
+      associate (material => materials(mesh%element_material(e)))
+      if (material%hyperelastic /= hyperelastic_none .and. material%hyperelastic /= hyperelastic_neo_hooke) &
+        reference%lean = .false.
+      law = law_of_material(material)
+      if (law%c01 /= 0.0_dp) reference%lean = .false.
+      reference%c10(e) = law%c10
+      reference%d1(e) = law%d1
+      end associate
+      xy = mesh%xy(:, mesh%connectivity(:, e))
+      do g = 1, gauss_count
+        call shape_functions(gauss_xi(g), gauss_eta(g), n, dn)
+        jacobian = matmul(dn, transpose(xy))                ! (i, j) = d X_j / d xi_i
+        det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
+        if (.not. (det > 0.0_dp)) then
+          reference%lean = .false.
+          det = 1.0_dp
+        end if
+        inverse = reshape([jacobian(2, 2), -jacobian(2, 1), -jacobian(1, 2), jacobian(1, 1)], [2, 2])/det
+        reference%gradients(:, :, g, e) = matmul(inverse, dn)
+        if (reference%axisymmetric) then
+          reference%radius(g, e) = dot_product(n, xy(1, :))
+          if (.not. (reference%radius(g, e) > 0.0_dp)) reference%lean = .false.
+        else
+          reference%radius(g, e) = 1.0_dp
+        end if
+        reference%volume(g, e) = det*reference%radius(g, e)
+      end do
+    end do
+  end function finite_reference_create
+
+  !> f(U), the Cauchy stresses (rr, zz, tt, rz) and W (J, per radian in
+  !> axisymmetry) at the displacement U (equation order), and, when given,
+  !> the displacement gradients (H11, H21, H12, H22, H33) at the Gauss points
+  !> for gradient_strains. `inverted`: the first element inverted or
+  !> through the axis at U (0: none), and then the outputs are incomplete.
+  pure subroutine lean_forces(reference, mesh, displacement, force, stress, energy, inverted, gradient)
+    type(finite_reference_t), intent(in) :: reference
+    type(mesh_t), intent(in) :: mesh
+    real(dp), intent(in) :: displacement(:)
+    real(dp), intent(out) :: force(:), stress(:, :, :), energy
+    integer, intent(out) :: inverted
+    real(dp), intent(out), optional :: gradient(:, :, :)
+    real(dp) :: u(2, 4), f(2, 4), h11, h12, h21, h22, h33, in_plane, change, jacobian, scale, trace, mean
+    real(dp) :: d11, d22, d33, d12, s11, s22, s33, s12, factor, pressure, dv, g1, g2, dx1, dx2, radius
+    real(dp) :: exponent_minus_one
+    integer :: e, g, a, node
+    inverted = 0
+    force = 0.0_dp
+    energy = 0.0_dp
+    do e = 1, mesh%nelem
+      do a = 1, 4
+        node = 2*mesh%equation(mesh%connectivity(a, e))        ! the node's z equation (band order)
+        u(:, a) = displacement(node - 1:node)
+      end do
+      f = 0.0_dp
+      do g = 1, gauss_count
+        associate (gradients => reference%gradients(:, :, g, e))
+        h11 = u(1, 1)*gradients(1, 1) + u(1, 2)*gradients(1, 2) + u(1, 3)*gradients(1, 3) + u(1, 4)*gradients(1, 4)
+        h12 = u(1, 1)*gradients(2, 1) + u(1, 2)*gradients(2, 2) + u(1, 3)*gradients(2, 3) + u(1, 4)*gradients(2, 4)
+        h21 = u(2, 1)*gradients(1, 1) + u(2, 2)*gradients(1, 2) + u(2, 3)*gradients(1, 3) + u(2, 4)*gradients(1, 4)
+        h22 = u(2, 1)*gradients(2, 1) + u(2, 2)*gradients(2, 2) + u(2, 3)*gradients(2, 3) + u(2, 4)*gradients(2, 4)
+        h33 = 0.0_dp
+        if (reference%axisymmetric) h33 = dot_product(reference%shape(:, g), u(1, :))/reference%radius(g, e)
+        in_plane = h11 + h22 + h11*h22 - h12*h21              ! det(I + H_2x2) - 1
+        if (.not. (1.0_dp + in_plane > 0.0_dp .and. 1.0_dp + h33 > 0.0_dp)) then
+          inverted = e
+          return
+        end if
+        change = h33 + in_plane*(1.0_dp + h33)                 ! J - 1 (visco2d_hyperelastic's volume_change)
+        jacobian = 1.0_dp + change
+        scale = jacobian**(-2.0_dp/3.0_dp)
+        d11 = 2.0_dp*h11 + h11*h11 + h12*h12                  ! b - I = H + H^T + H H^T
+        d22 = 2.0_dp*h22 + h21*h21 + h22*h22
+        d12 = h12 + h21 + h11*h21 + h12*h22
+        d33 = 2.0_dp*h33 + h33*h33
+        mean = (d11 + d22 + d33)/3.0_dp
+        factor = 2.0_dp*reference%c10(e)*scale/jacobian       ! 2 C10 J^(-5/3)
+        pressure = 2.0_dp*change/reference%d1(e)
+        s11 = factor*(d11 - mean) + pressure
+        s22 = factor*(d22 - mean) + pressure
+        s33 = factor*(d33 - mean) + pressure
+        s12 = factor*d12
+        stress(:, g, e) = [s11, s22, s33, s12]
+        if (abs(change) >= 1.0e-3_dp) then                     ! power_minus_one's own branch, without a second power
+          exponent_minus_one = scale - 1.0_dp
+        else
+          exponent_minus_one = power_minus_one(change, -2.0_dp/3.0_dp)
+        end if
+        trace = scale*(d11 + d22 + d33) + 3.0_dp*exponent_minus_one                 ! I1bar - 3
+        energy = energy + reference%volume(g, e)*(reference%c10(e)*trace + change**2/reference%d1(e))
+        if (present(gradient)) gradient(:, g, e) = [h11, h21, h12, h22, h33]
+        dv = jacobian*reference%volume(g, e)
+        radius = reference%radius(g, e)*(1.0_dp + h33)
+        do a = 1, 4                                            ! dN_a/dx = F^-T dN_a/dX
+          g1 = gradients(1, a)
+          g2 = gradients(2, a)
+          dx1 = (g1*(1.0_dp + h22) - g2*h21)/(1.0_dp + in_plane)
+          dx2 = (g2*(1.0_dp + h11) - g1*h12)/(1.0_dp + in_plane)
+          f(1, a) = f(1, a) + dv*(s11*dx1 + s12*dx2)
+          f(2, a) = f(2, a) + dv*(s12*dx1 + s22*dx2)
+          if (reference%axisymmetric) f(1, a) = f(1, a) + dv*s33*reference%shape(a, g)/radius
+        end do
+        end associate
+      end do
+      do a = 1, 4
+        node = 2*mesh%equation(mesh%connectivity(a, e))
+        force(node - 1:node) = force(node - 1:node) + f(:, a)
+      end do
+    end do
+  end subroutine lean_forces
+
+  !> The logarithmic strains ln V (rr, zz, tt, engineering rz) of the
+  !> gradients lean_forces kept, from b - I = H + H^T + H H^T without
+  !> cancellation: the in-plane eigenvalues 1 + x_1,2 of b (x = m +- rho,
+  !> m = tr(b - I)/2 over the pair, rho the radius), ln V = h_2 I + (h_1 - h_2) P_1
+  !> with h_k = ln(1 + x_k)/2 and the projector P_1 = (b - I - x_2 I)/(2 rho), the
+  !> factor (h_1 - h_2)/(2 rho) taken as ln(1 + y)/(2 y (1 + x_2)), y = 2 rho/(1 + x_2),
+  !> which stays exact as rho -> 0; the hoop strain ln(1 + H33).
+  pure subroutine gradient_strains(gradient, strain)
+    real(dp), intent(in) :: gradient(:, :, :)
+    real(dp), intent(out) :: strain(:, :, :)
+    real(dp) :: d11, d22, d12, m, rho, x2, y, ratio, h2
+    integer :: e, g
+    do e = 1, size(gradient, 3)
+      do g = 1, size(gradient, 2)
+        associate (h => gradient(:, g, e))             ! H11, H21, H12, H22, H33
+        d11 = 2.0_dp*h(1) + h(1)*h(1) + h(3)*h(3)
+        d22 = 2.0_dp*h(4) + h(2)*h(2) + h(4)*h(4)
+        d12 = h(3) + h(2) + h(1)*h(2) + h(3)*h(4)
+        m = 0.5_dp*(d11 + d22)
+        rho = hypot(0.5_dp*(d11 - d22), d12)
+        x2 = m - rho
+        y = 2.0_dp*rho/(1.0_dp + x2)
+        if (y > 1.0e-8_dp) then
+          ratio = 0.5_dp*log1p(y)/(y*(1.0_dp + x2))
+        else                                           ! ln(1 + y)/y = 1 - y/2 + O(y^2)
+          ratio = 0.5_dp*(1.0_dp - 0.5_dp*y)/(1.0_dp + x2)
+        end if
+        h2 = 0.5_dp*log1p(x2)
+        strain(1, g, e) = h2 + ratio*(d11 - x2)
+        strain(2, g, e) = h2 + ratio*(d22 - x2)
+        strain(3, g, e) = log1p(h(5))
+        strain(4, g, e) = 2.0_dp*ratio*d12
+        end associate
+      end do
+    end do
+  end subroutine gradient_strains
+end module visco2d_finite_force
