@@ -19,7 +19,8 @@
 !>     at random finite deformations with a history of random earlier steps,
 !>     for the whole law and its isochoric part; the element's tangent
 !>     (visco2d_finite_element's finite_tangent with this law's stresses and
-!>     tangents) against central differences of its force.
+!>     tangents, pointwise and with the mean dilatation's pressure) against
+!>     central differences of its force.
 !>  5. Objectivity: a superposed in-plane rotation, a different one at every
 !>     step, rotates the Cauchy stress and the tangent and leaves the history.
 !>  6. Long-time limit: after a loading path and 40 of the slowest relaxation
@@ -33,9 +34,9 @@ program test_finite_viscoelastic
   use visco2d_viscoelastic, only: step_coefficients_t, step_coefficients, deviatoric_part, deviatoric_stress, &
                                   history_stress, update_history, stored_energy_density, relaxation_integral
   use visco2d_hyperelastic, only: hyperelastic_t, hyperelastic_from_moduli, hyperelastic_response, isochoric_response, &
-                                  volumetric_response, identity3
+                                  volumetric_response, identity3, pressure_tangent, volume_change
   use visco2d_quadrilateral, only: gauss_count
-  use visco2d_finite_element, only: finite_point_t, finite_kinematics, finite_force, finite_tangent
+  use visco2d_finite_element, only: finite_point_t, finite_kinematics, finite_force, finite_tangent, element_volumes
   use visco2d_finite_viscoelastic, only: finite_viscoelastic_t, viscoelastic_point_t, finite_viscoelastic_from_material, &
                                          viscoelastic_point_create, viscoelastic_response, &
                                          viscoelastic_isochoric_response, viscoelastic_energy, step_shear_ratio, &
@@ -450,9 +451,12 @@ contains
     call check('tangent is symmetric (to 1e-14)', worst_symmetry <= 1.0e-14_dp)
   end subroutine tangent_from_stress
 
-  !> The element's force and tangent with this law at its Gauss points, each with its own history.
-  subroutine element_state(geometry, law, xy, u, dt, histories, force, stiffness, valid)
+  !> The element's force and tangent with this law at its Gauss points, each with its own history: pointwise
+  !> (viscoelastic_response) or with the mean dilatation (viscoelastic_isochoric_response and the pressure of the
+  !> element's volume ratio, as visco2d_finite_solid assembles the hyperelastic law).
+  subroutine element_state(geometry, mean_dilatation, law, xy, u, dt, histories, force, stiffness, valid)
     integer, intent(in) :: geometry
+    logical, intent(in) :: mean_dilatation
     type(finite_viscoelastic_t), intent(in) :: law
     real(dp), intent(in) :: xy(2, 4), u(8), dt
     type(viscoelastic_point_t), intent(in) :: histories(gauss_count)
@@ -460,16 +464,33 @@ contains
     logical, intent(out) :: valid
     type(finite_point_t) :: points(gauss_count)
     type(viscoelastic_point_t) :: updated
-    real(dp) :: stress(4, gauss_count), tangent(4, 4, gauss_count)
+    real(dp) :: stress(4, gauss_count), tangent(4, 4, gauss_count), current, reference, gradient(8), change
+    real(dp) :: pressure, slope
     integer :: gp
     call finite_kinematics(geometry, xy, u, points, valid)
     if (.not. valid) return
+    if (mean_dilatation) then
+      call element_volumes(points, current, reference, gradient)
+      change = 0.0_dp
+      do gp = 1, gauss_count
+        change = change + volume_change(points(gp)%gradient)*points(gp)%reference_volume
+      end do
+      call volumetric_response(law%instantaneous, current/reference, pressure, slope, change=change/reference)
+    end if
     do gp = 1, gauss_count
-      call viscoelastic_response(law, dt, points(gp)%deformation, histories(gp), stress(:, gp), tangent(:, :, gp), &
-                                 updated, gradient=points(gp)%gradient)
+      if (mean_dilatation) then
+        call viscoelastic_isochoric_response(law, dt, points(gp)%deformation, histories(gp), stress(:, gp), &
+                                             tangent(:, :, gp), updated, gradient=points(gp)%gradient)
+        stress(1:3, gp) = stress(1:3, gp) + pressure
+        tangent(:, :, gp) = tangent(:, :, gp) + pressure_tangent(pressure)
+      else
+        call viscoelastic_response(law, dt, points(gp)%deformation, histories(gp), stress(:, gp), tangent(:, :, gp), &
+                                   updated, gradient=points(gp)%gradient)
+      end if
     end do
     force = finite_force(points, stress)
     stiffness = finite_tangent(geometry, points, stress, tangent)
+    if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
   end subroutine element_state
 
   !> The element: K = df/du by central differences (step 1e-9 of a 1 cm element, as test_finite.f90: to 1e-6).
@@ -486,13 +507,14 @@ contains
     real(dp) :: force(8), stiffness(8, 8), plus(8), minus(8), scratch(8, 8), numeric(8, 8), stress(4), tangent(4, 4)
     real(dp) :: worst, worst_symmetry
     integer :: trial, geometry, column, gp
-    logical :: valid, all_valid
+    logical :: valid, all_valid, mean_dilatation
     type(viscoelastic_point_t) :: updated
     worst = 0.0_dp
     worst_symmetry = 0.0_dp
     all_valid = .true.
-    do trial = 1, 4
-      geometry = merge(geometry_axisymmetric, geometry_plane_strain, trial <= 2)
+    do trial = 1, 8
+      geometry = merge(geometry_axisymmetric, geometry_plane_strain, mod(trial - 1, 4) < 2)
+      mean_dilatation = trial > 4
       law = finite_viscoelastic_from_material(flesh(merge(0, hyperelastic_mooney_rivlin, mod(trial, 2) == 1)))
       ! a history: one step of 2 ms to u1, the Gauss points' own
       call finite_kinematics(geometry, xy, u1, points, valid)
@@ -504,13 +526,13 @@ contains
         histories(gp) = updated
       end do
       scratch_histories = histories
-      call element_state(geometry, law, xy, u2, 1.0e-3_dp, scratch_histories, force, stiffness, valid)
+      call element_state(geometry, mean_dilatation, law, xy, u2, 1.0e-3_dp, scratch_histories, force, stiffness, valid)
       all_valid = all_valid .and. valid
       do column = 1, 8
-        call element_state(geometry, law, xy, u2 + step*unit(column), 1.0e-3_dp, scratch_histories, plus, scratch, &
-                           valid)
-        call element_state(geometry, law, xy, u2 - step*unit(column), 1.0e-3_dp, scratch_histories, minus, scratch, &
-                           valid)
+        call element_state(geometry, mean_dilatation, law, xy, u2 + step*unit(column), 1.0e-3_dp, scratch_histories, &
+                           plus, scratch, valid)
+        call element_state(geometry, mean_dilatation, law, xy, u2 - step*unit(column), 1.0e-3_dp, scratch_histories, &
+                           minus, scratch, valid)
         all_valid = all_valid .and. valid
         numeric(:, column) = (plus - minus)/(2.0_dp*step)
       end do
@@ -518,8 +540,8 @@ contains
       worst_symmetry = max(worst_symmetry, maxval(abs(stiffness - transpose(stiffness)))/maxval(abs(stiffness)))
     end do
     call note('4. element tangent vs df/du', worst)
-    call check('element tangent = df/du with the law''s history (axisymmetric and plane strain, neo-Hookean and '// &
-               'Mooney; to 1e-6)', all_valid .and. worst <= 1.0e-6_dp)
+    call check('element tangent = df/du with the law''s history (axisymmetric and plane strain, pointwise and '// &
+               'mean dilatation, neo-Hookean and Mooney; to 1e-6)', all_valid .and. worst <= 1.0e-6_dp)
     call check('element tangent is symmetric (to 1e-12)', worst_symmetry <= 1.0e-12_dp)
   end subroutine element_tangent
 
