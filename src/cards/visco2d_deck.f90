@@ -447,8 +447,10 @@ contains
           deck%settings%kinematics /= kinematics_large) call add_warning(deck, &
         reading%analysis_line, 'ANALYSIS', 'INCREMENTS= and ITERATIONS= are for plastic materials (a PLASTIC card); '// &
         'this deck has none and is solved in one linear step')
-      if (reading%increments_given .and. deck%analysis == analysis_dynamic) call add_warning(deck, &
-        reading%analysis_line, 'ANALYSIS', 'ITERATIONS= and NEWTON= are for plastic materials (a PLASTIC card); '// &
+      if (reading%increments_given .and. deck%analysis == analysis_dynamic .and. &
+          deck%settings%kinematics /= kinematics_large) call add_warning(deck, &
+        reading%analysis_line, 'ANALYSIS', 'ITERATIONS= and NEWTON= are for plastic materials (a PLASTIC card) or '// &
+        'KINEMATICS LARGE; '// &
         'this deck has none and each step is one linear solve')
       if (reading%increments_given .and. deck%analysis == analysis_quasistatic) call add_warning(deck, &
         reading%analysis_line, 'ANALYSIS', 'ITERATIONS= is for plastic materials (a PLASTIC card); '// &

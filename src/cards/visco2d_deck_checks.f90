@@ -243,7 +243,7 @@ contains
   !> KINEMATICS LARGE runs what src/finite/ solves so far: elastic or
   !> hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) bodies under point loads,
   !> gravity and prescribed displacements, ANALYSIS STATIC, or ANALYSIS
-  !> DYNAMIC with or without the rigid PLATE. Anything else is refused at its
+  !> DYNAMIC with or without the rigid PLATE and a PAD. Anything else is refused at its
   !> card, with what to do; a hyperelastic material in a small-strain run
   !> warns (it is linearised).
   subroutine check_kinematics(deck, error)
@@ -295,9 +295,9 @@ contains
         '(KINEMATICS LARGE)')
       return
     end if
-    if (deck%pad%line > 0) then
-      call line_error(error, deck, deck%pad%line, 'a PAD at finite deformation is not in this version '// &
-        '(KINEMATICS LARGE)')
+    if (deck%pad%line > 0 .and. deck%analysis == analysis_static) then
+      call line_error(error, deck, deck%pad%line, 'a static PAD at finite deformation is not in this version '// &
+        '(KINEMATICS LARGE runs the PAD in ANALYSIS DYNAMIC)')
       return
     end if
   end subroutine check_kinematics

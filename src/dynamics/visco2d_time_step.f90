@@ -255,6 +255,8 @@ contains
     do r = 1, size(stepper%points)
       call capacitance_partners(stepper%points(r)%capacitance, stepper%contact%partner, stepper%contact%weight)
     end do
+    ! NEWTON=FULL's own capacitance system on the tangent's factor holds the same constraints
+    call capacitance_partners(stepper%tangent_capacitance, stepper%contact%partner, stepper%contact%weight)
     end associate
   end subroutine pad_constraints
 
@@ -659,14 +661,10 @@ contains
     integer :: yielded
     call timer_start(phase_constitutive)
     if (stepper%finite) then              ! the bodies at U + dU; increments: the change of the logarithmic strain
-      if (stepper%reference%lean) then
-        call lean_forces(stepper%reference, deck%mesh, state%u + stepper%du, stepper%internal_next, stepper%trial, &
-                         stepper%energy_next, stepper%inverted, stepper%gradient_next)
-        if (stepper%inverted == 0) call gradient_strains(stepper%gradient_next, stepper%increments)
-      else
-        call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%du, stepper%internal_next, &
-                             stepper%trial, stepper%increments, stepper%energy_next, stepper%inverted)
-      end if
+      call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%du, &
+                       stepper%internal_next, stepper%trial, stepper%energy_next, stepper%inverted, &
+                       stepper%gradient_next, stepper%increments)
+      if (stepper%inverted == 0) call gradient_strains(stepper%reference, stepper%gradient_next, stepper%increments)
       stepper%increments = stepper%increments - state%strain
     else if (stepper%plastic) then        ! the return mapping at the sub-step's end (history_length: absent without memory)
       call plastic_trial_stress(stepper%operators, deck%materials, deck%mesh%element_material, stepper%yield_limit, &
@@ -946,13 +944,10 @@ contains
         call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                              stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
                              stepper%inverted, stepper%tangent)
-      else if (stepper%reference%lean) then          ! the strains later, at the converged iterate (solve_point_state)
-        call lean_forces(stepper%reference, deck%mesh, state%u + stepper%solution, stepper%internal_solve, &
-                         stepper%stress_solve, stepper%energy_solve, stepper%inverted, stepper%gradient_solve)
-      else
-        call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
-                             stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
-                             stepper%inverted)
+      else                                           ! the lean elements' strains at the converged iterate
+        call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
+                         stepper%internal_solve, stepper%stress_solve, stepper%energy_solve, stepper%inverted, &
+                         stepper%gradient_solve, stepper%strain_solve)
       end if
       if (stepper%inverted == 0) return
       if (iteration == 1 .or. cut == halvings) exit
@@ -1001,8 +996,7 @@ contains
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
     if (stepper%finite) then                        ! finite_solve_point's last evaluation is at this solution
-      if (stepper%reference%lean .and. .not. stepper%full_newton) &
-        call gradient_strains(stepper%gradient_solve, stepper%strain_solve)
+      if (.not. stepper%full_newton) call gradient_strains(stepper%reference, stepper%gradient_solve, stepper%strain_solve)
       return
     end if
     if (stepper%plastic) then                       ! the last evaluation of equilibrium_iterations is at this solution

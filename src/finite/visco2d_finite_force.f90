@@ -1,10 +1,11 @@
 !> The internal force of the bodies at finite deformation without their
 !> tangent: the lean pass that the dynamic step's equilibrium iterations
 !> (modified Newton) and its sub-step ends evaluate several times a step,
-!> for meshes whose every element is neo-Hookean (NEOHOOKE, or ELASTIC as
-!> the neo-Hookean law of its G and K) and pointwise (no mean dilatation).
-!> It computes what visco2d_finite_solid's element_response computes for
-!> those elements (the same formulas: b - I and J - 1 from H = du/dX, so
+!> whose neo-Hookean (NEOHOOKE, or ELASTIC as the neo-Hookean law of its G
+!> and K) pointwise (no mean dilatation) elements it evaluates itself, the
+!> other elements (MOONEY, HYPERFOAM, FORMULATION BBAR) through
+!> visco2d_finite_solid's element_response. It computes what element_response computes for
+!> the lean elements (the same formulas: b - I and J - 1 from H = du/dX, so
 !> small strains keep their digits), with the reference-configuration
 !> quantities (dN/dX, R, dV at the Gauss points) computed once, and neither
 !> the spatial tangent nor the logarithmic strain; the strain comes from
@@ -25,7 +26,7 @@ module visco2d_finite_force
   use visco2d_model, only: settings_t
   use visco2d_quadrilateral, only: gauss_count, gauss_xi, gauss_eta, shape_functions
   use visco2d_hyperelastic, only: hyperelastic_t, power_minus_one
-  use visco2d_finite_solid, only: law_of_material
+  use visco2d_finite_solid, only: law_of_material, element_response
   implicit none
   private
 
@@ -41,10 +42,10 @@ module visco2d_finite_force
   end interface
 
   !> The reference configuration at the Gauss points and the constants of
-  !> each element's law; `lean` false when an element is not neo-Hookean
-  !> and pointwise (then the caller evaluates element_response instead).
+  !> each element's law; `lean` false for an element that is not neo-Hookean
+  !> and pointwise (element_response evaluates it).
   type :: finite_reference_t
-    logical :: lean = .false.
+    logical, allocatable :: lean(:)                  !< per element
     logical :: axisymmetric = .true.
     real(dp) :: shape(4, gauss_count) = 0.0_dp       !< N_a at the Gauss points
     real(dp), allocatable :: gradients(:, :, :, :)   !< dN_a/dX_j (j, a, gauss, element)
@@ -55,9 +56,9 @@ module visco2d_finite_force
 
 contains
 
-  !> The reference quantities of the mesh, and whether the lean pass applies.
-  !> An element degenerate in the undeformed mesh makes it not apply (the
-  !> general evaluation then reports it).
+  !> The reference quantities of the mesh, and which elements the lean pass
+  !> evaluates. An element degenerate in the undeformed mesh is left to
+  !> element_response (which reports it).
   pure function finite_reference_create(mesh, materials, settings) result(reference)
     type(mesh_t), intent(in) :: mesh
     type(material_t), intent(in) :: materials(:)
@@ -67,6 +68,7 @@ contains
     real(dp) :: n(4), dn(2, 4), xy(2, 4), jacobian(2, 2), det, inverse(2, 2)
     integer :: e, g
     reference%axisymmetric = settings%geometry == geometry_axisymmetric
+    allocate(reference%lean(mesh%nelem))
     reference%lean = settings%formulation /= formulation_bbar
     allocate(reference%gradients(2, 4, gauss_count, mesh%nelem), reference%radius(gauss_count, mesh%nelem), &
              reference%volume(gauss_count, mesh%nelem), reference%c10(mesh%nelem), reference%d1(mesh%nelem))
@@ -77,9 +79,9 @@ contains
     do e = 1, mesh%nelem
       associate (material => materials(mesh%element_material(e)))
       if (material%hyperelastic /= hyperelastic_none .and. material%hyperelastic /= hyperelastic_neo_hooke) &
-        reference%lean = .false.
+        reference%lean(e) = .false.
       law = law_of_material(material)
-      if (law%c01 /= 0.0_dp) reference%lean = .false.
+      if (law%c01 /= 0.0_dp) reference%lean(e) = .false.
       reference%c10(e) = law%c10
       reference%d1(e) = law%d1
       end associate
@@ -89,14 +91,14 @@ contains
         jacobian = matmul(dn, transpose(xy))                ! (i, j) = d X_j / d xi_i
         det = jacobian(1, 1)*jacobian(2, 2) - jacobian(1, 2)*jacobian(2, 1)
         if (.not. (det > 0.0_dp)) then
-          reference%lean = .false.
+          reference%lean(e) = .false.
           det = 1.0_dp
         end if
         inverse = reshape([jacobian(2, 2), -jacobian(2, 1), -jacobian(1, 2), jacobian(1, 1)], [2, 2])/det
         reference%gradients(:, :, g, e) = matmul(inverse, dn)
         if (reference%axisymmetric) then
           reference%radius(g, e) = dot_product(n, xy(1, :))
-          if (.not. (reference%radius(g, e) > 0.0_dp)) reference%lean = .false.
+          if (.not. (reference%radius(g, e) > 0.0_dp)) reference%lean(e) = .false.
         else
           reference%radius(g, e) = 1.0_dp
         end if
@@ -106,17 +108,24 @@ contains
   end function finite_reference_create
 
   !> f(U), the Cauchy stresses (rr, zz, tt, rz) and W (J, per radian in
-  !> axisymmetry) at the displacement U (equation order), and, when given,
-  !> the displacement gradients (H11, H21, H12, H22, H33) at the Gauss points
-  !> for gradient_strains. `inverted`: the first element inverted or
-  !> through the axis at U (0: none), and then the outputs are incomplete.
-  pure subroutine lean_forces(reference, mesh, displacement, force, stress, energy, inverted, gradient)
+  !> axisymmetry) at the displacement U (equation order), and for
+  !> gradient_strains the displacement gradients (H11, H21, H12, H22, H33)
+  !> at the Gauss points of the lean elements and the logarithmic strains of
+  !> the others. `inverted`: the first element inverted or through the axis
+  !> at U (0: none), and then the outputs are incomplete.
+  pure subroutine lean_forces(reference, mesh, materials, settings, displacement, force, stress, energy, inverted, &
+                              gradient, strain)
     type(finite_reference_t), intent(in) :: reference
     type(mesh_t), intent(in) :: mesh
+    type(material_t), intent(in) :: materials(:)
+    type(settings_t), intent(in) :: settings
     real(dp), intent(in) :: displacement(:)
     real(dp), intent(out) :: force(:), stress(:, :, :), energy
     integer, intent(out) :: inverted
-    real(dp), intent(out), optional :: gradient(:, :, :)
+    real(dp), intent(inout) :: gradient(:, :, :), strain(:, :, :)
+    real(dp) :: element_force(8), element_stiffness(8, 8), element_energy
+    integer :: dofs(8)
+    logical :: valid
     real(dp) :: u(2, 4), f(2, 4), h11, h12, h21, h22, h33, in_plane, change, jacobian, scale, trace, mean
     real(dp) :: d11, d22, d33, d12, s11, s22, s33, s12, factor, pressure, dv, g1, g2, dx1, dx2, radius
     real(dp) :: exponent_minus_one
@@ -125,6 +134,22 @@ contains
     force = 0.0_dp
     energy = 0.0_dp
     do e = 1, mesh%nelem
+      if (.not. reference%lean(e)) then
+        do a = 1, 4
+          dofs(2*a) = 2*mesh%equation(mesh%connectivity(a, e))
+          dofs(2*a - 1) = dofs(2*a) - 1
+        end do
+        call element_response(settings%geometry, settings%formulation, materials(mesh%element_material(e)), &
+                              mesh%xy(:, mesh%connectivity(:, e)), displacement(dofs), .false., element_force, &
+                              element_stiffness, stress(:, :, e), strain(:, :, e), element_energy, valid)
+        if (.not. valid) then
+          inverted = e
+          return
+        end if
+        force(dofs) = force(dofs) + element_force
+        energy = energy + element_energy
+        cycle
+      end if
       do a = 1, 4
         node = 2*mesh%equation(mesh%connectivity(a, e))        ! the node's z equation (band order)
         u(:, a) = displacement(node - 1:node)
@@ -165,7 +190,7 @@ contains
         end if
         trace = scale*(d11 + d22 + d33) + 3.0_dp*exponent_minus_one                 ! I1bar - 3
         energy = energy + reference%volume(g, e)*(reference%c10(e)*trace + change**2/reference%d1(e))
-        if (present(gradient)) gradient(:, g, e) = [h11, h21, h12, h22, h33]
+        gradient(:, g, e) = [h11, h21, h12, h22, h33]
         dv = jacobian*reference%volume(g, e)
         radius = reference%radius(g, e)*(1.0_dp + h33)
         do a = 1, 4                                            ! dN_a/dx = F^-T dN_a/dX
@@ -193,12 +218,14 @@ contains
   !> with h_k = ln(1 + x_k)/2 and the projector P_1 = (b - I - x_2 I)/(2 rho), the
   !> factor (h_1 - h_2)/(2 rho) taken as ln(1 + y)/(2 y (1 + x_2)), y = 2 rho/(1 + x_2),
   !> which stays exact as rho -> 0; the hoop strain ln(1 + H33).
-  pure subroutine gradient_strains(gradient, strain)
+  pure subroutine gradient_strains(reference, gradient, strain)
+    type(finite_reference_t), intent(in) :: reference
     real(dp), intent(in) :: gradient(:, :, :)
-    real(dp), intent(out) :: strain(:, :, :)
+    real(dp), intent(inout) :: strain(:, :, :)       !< set at the lean elements, kept at the others
     real(dp) :: d11, d22, d12, m, rho, x2, y, ratio, h2
     integer :: e, g
     do e = 1, size(gradient, 3)
+      if (.not. reference%lean(e)) cycle
       do g = 1, size(gradient, 2)
         associate (h => gradient(:, g, e))             ! H11, H21, H12, H22, H33
         d11 = 2.0_dp*h(1) + h(1)*h(1) + h(3)*h(3)

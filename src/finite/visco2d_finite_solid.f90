@@ -123,7 +123,13 @@ contains
     foam%nu = material%foam_nu
     valid = .true.
     do gp = 1, gauss_count
-      call hyperfoam_response(foam, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy, admissible)
+      if (with_stiffness) then
+        call hyperfoam_response(foam, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy, &
+                                admissible)
+      else                                          ! the stress alone: no tangent to compute
+        call hyperfoam_response(foam, points(gp)%deformation, stress(:, gp), energy=point_energy, &
+                                admissible=admissible)
+      end if
       if (.not. admissible) then
         valid = .false.
         return

@@ -63,7 +63,7 @@ contains
     type(hyperfoam_t), intent(in) :: foam
     real(dp), intent(in) :: deformation(3, 3)
     real(dp), intent(out) :: stress(4)
-    real(dp), intent(out) :: tangent(4, 4)
+    real(dp), intent(out), optional :: tangent(4, 4)   !< absent: the stress alone (the force of an iteration)
     real(dp), intent(out), optional :: energy
     logical, intent(out), optional :: admissible
     real(dp) :: stretch(3), direction(3, 3), volume, kirchhoff(3), modulus(3, 3), shear(3, 3)
@@ -73,7 +73,7 @@ contains
     logical :: fine
 
     stress = 0.0_dp
-    tangent = 0.0_dp
+    if (present(tangent)) tangent = 0.0_dp
     if (present(energy)) energy = 0.0_dp
     if (present(admissible)) admissible = .false.
     if (.not. (allocated(foam%mu) .and. allocated(foam%alpha) .and. allocated(foam%nu))) return
@@ -81,13 +81,25 @@ contains
     call principal_frame(deformation, stretch, direction, fine)
     if (.not. fine) return
     volume = product(stretch)
-    call hyperfoam_principal(foam, stretch, kirchhoff, modulus, shear)
+    if (present(tangent)) then
+      call hyperfoam_principal(foam, stretch, kirchhoff, modulus, shear)
+    else
+      kirchhoff = principal_kirchhoff(foam, stretch)
+    end if
     if (present(energy)) energy = hyperfoam_energy_principal(foam, stretch)
 
     do a = 1, 3
       stress = stress + kirchhoff(a)/volume*[direction(1, a)**2, direction(2, a)**2, direction(3, a)**2, &
                                              direction(1, a)*direction(2, a)]
     end do
+    if (.not. present(tangent)) then
+      fine = all(ieee_is_finite(stress))
+      if (present(energy)) fine = fine .and. ieee_is_finite(energy)
+      if (.not. fine) stress = 0.0_dp
+      if (.not. fine .and. present(energy)) energy = 0.0_dp
+      if (present(admissible)) admissible = fine
+      return
+    end if
 
     ! The spatial tensor J c from its principal components, then divided by J.
     c = 0.0_dp
@@ -114,6 +126,22 @@ contains
     end if
     if (present(admissible)) admissible = fine
   end subroutine hyperfoam_response
+
+  !> The principal Kirchhoff stresses alone, tau_a = sum_i 2 mu_i/alpha_i
+  !> (lam_a^alpha_i - J^(-alpha_i beta_i)): hyperfoam_principal's first output.
+  pure function principal_kirchhoff(foam, stretch) result(kirchhoff)
+    type(hyperfoam_t), intent(in) :: foam
+    real(dp), intent(in) :: stretch(3)
+    real(dp) :: kirchhoff(3)
+    real(dp) :: volumetric, alpha
+    integer :: i
+    kirchhoff = 0.0_dp
+    do i = 1, size(foam%mu)
+      alpha = foam%alpha(i)
+      volumetric = product(stretch)**(-alpha*poisson_beta(foam%nu(i)))
+      kirchhoff = kirchhoff + 2.0_dp*foam%mu(i)/alpha*(stretch**alpha - volumetric)
+    end do
+  end function principal_kirchhoff
 
   !> The principal Kirchhoff stresses tau_a at the principal stretches, and
   !> the principal parts of J c: modulus(a, b) = dtau_a/dln lam_b - 2 tau_a
