@@ -17,7 +17,7 @@
 !>     singular near lambda = 0.39); the run stops with a located error at
 !>     the ANALYSIS card and writes nothing.
 !>  6. The cards: KINEMATICS, NEOHOOKE and MOONEY errors, refused
-!>     combinations (DYNAMIC, PRESSURE, PLASTIC, PLATE), the warning of a
+!>     combinations (QUASISTATIC, PRESSURE, PLASTIC, a static PLATE), the warning of a
 !>     hyperelastic material in a small-strain deck.
 program test_finite_static
   use visco2d_kinds, only: dp, pi
@@ -287,9 +287,11 @@ contains
     call try_read_deck(path, refused, message, lines)
     call check_error_location('KINEMATICS HUGE', message, path, 3, 12, 'KINEMATICS', 'must be SMALL')
     lines = base
-    lines(2) = 'ANALYSIS DYNAMIC'
+    lines(2) = 'ANALYSIS QUASISTATIC'
+    lines(8) = 'TIME DT=1e-3 TEND=1e-2'
     call try_read_deck(path, refused, message, lines)
-    call check_error_location('KINEMATICS LARGE with DYNAMIC', message, path, 3, 12, 'KINEMATICS', 'STATIC so far')
+    call check_error_location('KINEMATICS LARGE with QUASISTATIC', message, path, 3, 12, 'KINEMATICS', &
+                              'STATIC and DYNAMIC')
     lines = base
     lines(8) = 'PRESSURE TOP P=1e4'
     call try_read_deck(path, refused, message, lines)
@@ -300,7 +302,7 @@ contains
     lines = base
     lines(8) = 'PLATE Z=-0.001 SLIP'
     call try_read_deck(path, refused, message, lines)
-    call check_error_location('KINEMATICS LARGE with a PLATE', message, path, 8, 0, 'PLATE', 'not in this version')
+    call check_error_location('KINEMATICS LARGE with a static PLATE', message, path, 8, 0, 'PLATE', 'not in this version')
     lines = base
     lines(4) = 'MATERIAL flesh NEOHOOKE C10=2e5 E=1e6 NU=0.3'
     call try_read_deck(path, refused, message, lines)
