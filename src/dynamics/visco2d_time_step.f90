@@ -922,8 +922,9 @@ contains
 
   !> KINEMATICS LARGE: the bodies at the solve point, U_t + dU (dU in
   !> stepper%solution): f into internal_solve, the Cauchy stresses, the
-  !> logarithmic strains and W into stress_solve, strain_solve,
-  !> energy_solve, and with NEWTON=FULL K_t(U) into stepper%tangent. An
+  !> logarithmic strains into stress_solve, strain_solve (the lean
+  !> elements' later, solve_point_state; with NEWTON=FULL also W into
+  !> energy_solve and K_t(U) into stepper%tangent). An
   !> iterate that inverts an element takes back half of the last correction
   !> (`taken`, halved here; up to `halvings` times); the linear solve's
   !> iterate (iteration 1) cannot be taken back: an error.
@@ -946,8 +947,8 @@ contains
                              stepper%inverted, stepper%tangent)
       else                                           ! the lean elements' strains at the converged iterate
         call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
-                         stepper%internal_solve, stepper%stress_solve, stepper%energy_solve, stepper%inverted, &
-                         stepper%gradient_solve, stepper%strain_solve)
+                         stepper%internal_solve, stepper%stress_solve, inverted=stepper%inverted, &
+                         gradient=stepper%gradient_solve, strain=stepper%strain_solve)
       end if
       if (stepper%inverted == 0) return
       if (iteration == 1 .or. cut == halvings) exit
