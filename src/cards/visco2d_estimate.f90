@@ -4,11 +4,11 @@
 !> and the one-line note on stderr before a run estimated to be long.
 module visco2d_estimate
   use, intrinsic :: iso_fortran_env, only: int64
-  use visco2d_kinds, only: dp, kinematics_large
+  use visco2d_kinds, only: dp, kinematics_large, formulation_bbar
   use visco2d_error, only: error_t, set_error
   use visco2d_deck, only: deck_t, analysis_static, analysis_quasistatic, analysis_dynamic
   use visco2d_deck_types, only: solver_card_default, solver_card_cholmod
-  use visco2d_material, only: has_memory
+  use visco2d_material, only: has_memory, hyperelastic_foam, hyperelastic_mooney_rivlin
   use visco2d_mesh, only: side_nodes
   use visco2d_budget, only: run_size_t, run_size, time_limit, budget_static, budget_quasistatic, budget_dynamic, &
                             memory_limit, bytes_text, count_text, seconds_text, long_run_seconds
@@ -25,6 +25,13 @@ module visco2d_estimate
   !> 1 to 4, 3.5 on test/fuzz/seed_plastic_static.inp, on the plate or not;
   !> 3 and 3.45 on the finite-deformation cylinders of doc/finite.md).
   integer, parameter :: static_plastic_iterations = 4
+  !> The cost of a DYNAMIC step with KINEMATICS LARGE against a small-strain
+  !> one: 2 to 4 equilibrium iterations and an evaluation of the bodies at the
+  !> step's end. Measured 3.2 on inputs/table1_large.inp at level 3 (every
+  !> element neo-Hookean: the lean pass of visco2d_finite_force) and 10 on
+  !> inputs/peach_foam_pad.inp (the foam's elements through the general
+  !> element evaluation).
+  integer, parameter :: dynamic_finite_lean = 4, dynamic_finite_general = 12
 
 contains
 
@@ -88,6 +95,13 @@ contains
       estimate%seconds = real(deck%settings%increments, dp)*static_plastic_iterations*estimate%seconds
     else if (analysis == budget_static .and. plate) then
       estimate%seconds = static_contact_iterations*estimate%seconds
+    else if (analysis == budget_dynamic .and. deck%settings%kinematics == kinematics_large) then
+      if (any(deck%materials%hyperelastic == hyperelastic_foam .or. deck%materials%hyperelastic == &
+              hyperelastic_mooney_rivlin) .or. deck%settings%formulation == formulation_bbar) then
+        estimate%seconds = dynamic_finite_general*estimate%seconds
+      else
+        estimate%seconds = dynamic_finite_lean*estimate%seconds
+      end if
     end if
   end function estimate_run
 
