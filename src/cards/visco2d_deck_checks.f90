@@ -7,7 +7,8 @@ module visco2d_deck_checks
   use visco2d_error, only: error_t
   use visco2d_strings, only: integer_text, message_real, short_real
   use visco2d_ranges, only: length_range, pressure_range, force_range, speed_range, range_t, in_range, range_text
-  use visco2d_material, only: has_memory, hyperelastic_none, hyperelastic_name
+  use visco2d_material, only: has_memory, hyperelastic_none, hyperelastic_name, material_kind_viscoelastic, &
+                              material_kind_name
   use visco2d_dynamic_cards, only: standard_gravity
   use visco2d_contact_cards, only: stop_name, stop_at_tend, stop_at_max_deformation, stop_at_separation
   use visco2d_mesh, only: edge_set_name
@@ -243,7 +244,9 @@ contains
   !> KINEMATICS LARGE runs what src/finite/ solves so far: elastic or
   !> hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) bodies under point loads,
   !> gravity and prescribed displacements, ANALYSIS STATIC, or ANALYSIS
-  !> DYNAMIC with or without the rigid PLATE and a PAD. Anything else is refused at its
+  !> DYNAMIC with or without the rigid PLATE and a PAD, VISCOELASTIC flesh
+  !> by Simo's finite-strain law (PRONY terms; DYNAMIC only: STATIC refuses
+  !> memory anyway). Anything else is refused at its
   !> card, with what to do; a hyperelastic material in a small-strain run
   !> warns (it is linearised).
   subroutine check_kinematics(deck, error)
@@ -271,10 +274,10 @@ contains
           'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) materials')
         return
       end if
-      if (has_memory(deck%materials(k))) then
-        call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//' relaxes in '// &
-          'time (PRONY terms with BETA > 0): a viscoelastic law at finite strain is not in this version; '// &
-          'KINEMATICS LARGE takes elastic and hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) materials', '2')
+      if (has_memory(deck%materials(k)) .and. deck%materials(k)%kind /= material_kind_viscoelastic) then
+        call line_error(error, deck, deck%materials(k)%line, 'material '//deck%materials(k)%id//' is '// &
+          material_kind_name(deck%materials(k)%kind)//' (a uniaxial relaxation modulus): at finite strain the '// &
+          'Prony law is that of the shear modulus; give it as VISCOELASTIC K= with PRONY G= BETA= cards', '2')
         return
       end if
     end do

@@ -66,6 +66,7 @@ module visco2d_dynamic
   use visco2d_integrators, only: mass_coefficient, energy_overshoot, stability_advice
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_plastic_step, only: residual_flattening
+  use visco2d_finite_assembly, only: memory_points_create
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_time_step, only: stepper_t, contact_hold_t, stepper_create, effective_stiffness, factor_effective, &
                                effective_load, solve_supports, contact_repeat, commit_substep, solve_point_state
@@ -187,6 +188,7 @@ contains
     integer :: k, n
     n = 2*deck%mesh%nnode
     if (stepper%memory) call viscoelastic_state_create(deck%materials, deck%mesh%element_material, state%history)
+    if (stepper%relaxing) state%finite_history = memory_points_create(deck%mesh, stepper%finite_memory)
     allocate(state%stress(4, gauss_count, deck%mesh%nelem), state%strain(4, gauss_count, deck%mesh%nelem))
     state%stress = 0.0_dp
     state%strain = 0.0_dp

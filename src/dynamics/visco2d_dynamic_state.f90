@@ -4,6 +4,7 @@
 module visco2d_dynamic_state
   use visco2d_kinds, only: dp
   use visco2d_viscoelastic, only: viscoelastic_state_t
+  use visco2d_finite_viscoelastic, only: viscoelastic_point_t
   implicit none
   private
 
@@ -29,5 +30,8 @@ module visco2d_dynamic_state
     !> bodies at U (J per radian in axisymmetry); strain is then the
     !> logarithmic strain and stress the Cauchy stress.
     real(dp) :: strain_energy = 0.0_dp
+    !> With KINEMATICS LARGE and a material that relaxes: the Gauss points'
+    !> histories of Simo's finite-strain viscoelasticity (gauss, nelem).
+    type(viscoelastic_point_t), allocatable :: finite_history(:, :)
   end type dynamic_state_t
 end module visco2d_dynamic_state

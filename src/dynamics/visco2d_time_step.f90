@@ -60,6 +60,8 @@ module visco2d_time_step
   use visco2d_body_mesh, only: contact_card_line, contact_card_name
   use visco2d_finite_assembly, only: finite_assemble, strain_extremes
   use visco2d_finite_force, only: finite_reference_t, finite_reference_create, lean_forces, gradient_strains
+  use visco2d_finite_assembly, only: finite_memory_t, finite_memory_create, memory_points_create
+  use visco2d_finite_viscoelastic, only: viscoelastic_point_t
   implicit none
   private
 
@@ -161,6 +163,11 @@ module visco2d_time_step
     integer :: inverted = 0
     real(dp) :: volume_ratio_min = 1.0_dp, volume_ratio_max = 1.0_dp, stretch_min = 1.0_dp
     integer :: halvings = 0                        !< corrections halved because they inverted an element
+    !> KINEMATICS LARGE with materials that relax (PRONY terms): their finite-strain laws (Simo's
+    !> viscoelasticity) and the Gauss points' histories at the sub-step's end and at the solve point.
+    logical :: relaxing = .false.
+    type(finite_memory_t) :: finite_memory
+    type(viscoelastic_point_t), allocatable :: history_next(:, :), history_at_solve(:, :)
   end type stepper_t
 
 contains
@@ -197,6 +204,12 @@ contains
       allocate(stepper%residual(n), stepper%correction(n), stepper%no_values(n))
       stepper%no_values = 0.0_dp
       stepper%reference = finite_reference_create(mesh, materials, deck%settings)
+      call finite_memory_create(mesh, materials, stepper%finite_memory, stepper%relaxing)
+      stepper%memory = .false.                     ! the histories are the finite-strain law's, not eq. [24]'s
+      if (stepper%relaxing) then
+        stepper%history_next = memory_points_create(mesh, stepper%finite_memory)
+        stepper%history_at_solve = stepper%history_next
+      end if
       allocate(stepper%gradient_next(5, gauss_count, mesh%nelem), stepper%gradient_solve(5, gauss_count, mesh%nelem))
     end if
     if (stepper%plastic) then
@@ -661,9 +674,11 @@ contains
     integer :: yielded
     call timer_start(phase_constitutive)
     if (stepper%finite) then              ! the bodies at U + dU; increments: the change of the logarithmic strain
+      stepper%finite_memory%dt = point%length
       call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%du, &
                        stepper%internal_next, stepper%trial, stepper%energy_next, stepper%inverted, &
-                       stepper%gradient_next, stepper%increments)
+                       stepper%gradient_next, stepper%increments, stepper%finite_memory, state%finite_history, &
+                       stepper%history_next)
       if (stepper%inverted == 0) call gradient_strains(stepper%reference, stepper%gradient_next, stepper%increments)
       stepper%increments = stepper%increments - state%strain
     else if (stepper%plastic) then        ! the return mapping at the sub-step's end (history_length: absent without memory)
@@ -747,7 +762,7 @@ contains
     do iteration = 1, stepper%iterations_allowed
       call timer_start(phase_constitutive)
       if (stepper%finite) then                       ! always iterated: f(U) is nonlinear
-        call finite_solve_point(stepper, deck, state, iteration, taken, error)
+        call finite_solve_point(stepper, deck, state, point%h, iteration, taken, error)
         yielded = 1
       else
         call plastic_solve_point(stepper, deck, point, state, yielded)
@@ -928,10 +943,11 @@ contains
   !> iterate that inverts an element takes back half of the last correction
   !> (`taken`, halved here; up to `halvings` times); the linear solve's
   !> iterate (iteration 1) cannot be taken back: an error.
-  subroutine finite_solve_point(stepper, deck, state, iteration, taken, error)
+  subroutine finite_solve_point(stepper, deck, state, h, iteration, taken, error)
     type(stepper_t), intent(inout) :: stepper
     type(deck_t), intent(in) :: deck
     type(dynamic_state_t), intent(in) :: state
+    real(dp), intent(in) :: h                      !< the solve interval (the histories advance over it)
     integer, intent(in) :: iteration
     real(dp), intent(inout) :: taken(:)
     type(error_t), allocatable, intent(inout) :: error
@@ -940,15 +956,18 @@ contains
     if (.not. allocated(stepper%stress_solve)) allocate(stepper%stress_solve, stepper%strain_solve, &
                                                         stepper%increments_solve, mold=state%stress)
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
+    stepper%finite_memory%dt = h
     do cut = 0, halvings
       if (stepper%full_newton) then
         call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                              stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
-                             stepper%inverted, stepper%tangent)
+                             stepper%inverted, stepper%tangent, stepper%finite_memory, state%finite_history, &
+                             stepper%history_at_solve)
       else                                           ! the lean elements' strains at the converged iterate
         call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                          stepper%internal_solve, stepper%stress_solve, inverted=stepper%inverted, &
-                         gradient=stepper%gradient_solve, strain=stepper%strain_solve)
+                         gradient=stepper%gradient_solve, strain=stepper%strain_solve, memory=stepper%finite_memory, &
+                         history=state%finite_history, next=stepper%history_at_solve)
       end if
       if (stepper%inverted == 0) return
       if (iteration == 1 .or. cut == halvings) exit
@@ -1043,8 +1062,9 @@ contains
       call commit_history(deck%mesh%element_material, state%history, stepper%points(r)%over_length, stepper%increments)
     end if
     state%stress = stepper%trial
-    if (stepper%finite) then                        ! KINEMATICS LARGE: W and the extremes of the deformation
+    if (stepper%finite) then                        ! KINEMATICS LARGE: W, the histories and the extremes of the deformation
       state%strain_energy = stepper%energy_next
+      if (stepper%relaxing) state%finite_history = stepper%history_next
       call strain_extremes(state%strain, volume_ratio_min, volume_ratio_max, stretch_min)
       stepper%volume_ratio_min = min(stepper%volume_ratio_min, volume_ratio_min)
       stepper%volume_ratio_max = max(stepper%volume_ratio_max, volume_ratio_max)

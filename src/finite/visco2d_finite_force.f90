@@ -24,11 +24,13 @@ module visco2d_finite_force
   use, intrinsic :: iso_c_binding, only: c_double
   use visco2d_kinds, only: dp, geometry_axisymmetric, formulation_bbar
   use visco2d_mesh, only: mesh_t
-  use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke
+  use visco2d_material, only: material_t, hyperelastic_none, hyperelastic_neo_hooke, has_memory
   use visco2d_model, only: settings_t
   use visco2d_quadrilateral, only: gauss_count, gauss_xi, gauss_eta, shape_functions
   use visco2d_hyperelastic, only: hyperelastic_t, power_minus_one
-  use visco2d_finite_solid, only: law_of_material, element_response
+  use visco2d_finite_solid, only: law_of_material
+  use visco2d_finite_assembly, only: finite_memory_t, general_element
+  use visco2d_finite_viscoelastic, only: viscoelastic_point_t
   implicit none
   private
 
@@ -82,6 +84,7 @@ contains
       associate (material => materials(mesh%element_material(e)))
       if (material%hyperelastic /= hyperelastic_none .and. material%hyperelastic /= hyperelastic_neo_hooke) &
         reference%lean(e) = .false.
+      if (has_memory(material)) reference%lean(e) = .false.     ! Simo's viscoelasticity: general_element
       law = law_of_material(material)
       if (law%c01 /= 0.0_dp) reference%lean(e) = .false.
       reference%c10(e) = law%c10
@@ -116,7 +119,7 @@ contains
   !> the others. `inverted`: the first element inverted or through the axis
   !> at U (0: none), and then the outputs are incomplete.
   pure subroutine lean_forces(reference, mesh, materials, settings, displacement, force, stress, energy, inverted, &
-                              gradient, strain)
+                              gradient, strain, memory, history, next)
     type(finite_reference_t), intent(in) :: reference
     type(mesh_t), intent(in) :: mesh
     type(material_t), intent(in) :: materials(:)
@@ -126,6 +129,9 @@ contains
     real(dp), intent(out), optional :: energy        !< W; absent: not computed (an iteration's force)
     integer, intent(out) :: inverted
     real(dp), intent(inout) :: gradient(:, :, :), strain(:, :, :)
+    type(finite_memory_t), intent(in), optional :: memory           !< materials with memory (general_element)
+    type(viscoelastic_point_t), intent(in), optional :: history(:, :)
+    type(viscoelastic_point_t), intent(inout), optional :: next(:, :)
     real(dp) :: element_force(8), element_stiffness(8, 8), element_energy
     integer :: dofs(8)
     logical :: valid
@@ -144,9 +150,8 @@ contains
           dofs(2*a) = 2*mesh%equation(mesh%connectivity(a, e))
           dofs(2*a - 1) = dofs(2*a) - 1
         end do
-        call element_response(settings%geometry, settings%formulation, materials(mesh%element_material(e)), &
-                              mesh%xy(:, mesh%connectivity(:, e)), displacement(dofs), .false., element_force, &
-                              element_stiffness, stress(:, :, e), strain(:, :, e), element_energy, valid)
+        call general_element(mesh, materials, settings, e, displacement, .false., element_force, element_stiffness, &
+                             stress(:, :, e), strain(:, :, e), element_energy, valid, memory, history, next)
         if (.not. valid) then
           inverted = e
           return

@@ -19,10 +19,12 @@ module visco2d_finite_solid
                                   hyperelastic_response, pressure_tangent, volume_change
   use visco2d_finite_element, only: finite_point_t, finite_kinematics, finite_force, finite_tangent, element_volumes
   use visco2d_hyperfoam, only: hyperfoam_t, hyperfoam_response
+  use visco2d_finite_viscoelastic, only: finite_viscoelastic_t, viscoelastic_point_t, viscoelastic_response, &
+                                         viscoelastic_isochoric_response
   implicit none
   private
 
-  public :: element_response, law_of_material, logarithmic_strain
+  public :: element_response, law_of_material, logarithmic_strain, viscoelastic_element
 
 contains
 
@@ -102,6 +104,65 @@ contains
     stiffness = finite_tangent(geometry, points, stress, tangent)
     if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
   end subroutine element_response
+
+  !> element_response for a material with memory (VISCOELASTIC with PRONY
+  !> terms) over a step dt from the points' histories `history_in`: Simo's
+  !> finite-strain viscoelasticity (visco2d_finite_viscoelastic), pointwise
+  !> or with the mean dilatation (the isochoric part at the points, the
+  !> elastic pressure of the element's volume ratio); the histories at the
+  !> end of the step into `history_out`. The energy is the law's stored
+  !> energy at the step's end.
+  pure subroutine viscoelastic_element(geometry, formulation, law, xy, displacement, dt, history_in, with_stiffness, &
+                                       force, stiffness, stress, strain, energy, history_out, valid)
+    integer, intent(in) :: geometry, formulation
+    type(finite_viscoelastic_t), intent(in) :: law
+    real(dp), intent(in) :: xy(2, 4), displacement(8), dt
+    type(viscoelastic_point_t), intent(in) :: history_in(gauss_count)
+    logical, intent(in) :: with_stiffness
+    real(dp), intent(out) :: force(8), stiffness(8, 8), stress(4, gauss_count), strain(4, gauss_count), energy
+    type(viscoelastic_point_t), intent(inout) :: history_out(gauss_count)
+    logical, intent(out) :: valid
+    type(finite_point_t) :: points(gauss_count)
+    real(dp) :: tangent(4, 4, gauss_count), point_energy, current, reference, gradient(8), ratio, pressure, slope
+    real(dp) :: volumetric_energy, change
+    integer :: gp
+    logical :: mean_dilatation
+    force = 0.0_dp
+    stiffness = 0.0_dp
+    stress = 0.0_dp
+    strain = 0.0_dp
+    energy = 0.0_dp
+    call finite_kinematics(geometry, xy, displacement, points, valid)
+    if (.not. valid) return
+    mean_dilatation = formulation == formulation_bbar
+    if (mean_dilatation) then
+      call element_volumes(points, current, reference, gradient)
+      ratio = current/reference
+      change = 0.0_dp
+      do gp = 1, gauss_count
+        change = change + volume_change(points(gp)%gradient)*points(gp)%reference_volume
+      end do
+      call volumetric_response(law%instantaneous, ratio, pressure, slope, volumetric_energy, change/reference)
+      energy = reference*volumetric_energy
+    end if
+    do gp = 1, gauss_count
+      if (mean_dilatation) then
+        call viscoelastic_isochoric_response(law, dt, points(gp)%deformation, history_in(gp), stress(:, gp), &
+                                             tangent(:, :, gp), history_out(gp), point_energy, points(gp)%gradient)
+        stress(1:3, gp) = stress(1:3, gp) + pressure
+        tangent(:, :, gp) = tangent(:, :, gp) + pressure_tangent(pressure)
+      else
+        call viscoelastic_response(law, dt, points(gp)%deformation, history_in(gp), stress(:, gp), tangent(:, :, gp), &
+                                   history_out(gp), point_energy, points(gp)%gradient)
+      end if
+      energy = energy + points(gp)%reference_volume*point_energy
+      strain(:, gp) = logarithmic_strain(points(gp)%deformation)
+    end do
+    force = finite_force(points, stress)
+    if (.not. with_stiffness) return
+    stiffness = finite_tangent(geometry, points, stress, tangent)
+    if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
+  end subroutine viscoelastic_element
 
   !> element_response for a HYPERFOAM material: visco2d_hyperfoam's law at
   !> every point; a point it cannot take (an overflow at an extreme
