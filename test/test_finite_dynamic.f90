@@ -20,7 +20,10 @@
 !>     the contact rule and the integrator differ); the energy books close; a
 !>     LARGE run has no small-strain warning; NEWTON=FULL gives the modified
 !>     Newton's answer.
-!>  3. The cards: a second BODY refused with KINEMATICS LARGE.
+!>  3. Two equal spheres head on (BODY SPHERE) at finite deformation against
+!>     one on the frictionless plate at half the speed: the same impact by
+!>     symmetry (to the iteration tolerance's effect, the two runs solving
+!>     different systems); a UNIAXIAL material refused with KINEMATICS LARGE.
 !>  4. VISCOELASTIC flesh at finite deformation (Simo's law, visco2d_finite_viscoelastic,
 !>     through the dynamic step's histories): a Prony term that never relaxes
 !>     (BETA = 1e-9 /s) gives the neo-Hookean run of G_inf + G_1, one that
@@ -216,14 +219,38 @@ contains
 
   !> Part 3.
   subroutine cards()
-    logical :: refused
+    type(record_t) :: plate, pair
+    logical :: ok_plate, ok_pair, refused
     character(:), allocatable :: message
     character(*), parameter :: path = folder//'/card.inp'
-    call try_read_deck(path, refused, message, [character(deck_line_length) :: 'TITLE two bodies', &
-      'ANALYSIS DYNAMIC', 'KINEMATICS LARGE', 'MATERIAL a NEOHOOKE E=5e6 NU=0.35 RHO=950', &
-      'MESH SPHERE R=0.03 LEVEL=1 MAT=a', 'INITIAL VZ=-1', 'TIME DT=1e-5 TEND=1e-4', 'BODY SPHERE R=0.02 MAT=a VZ=1', &
-      'END'])
-    call check_error_location('KINEMATICS LARGE with a second BODY', message, path, 8, 0, 'BODY', 'not in this version')
+    character(deck_line_length), allocatable :: lines(:)
+    character(len=16), parameter :: keys(4) = [character(len=16) :: 'force_max_N', 'q_max_MPa', 't_alpha_max_ms', &
+                                                'balance_error']
+    integer :: k
+    lines = [character(deck_line_length) :: 'TITLE one sphere on the plate at 0.5 m/s, finite deformation', &
+      'ANALYSIS DYNAMIC', 'KINEMATICS LARGE', 'MATERIAL apple NEOHOOKE E=18.11e6 NU=0.219 RHO=756.85', &
+      'MESH SPHERE R=0.0366 LEVEL=2 MAT=apple', 'INITIAL VZ=-0.5', 'TIME DT=1e-5 TEND=8e-3', &
+      'PLATE Z=0 SLIP RELEASE=YES', 'STOP AT=SEPARATION', 'END']
+    call run('pair_plate', lines, plate, ok_plate)
+    lines(8) = 'BODY SPHERE R=0.0366 LEVEL=2 MAT=apple VZ=0.5'
+    lines(9) = 'OUTPUT EVERY=5'
+    call run('pair_bodies', lines, pair, ok_pair)
+    if (ok_plate .and. ok_pair) then
+      call check_close('equal spheres, LARGE: the approach is twice the plate''s alpha_m', &
+                       summary_real(pair, 'alpha_max_mm'), 2.0_dp*summary_real(plate, 'alpha_max_mm'), 1.0e-5_dp)
+      do k = 1, 3
+        call check_close('equal spheres, LARGE: '//trim(keys(k))//' is the plate''s', summary_real(pair, trim(keys(k))), &
+                         summary_real(plate, trim(keys(k))), 1.0e-4_dp)
+      end do
+      call check_close('equal spheres, LARGE: the restitution is the plate''s', &
+                       summary_real(pair, 'coefficient_of_restitution'), summary_real(plate, 'coefficient_of_restitution'), &
+                       1.0e-3_dp)
+    end if
+    call try_read_deck(path, refused, message, [character(deck_line_length) :: 'TITLE uniaxial Prony', &
+      'ANALYSIS DYNAMIC', 'KINEMATICS LARGE', 'MATERIAL a UNIAXIAL NU=0.3 RHO=950', 'PRONY E=5e6 ALPHA=10', &
+      'MESH SPHERE R=0.03 LEVEL=1 MAT=a', 'INITIAL VZ=-1', 'TIME DT=1e-5 TEND=1e-4', 'PLATE Z=0 SLIP', 'END'])
+    call check_error_location('KINEMATICS LARGE with a UNIAXIAL material', message, path, 4, 0, 'MATERIAL', &
+                              'shear modulus')
   end subroutine cards
 
   !> Part 1 on the deck's mesh at a random displacement of amplitude `size`

@@ -293,11 +293,6 @@ contains
         'contact side (FIX ... UZ=) instead')
       return
     end if
-    if (deck%body%line > 0) then
-      call line_error(error, deck, deck%body%line, 'a second BODY at finite deformation is not in this version '// &
-        '(KINEMATICS LARGE)')
-      return
-    end if
     if (deck%pad%line > 0 .and. deck%analysis == analysis_static) then
       call line_error(error, deck, deck%pad%line, 'a static PAD at finite deformation is not in this version '// &
         '(KINEMATICS LARGE runs the PAD in ANALYSIS DYNAMIC)')
