@@ -236,7 +236,7 @@ def controls_line(q_user):
     eps 1e-5, C_eps 1e-3, C_f 1e-8) with the user-defined average force q_u = q_user (N, of the 2-degree
     sector). ccx's own average force (the mean nodal force over the step's increments) is tiny before the
     impact (gravity on the peach's nodes), so the residual test 0.005 q cannot be met at first contact and
-    ccx iterates without end; a fixed q_u = 0.02 N (the peak contact force is about 0.5 N over the sector)
+    ccx iterates without end; a fixed q_u = 0.02 N (the peak contact force is about 0.7 N over the sector)
     accepts residuals below 1e-4 N."""
     return f"0.005, 0.01, 0.01, {q_user:.6g}, 0.02, 1.e-5, 1.e-3, 1.e-8"
 
