@@ -317,3 +317,43 @@ def rel(a, b):
     if b == 0:
         return "-"
     return f"{(a - b) / abs(b) * 100:+.1f} %"
+
+
+# ---------------------------------------------------------------- a body on a deformable pad
+def boundary_faces(nodes, elements, slave_z):
+    """(element from 0, face from 0) of the outer boundary edges of visco2d's mesh, not on the axis, with
+    both nodes at z <= slave_z: the faces of sphere_mesh_cards' SSLAVE surface (face f joins corners f, f + 1)."""
+    count = {}
+    for e, conn in enumerate(elements):
+        for f in range(4):
+            a, b = conn[f], conn[(f + 1) % 4]
+            count.setdefault(tuple(sorted((a, b))), []).append((e, f))
+    out = []
+    for (a, b), users in count.items():
+        if len(users) != 1:
+            continue
+        if abs(nodes[a, 0]) < 1e-12 and abs(nodes[b, 0]) < 1e-12:
+            continue
+        if max(nodes[a, 1], nodes[b, 1]) > slave_z:
+            continue
+        out.append(users[0])
+    return out
+
+
+def body_mesh_cards(nodes, elements, ids, lift, slave_z):
+    """The *NODE, *ELEMENT, *NSET and *SURFACE cards of visco2d's mesh lifted by `lift`, without the rigid
+    plate of sphere_mesh_cards: sets NSPHERE, ESPHERE, AXIS; surface SSLAVE (the same faces).
+    Returns (lines, number of slave faces)."""
+    lines = ["*NODE, NSET=NSPHERE"]
+    for i, (r, z) in enumerate(nodes):
+        lines.append(f"{ids[i]}, {r:.15g}, {z + lift:.15g}")
+    lines.append("*ELEMENT, TYPE=CAX4, ELSET=ESPHERE")
+    for e, conn in enumerate(elements):
+        lines.append(f"{e + 1}, " + ", ".join(str(ids[n]) for n in conn))
+    axis = [ids[i] for i in range(len(nodes)) if abs(nodes[i, 0]) < 1e-12]
+    lines.append("*NSET, NSET=AXIS")
+    lines += [", ".join(str(a) for a in axis[i:i + 10]) for i in range(0, len(axis), 10)]
+    faces = boundary_faces(nodes, elements, slave_z)
+    lines.append("*SURFACE, NAME=SSLAVE, TYPE=ELEMENT")
+    lines += [f"{e + 1}, S{f + 1}" for e, f in faces]
+    return lines, len(faces)
