@@ -5,7 +5,9 @@
 !>     logarithmic strains, on an axisymmetric sphere, a plane-strain
 !>     block and a sphere on a HYPERFOAM pad (its elements left to
 !>     element_response) at a random finite displacement (force and stresses also at a
-!>     displacement 1e-9 times smaller, where they keep their digits).
+!>     displacement 1e-9 times smaller, where they keep their digits); and for a
+!>     VISCOELASTIC (Prony) flesh with a random history: the stresses, the
+!>     force, W and the histories at the step's end equal viscoelastic_element's.
 !>  2. The paper's Table 1 sphere dropped on the frictionless plate at two
 !>     speeds (Table 1's 0.9982 m/s, alpha/R = 0.029, and 8.0956 m/s,
 !>     alpha/R = 0.14), mesh level 2, KINEMATICS LARGE (the neo-Hookean law
@@ -42,7 +44,8 @@ program test_finite_dynamic
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_element, only: gauss_count
   use visco2d_assembly, only: node_dof
-  use visco2d_finite_assembly, only: finite_assemble
+  use visco2d_finite_assembly, only: finite_assemble, finite_memory_t, finite_memory_create, memory_points_create
+  use visco2d_finite_viscoelastic, only: viscoelastic_point_t
   use visco2d_finite_force, only: finite_reference_t, finite_reference_create, lean_forces, gradient_strains
   implicit none
 
@@ -60,6 +63,7 @@ program test_finite_dynamic
     'MATERIAL foam HYPERFOAM RHO=100', 'OGDEN MU=0.74e6 ALPHA=12 NU=0', 'OGDEN MU=0.01e6 ALPHA=-2 NU=0.1', &
     'MESH SPHERE R=0.03 LEVEL=1 MAT=flesh', 'PLATE Z=0 SLIP', 'PAD THICKNESS=0.01 MAT=foam', &
     'TIME DT=1e-5 TEND=1e-5', 'END'], 0.0003_dp)
+  call lean_viscoelastic()
   call table1_against_calculix('table1', 0.9982_dp, 2.2e-3_dp, [1.0427_dp, 193.4_dp], [1.0524_dp, 190.1_dp])
   call table1_against_calculix('a160', 8.0956_dp, 1.6e-3_dp, [5.0331_dp, 2562.8_dp], [5.1523_dp, 2461.9_dp])
   call newton_full()
@@ -68,6 +72,73 @@ program test_finite_dynamic
   call test_summary('test_finite_dynamic')
 
 contains
+
+  !> Part 1 for Simo's viscoelasticity: a sphere of Prony flesh at a random
+  !> displacement with random histories (internal stresses of 0.1 MPa), over dt = 2e-4 s.
+  subroutine lean_viscoelastic()
+    type(deck_t) :: deck
+    type(error_t), allocatable :: error
+    type(finite_reference_t) :: reference
+    type(finite_memory_t) :: memory
+    type(viscoelastic_point_t), allocatable :: history(:, :), next(:, :), lean_next(:, :)
+    real(dp), allocatable :: u(:), force(:), stress(:, :, :), strain(:, :, :), lean_force(:), lean_stress(:, :, :), &
+                             lean_strain(:, :, :), gradient(:, :, :)
+    real(dp) :: energy, lean_energy, worst
+    integer :: inverted, lean_inverted, node, e, g
+    logical :: relaxing
+    call write_deck(folder//'/prony.inp', [character(deck_line_length) :: 'TITLE lean pass, Prony flesh', &
+      'ANALYSIS DYNAMIC', 'KINEMATICS LARGE', 'MATERIAL flesh VISCOELASTIC K=8e6 RHO=950', 'PRONY G=1e6 BETA=0', &
+      'PRONY G=1.5e6 BETA=800', 'PRONY G=0.5e6 BETA=30', 'MESH SPHERE R=0.03 LEVEL=1', 'TIME DT=1e-5 TEND=1e-5', 'END'])
+    call read_deck(folder//'/prony.inp', deck, error)
+    if (allocated(error)) then
+      call check('prony_deck', .false., error_text(error))
+      return
+    end if
+    reference = finite_reference_create(deck%mesh, deck%materials, deck%settings)
+    call finite_memory_create(deck%mesh, deck%materials, memory, relaxing)
+    call check('prony: lean and relaxing', all(reference%lean) .and. all(reference%relaxes) .and. relaxing)
+    memory%dt = 2.0e-4_dp
+    history = memory_points_create(deck%mesh, memory)
+    do e = 1, deck%mesh%nelem
+      do g = 1, gauss_count
+        call random_number(history(g, e)%instantaneous)
+        call random_number(history(g, e)%internal)
+        history(g, e)%instantaneous = 2.0e5_dp*(history(g, e)%instantaneous - 0.5_dp)
+        history(g, e)%internal = 2.0e5_dp*(history(g, e)%internal - 0.5_dp)
+      end do
+    end do
+    next = history
+    lean_next = history
+    allocate(u(2*deck%mesh%nnode), force(2*deck%mesh%nnode), lean_force(2*deck%mesh%nnode))
+    allocate(stress(4, gauss_count, deck%mesh%nelem), strain(4, gauss_count, deck%mesh%nelem), &
+             lean_stress(4, gauss_count, deck%mesh%nelem), lean_strain(4, gauss_count, deck%mesh%nelem), &
+             gradient(5, gauss_count, deck%mesh%nelem))
+    call random_number(u)
+    u = (u - 0.5_dp)*3.0e-4_dp
+    do node = 1, deck%mesh%nnode
+      if (deck%mesh%xy(1, node) == 0.0_dp) u(node_dof(deck%mesh, node, 1)) = 0.0_dp
+    end do
+    call finite_assemble(deck%mesh, deck%materials, deck%settings, u, force, stress, strain, energy, inverted, &
+                         memory=memory, history=history, next=next)
+    call lean_forces(reference, deck%mesh, deck%materials, deck%settings, u, lean_force, lean_stress, lean_energy, &
+                     lean_inverted, gradient, lean_strain, memory, history, lean_next)
+    call check('prony: valid', inverted == 0 .and. lean_inverted == 0)
+    if (inverted /= 0 .or. lean_inverted /= 0) return
+    call check_close('prony: force = viscoelastic_element''s', maxval(abs(lean_force - force))/maxval(abs(force)), &
+                     0.0_dp, 0.0_dp, 1.0e-12_dp)
+    call check_close('prony: stresses = viscoelastic_element''s', maxval(abs(lean_stress - stress))/maxval(abs(stress)), &
+                     0.0_dp, 0.0_dp, 1.0e-12_dp)
+    call check_close('prony: W = viscoelastic_element''s', lean_energy, energy, 1.0e-12_dp)
+    worst = 0.0_dp
+    do e = 1, deck%mesh%nelem
+      do g = 1, gauss_count
+        worst = max(worst, maxval(abs(lean_next(g, e)%instantaneous - next(g, e)%instantaneous)), &
+                    maxval(abs(lean_next(g, e)%internal - next(g, e)%internal)))
+      end do
+    end do
+    call check_close('prony: the histories at the step''s end = viscoelastic_element''s (relative to 1 MPa)', &
+                     worst/1.0e6_dp, 0.0_dp, 0.0_dp, 1.0e-12_dp)
+  end subroutine lean_viscoelastic
 
   !> The Table 1 deck at speed V, frictionless with release (doc/calculix_nlgeom.md's visco2d deck), LARGE or SMALL.
   function table1_deck(speed, t_end, large, newton) result(lines)

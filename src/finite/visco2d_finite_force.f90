@@ -30,7 +30,8 @@ module visco2d_finite_force
   use visco2d_hyperelastic, only: hyperelastic_t, power_minus_one
   use visco2d_finite_solid, only: law_of_material
   use visco2d_finite_assembly, only: finite_memory_t, general_element
-  use visco2d_finite_viscoelastic, only: viscoelastic_point_t
+  use visco2d_finite_viscoelastic, only: viscoelastic_point_t, finite_viscoelastic_t, term_count
+  use visco2d_viscoelastic, only: relaxation_integral
   implicit none
   private
 
@@ -50,6 +51,7 @@ module visco2d_finite_force
   !> and pointwise (element_response evaluates it).
   type :: finite_reference_t
     logical, allocatable :: lean(:)                  !< per element
+    logical, allocatable :: relaxes(:)               !< per element: lean, and its material relaxes (Simo)
     logical :: axisymmetric = .true.
     real(dp) :: shape(4, gauss_count) = 0.0_dp       !< N_a at the Gauss points
     real(dp), allocatable :: gradients(:, :, :, :)   !< dN_a/dX_j (j, a, gauss, element)
@@ -72,7 +74,7 @@ contains
     real(dp) :: n(4), dn(2, 4), xy(2, 4), jacobian(2, 2), det, inverse(2, 2)
     integer :: e, g
     reference%axisymmetric = settings%geometry == geometry_axisymmetric
-    allocate(reference%lean(mesh%nelem))
+    allocate(reference%lean(mesh%nelem), reference%relaxes(mesh%nelem))
     reference%lean = settings%formulation /= formulation_bbar
     allocate(reference%gradients(2, 4, gauss_count, mesh%nelem), reference%radius(gauss_count, mesh%nelem), &
              reference%volume(gauss_count, mesh%nelem), reference%c10(mesh%nelem), reference%d1(mesh%nelem))
@@ -84,7 +86,7 @@ contains
       associate (material => materials(mesh%element_material(e)))
       if (material%hyperelastic /= hyperelastic_none .and. material%hyperelastic /= hyperelastic_neo_hooke) &
         reference%lean(e) = .false.
-      if (has_memory(material)) reference%lean(e) = .false.     ! Simo's viscoelasticity: general_element
+      reference%relaxes(e) = has_memory(material)     ! Simo's viscoelasticity on the neo-Hookean law of G0 and K
       law = law_of_material(material)
       if (law%c01 /= 0.0_dp) reference%lean(e) = .false.
       reference%c10(e) = law%c10
@@ -110,6 +112,7 @@ contains
         reference%volume(g, e) = det*reference%radius(g, e)
       end do
     end do
+    reference%relaxes = reference%relaxes .and. reference%lean
   end function finite_reference_create
 
   !> f(U), the Cauchy stresses (rr, zz, tt, rz) and W (J, per radian in
@@ -137,13 +140,15 @@ contains
     logical :: valid
     real(dp) :: u(2, 4), f(2, 4), h11, h12, h21, h22, h33, in_plane, change, jacobian, scale, trace, mean
     real(dp) :: d11, d22, d33, d12, s11, s22, s33, s12, factor, pressure, k, p11, p12, p21, p22, hoop
-    real(dp) :: exponent_minus_one, root, work
-    integer :: e, g, a, node
+    real(dp) :: exponent_minus_one, root, work, iso0(4), iso(4), long_term, energy_density
+    real(dp), allocatable :: decay(:, :), integral(:, :), mu_hat(:)
+    integer :: e, g, a, node, m
     logical :: want_energy
     inverted = 0
     force = 0.0_dp
     work = 0.0_dp
     want_energy = present(energy)
+    if (present(memory)) call step_factors(memory, decay, integral, mu_hat)
     do e = 1, mesh%nelem
       if (.not. reference%lean(e)) then
         do a = 1, 4
@@ -189,10 +194,21 @@ contains
         mean = (d11 + d22 + d33)/3.0_dp
         factor = 2.0_dp*reference%c10(e)*scale/jacobian       ! 2 C10 J^(-5/3)
         pressure = 2.0_dp*change/reference%d1(e)
-        s11 = factor*(d11 - mean) + pressure
-        s22 = factor*(d22 - mean) + pressure
-        s33 = factor*(d33 - mean) + pressure
-        s12 = factor*d12
+        iso0 = factor*[d11 - mean, d22 - mean, d33 - mean, d12]   ! the isochoric part
+        iso = iso0
+        long_term = 1.0_dp
+        if (reference%relaxes(e)) then                         ! Simo: mu_hat sigma0_iso + F H_n F^T / J
+          m = mesh%element_material(e)
+          long_term = memory%laws(m)%long_term_ratio
+          iso = relaxed_stress(memory%laws(m), decay(:, m), integral(:, m), mu_hat(m), history(g, e), &
+                               [h11, h21, h12, h22, h33], jacobian, iso0)
+          if (present(next)) call next_history(memory%laws(m), decay(:, m), integral(:, m), history(g, e), &
+                                               [h11, h21, h12, h22, h33], jacobian, iso0, next(g, e))
+        end if
+        s11 = iso(1) + pressure
+        s22 = iso(2) + pressure
+        s33 = iso(3) + pressure
+        s12 = iso(4)
         stress(:, g, e) = [s11, s22, s33, s12]
         if (want_energy) then
           if (abs(change) >= 1.0e-3_dp) then                   ! power_minus_one's own branch, without a second power
@@ -201,7 +217,10 @@ contains
             exponent_minus_one = power_minus_one(change, -2.0_dp/3.0_dp)
           end if
           trace = scale*(d11 + d22 + d33) + 3.0_dp*exponent_minus_one               ! I1bar - 3
-          work = work + reference%volume(g, e)*(reference%c10(e)*trace + change**2/reference%d1(e))
+          energy_density = long_term*reference%c10(e)*trace + change**2/reference%d1(e)
+          if (reference%relaxes(e) .and. present(next)) energy_density = energy_density + &
+            internal_energy(memory%laws(m), next(g, e))
+          work = work + reference%volume(g, e)*energy_density
         end if
         gradient(:, g, e) = [h11, h21, h12, h22, h33]
         ! B_a^T sigma dv with dN_a/dx = F^-T dN_a/dX is dN_a/dX . P dV, P = J sigma F^-T (the first
@@ -227,6 +246,104 @@ contains
     end do
     if (want_energy) energy = work
   end subroutine lean_forces
+
+  !> Per material with memory, over memory%dt: exp(-beta_i dt), J(beta_i dt)
+  !> (eq. [22]) and mu_hat = gamma_inf + sum gamma_i J(beta_i dt).
+  pure subroutine step_factors(memory, decay, integral, mu_hat)
+    type(finite_memory_t), intent(in) :: memory
+    real(dp), allocatable, intent(out) :: decay(:, :), integral(:, :), mu_hat(:)
+    integer :: m, i, terms
+    terms = 0
+    do m = 1, size(memory%relaxes)
+      if (memory%relaxes(m)) terms = max(terms, term_count(memory%laws(m)))
+    end do
+    allocate(decay(terms, size(memory%relaxes)), integral(terms, size(memory%relaxes)), mu_hat(size(memory%relaxes)))
+    decay = 0.0_dp
+    integral = 0.0_dp
+    mu_hat = 1.0_dp
+    do m = 1, size(memory%relaxes)
+      if (.not. memory%relaxes(m)) cycle
+      associate (law => memory%laws(m))
+      mu_hat(m) = law%long_term_ratio
+      do i = 1, term_count(law)
+        decay(i, m) = exp(-law%rate(i)*memory%dt)
+        integral(i, m) = relaxation_integral(law%rate(i)*memory%dt)
+        mu_hat(m) = mu_hat(m) + law%ratio(i)*integral(i, m)
+      end do
+      end associate
+    end do
+  end subroutine step_factors
+
+  !> F A F^T / J of a symmetric A (Voigt rr, zz, tt, rz) for F = I + H, H given as (H11, H21, H12, H22, H33).
+  pure function push_forward(h, a, jacobian) result(b)
+    real(dp), intent(in) :: h(5), a(4), jacobian
+    real(dp) :: b(4), f11, f21, f12, f22
+    f11 = 1.0_dp + h(1)
+    f21 = h(2)
+    f12 = h(3)
+    f22 = 1.0_dp + h(4)
+    b(1) = f11*(f11*a(1) + f12*a(4)) + f12*(f11*a(4) + f12*a(2))
+    b(2) = f21*(f21*a(1) + f22*a(4)) + f22*(f21*a(4) + f22*a(2))
+    b(4) = f11*(f21*a(1) + f22*a(4)) + f12*(f21*a(4) + f22*a(2))
+    b(3) = (1.0_dp + h(5))**2*a(3)
+    b = b/jacobian
+  end function push_forward
+
+  !> The isochoric Cauchy stress of Simo's law over the step (visco2d_finite_viscoelastic):
+  !> mu_hat sigma0_iso + F H_n F^T / J, H_n = sum_i (exp(-x_i) Q_i - gamma_i J(x_i) S0_n).
+  pure function relaxed_stress(law, decay, integral, mu_hat, point, h, jacobian, iso0) result(iso)
+    type(finite_viscoelastic_t), intent(in) :: law
+    real(dp), intent(in) :: decay(:), integral(:), mu_hat, h(5), jacobian, iso0(4)
+    type(viscoelastic_point_t), intent(in) :: point
+    real(dp) :: iso(4), held(4)
+    integer :: i
+    held = 0.0_dp
+    do i = 1, term_count(law)
+      held = held + decay(i)*point%internal(:, i) - law%ratio(i)*integral(i)*point%instantaneous
+    end do
+    iso = mu_hat*iso0
+    if (term_count(law) > 0) iso = iso + push_forward(h, held, jacobian)
+  end function relaxed_stress
+
+  !> The history at the step's end: S0 = F^-1 (J sigma0_iso) F^-T and
+  !> Q_i = exp(-x_i) Q_i,n + gamma_i J(x_i) (S0 - S0_n).
+  pure subroutine next_history(law, decay, integral, point, h, jacobian, iso0, next)
+    type(finite_viscoelastic_t), intent(in) :: law
+    real(dp), intent(in) :: decay(:), integral(:), h(5), jacobian, iso0(4)
+    type(viscoelastic_point_t), intent(in) :: point
+    type(viscoelastic_point_t), intent(inout) :: next
+    real(dp) :: inverse(5), det, s0(4)
+    integer :: i
+    det = (1.0_dp + h(1))*(1.0_dp + h(4)) - h(2)*h(3)
+    ! F^-1 = [[1 + H22, -H12], [-H21, 1 + H11]] / det in the plane, 1 / (1 + H33) in the hoop, as I + H':
+    inverse = [(1.0_dp + h(4))/det - 1.0_dp, -h(2)/det, -h(3)/det, (1.0_dp + h(1))/det - 1.0_dp, &
+               1.0_dp/(1.0_dp + h(5)) - 1.0_dp]
+    s0 = push_forward(inverse, jacobian*iso0, 1.0_dp)
+    if (allocated(next%internal)) then
+      if (size(next%internal, 2) /= term_count(law)) deallocate(next%internal)
+    end if
+    if (.not. allocated(next%internal)) allocate(next%internal(4, term_count(law)))
+    next%instantaneous = s0
+    do i = 1, term_count(law)
+      next%internal(:, i) = decay(i)*point%internal(:, i) + law%ratio(i)*integral(i)*(s0 - point%instantaneous)
+    end do
+  end subroutine next_history
+
+  !> sum_i Q_i : Q_i / (4 gamma_i G0): the energy of the internal stresses (visco2d_finite_viscoelastic's).
+  pure real(dp) function internal_energy(law, point) result(energy)
+    type(finite_viscoelastic_t), intent(in) :: law
+    type(viscoelastic_point_t), intent(in) :: point
+    real(dp) :: g0
+    integer :: i
+    energy = 0.0_dp
+    g0 = 2.0_dp*(law%instantaneous%c10 + law%instantaneous%c01)
+    do i = 1, term_count(law)
+      if (law%ratio(i) <= 0.0_dp) cycle
+      associate (q => point%internal(:, i))
+      energy = energy + (q(1)**2 + q(2)**2 + q(3)**2 + 2.0_dp*q(4)**2)/(4.0_dp*law%ratio(i)*g0)
+      end associate
+    end do
+  end function internal_energy
 
   !> x^(-1/3) for x > 0: from the cubic Taylor polynomial in c = x - 1,
   !> y = 1 - c/3 + 2 c^2/9 - 14 c^3/81, the update y (1 + r/3 + 2 r^2/9),
