@@ -675,10 +675,16 @@ contains
     call timer_start(phase_constitutive)
     if (stepper%finite) then              ! the bodies at U + dU; increments: the change of the logarithmic strain
       stepper%finite_memory%dt = point%length
-      call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%du, &
-                       stepper%internal_next, stepper%trial, stepper%energy_next, stepper%inverted, &
-                       stepper%gradient_next, stepper%increments, stepper%finite_memory, state%finite_history, &
-                       stepper%history_next)
+      if (stepper%relaxing) then          ! the histories only when kept (finite_assemble's note)
+        call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%du, &
+                         stepper%internal_next, stepper%trial, stepper%energy_next, stepper%inverted, &
+                         stepper%gradient_next, stepper%increments, stepper%finite_memory, state%finite_history, &
+                         stepper%history_next)
+      else
+        call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%du, &
+                         stepper%internal_next, stepper%trial, stepper%energy_next, stepper%inverted, &
+                         stepper%gradient_next, stepper%increments)
+      end if
       if (stepper%inverted == 0) call gradient_strains(stepper%reference, stepper%gradient_next, stepper%increments)
       stepper%increments = stepper%increments - state%strain
     else if (stepper%plastic) then        ! the return mapping at the sub-step's end (history_length: absent without memory)
@@ -958,16 +964,24 @@ contains
     if (.not. allocated(stepper%internal_solve)) allocate(stepper%internal_solve, mold=stepper%internal_next)
     stepper%finite_memory%dt = h
     do cut = 0, halvings
-      if (stepper%full_newton) then
+      if (stepper%full_newton .and. stepper%relaxing) then   ! the histories only when kept (finite_assemble's note)
         call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                              stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
                              stepper%inverted, stepper%tangent, stepper%finite_memory, state%finite_history, &
                              stepper%history_at_solve)
-      else                                           ! the lean elements' strains at the converged iterate
+      else if (stepper%full_newton) then
+        call finite_assemble(deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
+                             stepper%internal_solve, stepper%stress_solve, stepper%strain_solve, stepper%energy_solve, &
+                             stepper%inverted, stepper%tangent)
+      else if (stepper%relaxing) then                ! the lean elements' strains at the converged iterate
         call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
                          stepper%internal_solve, stepper%stress_solve, inverted=stepper%inverted, &
                          gradient=stepper%gradient_solve, strain=stepper%strain_solve, memory=stepper%finite_memory, &
                          history=state%finite_history, next=stepper%history_at_solve)
+      else
+        call lean_forces(stepper%reference, deck%mesh, deck%materials, deck%settings, state%u + stepper%solution, &
+                         stepper%internal_solve, stepper%stress_solve, inverted=stepper%inverted, &
+                         gradient=stepper%gradient_solve, strain=stepper%strain_solve)
       end if
       if (stepper%inverted == 0) return
       if (iteration == 1 .or. cut == halvings) exit

@@ -123,8 +123,16 @@ contains
     energy = 0.0_dp
     if (present(stiffness)) call band_create(stiffness, 2*mesh%nnode, mesh%half_bandwidth)
     do e = 1, mesh%nelem
-      call general_element(mesh, materials, settings, e, displacement, present(stiffness), element_force, &
-                           element_stiffness, stress(:, :, e), strain(:, :, e), element_energy, valid, memory, history, next)
+      ! the histories passed on only when given: an absent assumed-shape array of a type with allocatable
+      ! components passed on to another optional dummy makes gfortran read its empty descriptor
+      if (present(memory) .and. present(history) .and. present(next)) then
+        call general_element(mesh, materials, settings, e, displacement, present(stiffness), element_force, &
+                             element_stiffness, stress(:, :, e), strain(:, :, e), element_energy, valid, memory, history, &
+                             next)
+      else
+        call general_element(mesh, materials, settings, e, displacement, present(stiffness), element_force, &
+                             element_stiffness, stress(:, :, e), strain(:, :, e), element_energy, valid)
+      end if
       if (.not. valid) then
         inverted = e
         return

@@ -155,8 +155,13 @@ contains
           dofs(2*a) = 2*mesh%equation(mesh%connectivity(a, e))
           dofs(2*a - 1) = dofs(2*a) - 1
         end do
-        call general_element(mesh, materials, settings, e, displacement, .false., element_force, element_stiffness, &
-                             stress(:, :, e), strain(:, :, e), element_energy, valid, memory, history, next)
+        if (present(memory) .and. present(history) .and. present(next)) then   ! (finite_assemble's note)
+          call general_element(mesh, materials, settings, e, displacement, .false., element_force, element_stiffness, &
+                               stress(:, :, e), strain(:, :, e), element_energy, valid, memory, history, next)
+        else
+          call general_element(mesh, materials, settings, e, displacement, .false., element_force, element_stiffness, &
+                               stress(:, :, e), strain(:, :, e), element_energy, valid)
+        end if
         if (.not. valid) then
           inverted = e
           return
