@@ -9,9 +9,12 @@
 !>   contact_repeat        the plate's conditions on dU (capacitance system), the
 !>                         update to the sub-step's end (eqs. [37]-[39]) and the
 !>                         trial stresses (eqs. [13], [14], [23]), repeated while the
-!>                         contact set changes; with a PLASTIC material each solve is
-!>                         iterated to equilibrium at the solve point first
-!>                         (equilibrium_iterations: modified Newton on the factored S~)
+!>                         contact set changes; with a PLASTIC material, or with
+!>                         KINEMATICS LARGE (f(U) of the bodies at finite deformation,
+!>                         visco2d_finite_force / visco2d_finite_assembly, in place of
+!>                         S U), each solve is iterated to equilibrium at the solve
+!>                         point first (equilibrium_iterations: modified Newton on the
+!>                         factored S~, or NEWTON=FULL)
 !>   commit_substep        strains, stresses, histories (eq. [24]) and
 !>                         U, U', U'' (eqs. [40]-[42]) at the sub-step's end
 !> The right side of eq. [36] is written in residual form: with F(sigma_t)
@@ -58,9 +61,9 @@ module visco2d_time_step
                                  inertia_load, solve_point_inertia, update_kinematics
   use visco2d_dynamic_state, only: dynamic_state_t
   use visco2d_body_mesh, only: contact_card_line, contact_card_name
-  use visco2d_finite_assembly, only: finite_assemble, strain_extremes
+  use visco2d_finite_assembly, only: finite_assemble, strain_extremes, finite_memory_t, finite_memory_create, &
+                                     memory_points_create
   use visco2d_finite_force, only: finite_reference_t, finite_reference_create, lean_forces, gradient_strains
-  use visco2d_finite_assembly, only: finite_memory_t, finite_memory_create, memory_points_create
   use visco2d_finite_viscoelastic, only: viscoelastic_point_t
   implicit none
   private
