@@ -14,7 +14,8 @@ module visco2d_driver
   use visco2d_pad_mesh, only: body_nodes, body_elements
   use visco2d_static, only: static_solution_t, solve_static, static_record
   use visco2d_plastic_static, only: plastic_summary_t, solve_plastic_static, plastic_record, any_plastic
-  use visco2d_finite_static, only: finite_summary_t, solve_finite_static, finite_record
+  use visco2d_finite_static, only: finite_summary_t, finite_plate_t, solve_finite_static, finite_record
+  use visco2d_contact, only: contact_t, contact_create
   use visco2d_quasistatic, only: solve_quasistatic
   use visco2d_plastic_quasistatic, only: solve_plastic_quasistatic
   use visco2d_dynamic, only: solve_dynamic
@@ -222,7 +223,15 @@ contains
       select case (deck%analysis)
       case (analysis_static)
         call record_put_integer(record, 'steps', 1)
-        if (deck%settings%kinematics == kinematics_large) then   ! finite deformation: increments and Newton
+        if (deck%settings%kinematics == kinematics_large .and. deck%plate%line > 0) then   ! ... on the plate
+          call solve_finite_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
+                                   static_solution, finite_summary, error, finite_plate(deck))
+          if (allocated(error)) return
+          call static_record(deck%mesh, deck%settings, deck%probes, static_solution, record)
+          call finite_record(finite_summary, record)
+          call bruise_static(deck, static_solution%stress, static_solution%strain, record)
+          call record_put_integer(record, 'factorizations', finite_summary%iterations)
+        else if (deck%settings%kinematics == kinematics_large) then   ! finite deformation: increments and Newton
           call solve_finite_static(deck%mesh, deck%materials, deck%settings, deck%loads, deck%source, &
                                    static_solution, finite_summary, error)
           if (allocated(error)) return
@@ -273,6 +282,19 @@ contains
       end select
     end subroutine solve
   end subroutine run_deck_steps
+
+  !> The PLATE of a static KINEMATICS LARGE deck for visco2d_finite_static:
+  !> its height, STICK or SLIP, the candidates and tolerance of visco2d_contact.
+  function finite_plate(deck) result(plate)
+    type(deck_t), intent(in) :: deck
+    type(finite_plate_t) :: plate
+    type(contact_t) :: contact
+    call contact_create(deck, contact)
+    plate%z = contact%z_plate
+    plate%stick = contact%stick
+    plate%candidates = contact%candidates
+    plate%tolerance = contact%tolerance
+  end function finite_plate
 
   !> An error that names no file gets the deck's name.
   subroutine name_the_deck(error, path)

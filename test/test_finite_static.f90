@@ -17,14 +17,20 @@
 !>     singular near lambda = 0.39); the run stops with a located error at
 !>     the ANALYSIS card and writes nothing.
 !>  6. The cards: KINEMATICS, NEOHOOKE and MOONEY errors, refused
-!>     combinations (QUASISTATIC, PRESSURE, PLASTIC, a static PLATE), the warning of a
+!>     combinations (QUASISTATIC, PRESSURE, PLASTIC), the warning of a
 !>     hyperelastic material in a small-strain deck.
+!>  7. The Table 1 sphere pressed on the rigid PLATE by its weight (GRAVITY,
+!>     SLIP and STICK), the plate as an active set inside the load
+!>     increments: the plate's force is the weight (equilibrium), the stored
+!>     energy the external work (the trapezoid over the increments), and at a
+!>     100 times smaller weight the small-strain solution (the same contact
+!>     nodes; the displacement to the finite-deformation change of that load).
 program test_finite_static
   use visco2d_kinds, only: dp, pi
   use visco2d_error, only: error_t, error_text
   use visco2d_driver, only: run_deck
   use visco2d_record, only: record_t
-  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, summary_real
+  use visco2d_testing, only: check, check_close, check_text_contains, test_summary, write_deck, summary_real, message_of
   use visco2d_test_decks, only: deck_line_length, try_read_deck, check_error_location
   use visco2d_deck, only: deck_t, read_deck
   use visco2d_strings, only: integer_text
@@ -40,6 +46,7 @@ program test_finite_static
   call small_load_limit()
   call compressible_limit()
   call foam_compression()
+  call sphere_on_plate()
   call cards()
   call test_summary('test_finite_static')
 
@@ -223,6 +230,50 @@ contains
   !> lateral stretch is lambda^(-nu) in closed form (tau_r = 0 gives
   !> lambda_t^alpha = J^(-alpha beta)), J = lambda^(1 - 2 nu) and
   !> sigma_z = (2 mu / alpha) (lambda^alpha - J^(-alpha beta)) / J.
+  !> Part 7.
+  subroutine sphere_on_plate()
+    type(record_t) :: large, small
+    type(error_t), allocatable :: error
+    character(len=deck_line_length), allocatable :: lines(:)
+    character(len=8) :: contact
+    integer :: k
+    do k = 1, 2
+      contact = merge('SLIP    ', 'STICK   ', k == 1)
+      lines = [character(len=deck_line_length) :: 'TITLE Table 1 sphere pressed on the plate by its weight', &
+        'ANALYSIS STATIC INCREMENTS=20', 'KINEMATICS LARGE', 'GEOMETRY AXISYMMETRIC', &
+        'MATERIAL fruit NEOHOOKE E=18.11e6 NU=0.219 RHO=756.85', 'MESH SPHERE R=0.0366 LEVEL=2', &
+        'PLATE Z=0 '//trim(contact), 'GRAVITY G=2000', 'END']
+      call run('plate_large_'//trim(contact), lines, large, error)
+      call check('sphere on the plate ('//trim(contact)//'): runs', .not. allocated(error), message_of(error))
+      if (allocated(error)) cycle
+      lines(3) = 'KINEMATICS SMALL'
+      lines(5) = 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85'
+      call run('plate_small_'//trim(contact), lines, small, error)
+      if (allocated(error)) cycle
+      call check_close('sphere on the plate ('//trim(contact)//'): the plate carries the weight', &
+                       summary_real(large, 'force_N'), summary_real(small, 'force_N'), 1.0e-8_dp)
+      call check_close('sphere on the plate ('//trim(contact)//'): W = the external work (trapezoid, 20 increments)', &
+                       summary_real(large, 'strain_energy_J'), summary_real(large, 'external_work_J'), 1.0e-3_dp)
+      call check('sphere on the plate ('//trim(contact)//'): the contact grew over the increments', &
+                 nint(summary_real(large, 'contact_iterations')) > 0 .and. nint(summary_real(large, 'contact_nodes')) > 3)
+    end do
+    lines(3) = 'KINEMATICS LARGE'
+    lines(5) = 'MATERIAL fruit NEOHOOKE E=18.11e6 NU=0.219 RHO=756.85'
+    lines(7) = 'PLATE Z=0 SLIP'
+    lines(8) = 'GRAVITY G=20'
+    call run('plate_large_light', lines, large, error)
+    if (allocated(error)) return
+    lines(3) = 'KINEMATICS SMALL'
+    lines(5) = 'MATERIAL fruit ELASTIC E=18.11e6 NU=0.219 RHO=756.85'
+    call run('plate_small_light', lines, small, error)
+    if (allocated(error)) return
+    ! the finite-deformation change: 2.8 % of the largest displacement at G = 2000, 0.48 % at G = 20 (a/R ~ F^(1/3))
+    call check_close('sphere on the plate, G = 20: the small-strain displacement to 1 %', &
+                     summary_real(large, 'max_displacement_m'), summary_real(small, 'max_displacement_m'), 1.0e-2_dp)
+    call check('sphere on the plate, G = 20: the small-strain contact nodes', &
+               nint(summary_real(large, 'contact_nodes')) == nint(summary_real(small, 'contact_nodes')))
+  end subroutine sphere_on_plate
+
   subroutine foam_compression()
     type(record_t) :: record
     type(error_t), allocatable :: error
@@ -299,10 +350,6 @@ contains
     lines = [base(1:4), [character(len=deck_line_length) :: 'PLASTIC YIELD=1e4 TANGENT=0'], base(5:)]
     call try_read_deck(path, refused, message, lines)
     call check_error_location('KINEMATICS LARGE with PLASTIC', message, path, 5, 0, 'PLASTIC', 'small-strain only')
-    lines = base
-    lines(8) = 'PLATE Z=-0.001 SLIP'
-    call try_read_deck(path, refused, message, lines)
-    call check_error_location('KINEMATICS LARGE with a static PLATE', message, path, 8, 0, 'PLATE', 'not in this version')
     lines = base
     lines(4) = 'MATERIAL flesh NEOHOOKE C10=2e5 E=1e6 NU=0.3'
     call try_read_deck(path, refused, message, lines)

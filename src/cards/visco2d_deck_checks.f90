@@ -244,7 +244,7 @@ contains
   !> KINEMATICS LARGE runs what src/finite/ solves so far: elastic or
   !> hyperelastic (NEOHOOKE, MOONEY, HYPERFOAM) bodies under point loads,
   !> gravity and prescribed displacements, ANALYSIS STATIC, or ANALYSIS
-  !> DYNAMIC with or without the rigid PLATE and a PAD, VISCOELASTIC flesh
+  !> DYNAMIC with or without the rigid PLATE and a PAD (STATIC: the PLATE, not a PAD), VISCOELASTIC flesh
   !> by Simo's finite-strain law (PRONY terms; DYNAMIC only: STATIC refuses
   !> memory anyway). Anything else is refused at its
   !> card, with what to do; a hyperelastic material in a small-strain run
@@ -285,12 +285,6 @@ contains
       call line_error(error, deck, deck%loads%pressures(1)%line, 'a PRESSURE on the undeformed edge is not the '// &
         'follower load a finite deformation needs, and that load is not in this version: with KINEMATICS LARGE '// &
         'load by FORCE, GRAVITY or a prescribed displacement (FIX ... UZ=)')
-      return
-    end if
-    if (deck%plate%line > 0 .and. deck%analysis == analysis_static) then
-      call line_error(error, deck, deck%plate%line, 'static contact with the PLATE at finite deformation is not in '// &
-        'this version (KINEMATICS LARGE runs the PLATE in ANALYSIS DYNAMIC): prescribe the displacement of the '// &
-        'contact side (FIX ... UZ=) instead')
       return
     end if
     if (deck%pad%line > 0 .and. deck%analysis == analysis_static) then

@@ -17,6 +17,17 @@
 !> hold, the same tests as the plastic static solve; after ITERATIONS= (default 30) a located error
 !> (the ANALYSIS card, the increment, the iteration, both residuals) is returned, never a result.
 !>
+!> With a PLATE (finite_plate_t, from the driver) the contact is an active
+!> set inside each increment: the nodes on the plate at the start are held;
+!> after an increment converges, a free candidate that went through the plate
+!> is held at z + u_z = Z (STICK: u_r too, where it is), a held node whose
+!> reaction would pull the body onto the plate is freed, and the increment's
+!> Newton iteration goes on from there with the new set, until the set no
+!> longer changes (at most contact_sets times; the keys force_N,
+!> contact_nodes, contact_iterations, contact_radius_mm). The plate's
+!> condition is on the current height z + u_z: the contact is on the
+!> deformed body.
+!>
 !> The stored energy is the strain energy W integrated over the reference
 !> body; the external work the trapezoidal sum over the increments of
 !> 1/2 (P_(k-1) + P_k) . (u_k - u_(k-1)), P the applied load on the free
@@ -42,7 +53,19 @@ module visco2d_finite_static
   implicit none
   private
 
-  public :: finite_summary_t, solve_finite_static, finite_record
+  public :: finite_summary_t, finite_plate_t, solve_finite_static, finite_record
+
+  !> The rigid plate z = Z of a static run (the PLATE card), as the driver
+  !> gives it: its height, STICK or SLIP, the boundary nodes that may touch
+  !> it and the distance within which a node is on it.
+  type :: finite_plate_t
+    real(dp) :: z = 0.0_dp
+    logical :: stick = .false.
+    integer, allocatable :: candidates(:)
+    real(dp) :: tolerance = 0.0_dp
+  end type finite_plate_t
+
+  integer, parameter :: contact_sets = 50      !< most changes of the contact set in one load increment
 
   real(dp), parameter :: force_tolerance = 1.0e-9_dp    !< |r| relative to the load (and reactions)
   real(dp), parameter :: energy_tolerance = 1.0e-18_dp  !< |r . K^-1 r| relative to the first iteration's
@@ -58,6 +81,11 @@ module visco2d_finite_static
     real(dp) :: volume_ratio_min = 1.0_dp           !< the least J = det F at a Gauss point
     real(dp) :: volume_ratio_max = 1.0_dp           !< the largest J
     real(dp) :: stretch_min = 1.0_dp                !< the least principal stretch at a Gauss point (in-plane or hoop)
+    logical :: plate = .false.                      !< on a PLATE: the keys below
+    integer :: contact_nodes = 0                    !< nodes held on the plate at the end
+    integer :: contact_iterations = 0               !< increments repeated because the contact set changed
+    real(dp) :: plate_force = 0.0_dp                !< the plate's force on the body, N (whole body in axisymmetry)
+    real(dp) :: contact_radius = 0.0_dp             !< the current r of the outermost node on the plate, m
   end type finite_summary_t
 
 contains
@@ -65,7 +93,7 @@ contains
   !> The load-incremented Newton solve (module comment): the static
   !> solution (displacement, reactions, Cauchy stresses and logarithmic
   !> strains at the Gauss points, stored energy, external work) and the summary.
-  subroutine solve_finite_static(mesh, materials, settings, loads, source, solution, summary, error)
+  subroutine solve_finite_static(mesh, materials, settings, loads, source, solution, summary, error, plate)
     type(mesh_t), intent(in) :: mesh
     type(material_t), intent(in) :: materials(:)
     type(settings_t), intent(in) :: settings
@@ -74,21 +102,29 @@ contains
     type(static_solution_t), intent(out) :: solution
     type(finite_summary_t), intent(out) :: summary
     type(error_t), allocatable, intent(out) :: error
+    type(finite_plate_t), intent(in), optional :: plate   !< a PLATE: contact as an active set (module comment)
     real(dp), allocatable :: load(:), presc(:), u(:), u_start(:), du(:), rhs(:), force(:), force_start(:), r(:)
-    real(dp), allocatable :: target(:), stress(:, :, :), strain(:, :, :)
-    logical, allocatable :: fixed(:)
+    real(dp), allocatable :: target(:), stress(:, :, :), strain(:, :, :), held_value(:)
+    logical, allocatable :: fixed(:), supports(:), held(:)
     type(band_matrix_t) :: stiffness
     type(factor_t) :: factor
     real(dp) :: lambda, energy_first, energy_next, force_ratio, scale, energy
-    integer :: n, k, iteration, info, cut, bad_element
-    logical :: converged, first
+    integer :: n, k, iteration, info, cut, bad_element, set
+    logical :: converged, first, changed
 
     n = settings%increments
     load = external_load(mesh, settings, loads, 0.0_dp) + gravity_load(mesh, settings, materials, loads)
-    fixed = support_mask(mesh, settings, loads)
+    supports = support_mask(mesh, settings, loads)
+    fixed = supports
+    allocate(held(2*mesh%nnode), held_value(2*mesh%nnode))
+    held = .false.
+    held_value = 0.0_dp
+    summary%plate = present(plate)
     presc = prescribed_displacement(mesh, loads, 0.0_dp)
     allocate(u(2*mesh%nnode), stress(4, gauss_count, mesh%nelem), strain(4, gauss_count, mesh%nelem))
     u = 0.0_dp
+    lambda = 0.0_dp
+    if (present(plate)) call touch_plate(changed, .true.)  ! the nodes that start on it
     summary%increments = n
     allocate(summary%force_residual(settings%iterations, n))
     summary%force_residual = 0.0_dp
@@ -105,7 +141,8 @@ contains
       lambda = real(k, dp)/real(n, dp)
       u_start = u
       force_start = force
-      target = lambda*presc
+      do set = 1, contact_sets                         ! the increment, repeated while the contact set changes
+      target = merge(held_value, lambda*presc, held)
       energy_first = 0.0_dp
       converged = .false.
       first = .true.
@@ -186,10 +223,22 @@ contains
       end if
       summary%iterations = summary%iterations + iteration
       summary%iterations_max = max(summary%iterations_max, iteration)
+      if (.not. present(plate)) exit
+      call touch_plate(changed, .false.)
+      if (.not. changed) exit
+      summary%contact_iterations = summary%contact_iterations + 1
+      if (set == contact_sets) then
+        call analysis_error(source, error, 'the contact set with the PLATE still changes after '// &
+          integer_text(contact_sets)//' repetitions of load increment '//integer_text(k)//' of '//integer_text(n)// &
+          ' (KINEMATICS LARGE): give more INCREMENTS=')
+        return
+      end if
+      end do
       solution%external_work = solution%external_work + 0.5_dp*dot_product( &
         merge(force_start, (lambda - 1.0_dp/n)*load, fixed) + merge(force, lambda*load, fixed), u - u_start)
     end do
 
+    if (present(plate)) call plate_keys()
     solution%displacement = nodal_field(mesh, u)
     solution%reaction = nodal_field(mesh, force - load)
     solution%strain = strain
@@ -202,6 +251,62 @@ contains
       call not_finite_error(source, 'the finite-deformation stress or energy', error)
 
   contains
+
+    !> The contact set after a converged solve at u: a free candidate that
+    !> went through the plate (z + u_z < Z - tolerance) is held at z + u_z = Z
+    !> (with STICK also u_r where it is); a held node whose reaction pulls the
+    !> body onto the plate (f - lambda R < 0 in z: the plate would pull) is
+    !> freed. `fixed`, `held` and `held_value` follow; `changed` if any node moved.
+    subroutine touch_plate(changed, initial)
+      logical, intent(out) :: changed
+      logical, intent(in) :: initial                 !< before the first increment: the nodes within the tolerance
+      real(dp) :: gap
+      integer :: i, node, rr, zz
+      changed = .false.
+      do i = 1, size(plate%candidates)
+        node = plate%candidates(i)
+        rr = 2*mesh%equation(node) - 1
+        zz = rr + 1
+        if (supports(zz)) cycle
+        if (held(zz)) then
+          if (force(zz) - lambda*load(zz) < 0.0_dp) then
+            held(zz) = .false.
+            if (plate%stick .and. .not. supports(rr)) held(rr) = .false.
+            changed = .true.
+          end if
+        else
+          gap = mesh%xy(2, node) + u(zz) - plate%z
+          if (.not. (gap < -plate%tolerance .or. (initial .and. gap <= plate%tolerance))) cycle
+          held(zz) = .true.
+          held_value(zz) = plate%z - mesh%xy(2, node)
+          if (plate%stick .and. .not. supports(rr)) then
+            held(rr) = .true.
+            held_value(rr) = u(rr)
+          end if
+          changed = .true.
+        end if
+      end do
+      fixed = supports .or. held
+    end subroutine touch_plate
+
+    !> The plate's keys at the end: the nodes on it, its force on the body
+    !> (the held z equations' f - R; whole body in axisymmetry) and the
+    !> current radius of the outermost node on it.
+    subroutine plate_keys()
+      integer :: i, node, zz
+      summary%contact_nodes = 0
+      summary%plate_force = 0.0_dp
+      summary%contact_radius = 0.0_dp
+      do i = 1, size(plate%candidates)
+        node = plate%candidates(i)
+        zz = 2*mesh%equation(node)
+        if (.not. held(zz)) cycle
+        summary%contact_nodes = summary%contact_nodes + 1
+        summary%plate_force = summary%plate_force + force(zz) - load(zz)
+        summary%contact_radius = max(summary%contact_radius, abs(mesh%xy(1, node) + u(zz - 1)))
+      end do
+      summary%plate_force = whole_body_factor(settings%geometry)*summary%plate_force
+    end subroutine plate_keys
 
     !> Every element's response at the displacement v (finite_assemble): the
     !> internal force, the tangent (in `stiffness`), the stresses, strains and
@@ -242,5 +347,10 @@ contains
     call record_put_real(record, 'volume_ratio_min', summary%volume_ratio_min)
     call record_put_real(record, 'volume_ratio_max', summary%volume_ratio_max)
     call record_put_real(record, 'stretch_min', summary%stretch_min)
+    if (.not. summary%plate) return
+    call record_put_real(record, 'force_N', summary%plate_force)
+    call record_put_integer(record, 'contact_nodes', summary%contact_nodes)
+    call record_put_integer(record, 'contact_iterations', summary%contact_iterations)
+    call record_put_real(record, 'contact_radius_mm', 1.0e3_dp*summary%contact_radius)
   end subroutine finite_record
 end module visco2d_finite_static
