@@ -150,23 +150,26 @@ contains
   pure subroutine strain_extremes(strain, volume_ratio_min, volume_ratio_max, stretch_min)
     real(dp), intent(in) :: strain(:, :, :)
     real(dp), intent(out) :: volume_ratio_min, volume_ratio_max, stretch_min
-    real(dp) :: mean, radius, volume_ratio
+    real(dp) :: mean, radius, volumetric, low, high, least
     integer :: e, g
-    volume_ratio_min = huge(1.0_dp)
-    volume_ratio_max = -huge(1.0_dp)
-    stretch_min = huge(1.0_dp)
+    low = huge(1.0_dp)                              ! the extremes of the logarithms; exp once at the end
+    high = -huge(1.0_dp)
+    least = huge(1.0_dp)
     do e = 1, size(strain, 3)
       do g = 1, size(strain, 2)
         associate (eps => strain(:, g, e))
-        volume_ratio = exp(eps(1) + eps(2) + eps(3))
-        volume_ratio_min = min(volume_ratio_min, volume_ratio)
-        volume_ratio_max = max(volume_ratio_max, volume_ratio)
+        volumetric = eps(1) + eps(2) + eps(3)
+        low = min(low, volumetric)
+        high = max(high, volumetric)
         mean = 0.5_dp*(eps(1) + eps(2))
         radius = hypot(0.5_dp*(eps(1) - eps(2)), 0.5_dp*eps(4))
-        stretch_min = min(stretch_min, exp(mean - radius), exp(eps(3)))
+        least = min(least, mean - radius, eps(3))
         end associate
       end do
     end do
+    volume_ratio_min = exp(low)
+    volume_ratio_max = exp(high)
+    stretch_min = exp(least)
   end subroutine strain_extremes
 
 end module visco2d_finite_assembly
