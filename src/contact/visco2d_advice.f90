@@ -290,12 +290,14 @@ contains
       end if
       call record_warn(record, 'the largest principal strain reached '//message_real(100.0_dp*strain)//' % (above '// &
         message_real(100.0_dp*strain_warning_level)//' %): beyond the small-strain model, stresses and displacements '// &
-        'are only indicative', file=deck%cards%file, line=line, card='MATERIAL')
+        'are only indicative; KINEMATICS LARGE runs the deck at finite deformation (doc/finite.md)', &
+        file=deck%cards%file, line=line, card='MATERIAL')
     end if
     if (pad_strain > strain_warning_level) call record_warn(record, 'the largest principal strain in the pad ('// &
       deck%pad%material//') reached '//message_real(100.0_dp*pad_strain)//' % (above '// &
       message_real(100.0_dp*strain_warning_level)//' %): beyond the small-strain, linear pad model (a foam buckles '// &
-      'and densifies); its results are only indicative', file=deck%cards%file, line=deck%pad%line, card='PAD')
+      'and densifies); its results are only indicative; a HYPERFOAM pad with KINEMATICS LARGE describes it '// &
+      '(doc/hyperfoam.md)', file=deck%cards%file, line=deck%pad%line, card='PAD')
     if (deck%plate%line == 0 .or. .not. generated_round_body(deck%mesh)) return
     radius = pole_curvature_radius(deck%mesh, body_elements(deck))
     if (.not. (radius > 0.0_dp)) return
@@ -306,7 +308,8 @@ contains
       alpha = 1.0e-3_dp*alpha
       if (alpha > approach_warning_level*radius) call record_warn(record, 'the approach alpha_max = '// &
         message_real(1.0e3_dp*alpha)//' mm is '//percent_text(alpha/radius)//' % of the radius (above '// &
-        percent_text(approach_warning_level)//' %): '//small_strain_error_text(alpha/radius), &
+        percent_text(approach_warning_level)//' %): '//small_strain_error_text(alpha/radius)// &
+        '; KINEMATICS LARGE runs the deck at finite deformation (doc/finite.md)', &
         file=deck%cards%file, line=deck%plate%line, card='PLATE')
       return
     end do
