@@ -7,7 +7,8 @@
 !>
 !> With a PAD (visco2d_pad_mesh) the body touches the pad's top surface
 !> instead: node to segment, each body node against the pad surface segment
-!> under its undeformed r (the small-displacement frame), with weights
+!> under its undeformed r (the small-displacement frame; with KINEMATICS
+!> LARGE under its current r, pair_on_surface, at every step), with weights
 !> (1 - s, s) on the segment's two nodes. Its gap is then
 !>   g = z + u_z - Z - [(1 - s) u_z(a) + s u_z(b)],
 !> and a held node keeps g = 0 (and, with STICK, the same relation in u_r):
@@ -42,7 +43,7 @@ module visco2d_contact
 
   public :: contact_t, hertz_t
   public :: contact_create, contact_held_dofs, contact_begin_increment, contact_search, contact_count
-  public :: contact_release_tensile
+  public :: contact_release_tensile, pair_on_surface
   public :: contact_pressure, contact_force, contact_radius, contact_gap, nearest_free_node
   public :: hertz_impact, contact_partner_sum, pad_compression
 
@@ -137,34 +138,72 @@ contains
   subroutine pad_partners(deck, contact)
     type(deck_t), intent(in) :: deck
     type(contact_t), intent(inout) :: contact
-    logical, allocatable :: supports(:)
-    integer :: i, k, node, c, j, equation, other
-    real(dp) :: r, s
-    associate (mesh => deck%mesh, surface => deck%pad%surface)
+    real(dp), allocatable :: u(:)
+    logical :: changed
     contact%pad = .true.
-    contact%pad_axis = surface(1)
+    contact%pad_axis = deck%pad%surface(1)
+    allocate(u(2*deck%mesh%nnode))
+    u = 0.0_dp
+    call pair_on_surface(deck, contact, u, 0.0_dp, changed)
+  end subroutine pad_partners
+
+  !> Each candidate against the pad surface segment under its current radius
+  !> |r + u_r|, the surface nodes at theirs, with the weights of the current
+  !> positions; `tolerance` > 0 keeps a pairing whose segment is the same and
+  !> whose s moved by at most that; `changed`: some pairing changed.
+  subroutine pair_on_surface(deck, contact, u, tolerance, changed)
+    type(deck_t), intent(in) :: deck
+    type(contact_t), intent(inout) :: contact
+    real(dp), intent(in) :: u(:)
+    real(dp), intent(in) :: tolerance
+    logical, intent(out) :: changed
+    logical, allocatable :: supports(:)
+    real(dp), allocatable :: surface_radius(:)
+    integer :: i, k, node, c, j, equation, other, found
+    real(dp) :: r, s, old_s
+    associate (mesh => deck%mesh, surface => deck%pad%surface)
+    changed = .false.
     supports = support_mask(deck%mesh, deck%settings, deck%loads)
+    allocate(surface_radius(size(surface)))
+    do k = 1, size(surface)
+      surface_radius(k) = abs(mesh%xy(1, surface(k)) + u(node_dof(mesh, surface(k), 1)))
+    end do
     do i = 1, size(contact%candidates)
       node = contact%candidates(i)
-      r = abs(mesh%xy(1, node))
+      r = abs(mesh%xy(1, node) + u(node_dof(mesh, node, 1)))
+      found = 0
       do k = 1, size(surface) - 1
-        if (r > mesh%xy(1, surface(k + 1))) cycle
-        s = (r - mesh%xy(1, surface(k)))/(mesh%xy(1, surface(k + 1)) - mesh%xy(1, surface(k)))
-        do c = 1, 2
-          equation = node_dof(mesh, node, c)
-          if (supports(equation)) cycle
-          do j = 1, 2
-            other = node_dof(mesh, surface(k + j - 1), c)
-            if (supports(other)) cycle
-            contact%partner(j, equation) = other
-            contact%weight(j, equation) = merge(1.0_dp - s, s, j == 1)
-          end do
-        end do
+        if (r > surface_radius(k + 1)) cycle
+        found = k
         exit
+      end do
+      s = 0.0_dp
+      if (found > 0) s = max(0.0_dp, (r - surface_radius(found))/(surface_radius(found + 1) - surface_radius(found)))
+      do c = 1, 2
+        equation = node_dof(mesh, node, c)
+        if (supports(equation)) cycle
+        if (tolerance > 0.0_dp .and. found > 0) then
+          old_s = contact%weight(2, equation)
+          if (contact%partner(1, equation) == node_dof(mesh, surface(found), c) .and. &
+              contact%partner(2, equation) == node_dof(mesh, surface(found + 1), c) .and. &
+              abs(s - old_s) <= tolerance) cycle
+        end if
+        if (found == 0 .and. all(contact%partner(:, equation) == 0)) cycle
+        changed = .true.
+        contact%partner(:, equation) = 0
+        contact%weight(:, equation) = 0.0_dp
+        if (found == 0) cycle
+        do j = 1, 2
+          other = node_dof(mesh, surface(found + j - 1), c)
+          if (supports(other)) cycle
+          contact%partner(j, equation) = other
+          contact%weight(j, equation) = merge(1.0_dp - s, s, j == 1)
+        end do
       end do
     end do
     end associate
-  end subroutine pad_partners
+    if (changed .and. contact%body) call body_surface_heights(deck, contact)   ! the curved surface under the new s
+  end subroutine pair_on_surface
 
   !> Under a second BODY: the undeformed z of its surface under each
   !> candidate, (1 - s) z(a) + s z(b) on the segment that contact%partner
