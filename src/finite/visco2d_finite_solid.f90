@@ -58,8 +58,7 @@ contains
     logical, intent(out) :: valid
     type(finite_point_t) :: points(gauss_count)
     type(hyperelastic_t) :: law
-    real(dp) :: tangent(4, 4, gauss_count), point_energy, current, reference, gradient(8), ratio, pressure, slope
-    real(dp) :: volumetric_energy, change
+    real(dp) :: tangent(4, 4, gauss_count), point_energy, reference, gradient(8), pressure, slope
     integer :: gp
     logical :: mean_dilatation
     force = 0.0_dp
@@ -75,17 +74,10 @@ contains
     end if
     law = law_of_material(material)
     mean_dilatation = formulation == formulation_bbar
-    if (mean_dilatation) then
-      call element_volumes(points, current, reference, gradient)
-      ratio = current/reference
-      ! theta - 1 = sum (J - 1) dV / V: dv = J dV at each point, and J - 1 from H keeps small strains' digits
-      change = 0.0_dp
-      do gp = 1, gauss_count
-        change = change + volume_change(points(gp)%gradient)*points(gp)%reference_volume
-      end do
-      call volumetric_response(law, ratio, pressure, slope, volumetric_energy, change/reference)
-      energy = reference*volumetric_energy
-    end if
+    slope = 0.0_dp                                  ! (used with the mean dilatation only)
+    reference = 1.0_dp
+    gradient = 0.0_dp
+    if (mean_dilatation) call mean_pressure(law, points, pressure, slope, energy, reference, gradient)
     do gp = 1, gauss_count
       if (mean_dilatation) then
         call isochoric_response(law, points(gp)%deformation, stress(:, gp), tangent(:, :, gp), point_energy, &
@@ -99,11 +91,43 @@ contains
       energy = energy + points(gp)%reference_volume*point_energy
       strain(:, gp) = logarithmic_strain(points(gp)%deformation)
     end do
+    call element_forces(geometry, points, stress, tangent, with_stiffness, mean_dilatation, slope, reference, gradient, &
+                        force, stiffness)
+  end subroutine element_response
+
+  !> The mean dilatation's pressure of an element (FORMULATION BBAR): the
+  !> volumetric law at the element's volume ratio theta = v / V, with
+  !> theta - 1 = sum (J - 1) dV / V (J - 1 from H keeps small strains' digits);
+  !> its slope, the volumetric energy (J, per radian), V and d v / d u.
+  pure subroutine mean_pressure(law, points, pressure, slope, energy, reference, gradient)
+    type(hyperelastic_t), intent(in) :: law
+    type(finite_point_t), intent(in) :: points(gauss_count)
+    real(dp), intent(out) :: pressure, slope, energy, reference, gradient(8)
+    real(dp) :: current, change, volumetric_energy
+    integer :: gp
+    call element_volumes(points, current, reference, gradient)
+    change = 0.0_dp
+    do gp = 1, gauss_count
+      change = change + volume_change(points(gp)%gradient)*points(gp)%reference_volume
+    end do
+    call volumetric_response(law, current/reference, pressure, slope, volumetric_energy, change/reference)
+    energy = reference*volumetric_energy
+  end subroutine mean_pressure
+
+  !> The element's force from the points' stresses and, when wanted, its
+  !> tangent stiffness (with the mean dilatation's term slope / V dv/du dv/du).
+  pure subroutine element_forces(geometry, points, stress, tangent, with_stiffness, mean_dilatation, slope, reference, &
+                                 gradient, force, stiffness)
+    integer, intent(in) :: geometry
+    type(finite_point_t), intent(in) :: points(gauss_count)
+    real(dp), intent(in) :: stress(4, gauss_count), tangent(4, 4, gauss_count), slope, reference, gradient(8)
+    logical, intent(in) :: with_stiffness, mean_dilatation
+    real(dp), intent(inout) :: force(8), stiffness(8, 8)
     force = finite_force(points, stress)
     if (.not. with_stiffness) return
     stiffness = finite_tangent(geometry, points, stress, tangent)
     if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
-  end subroutine element_response
+  end subroutine element_forces
 
   !> element_response for a material with memory (VISCOELASTIC with PRONY
   !> terms) over a step dt from the points' histories `history_in`: Simo's
@@ -123,8 +147,7 @@ contains
     type(viscoelastic_point_t), intent(inout) :: history_out(gauss_count)
     logical, intent(out) :: valid
     type(finite_point_t) :: points(gauss_count)
-    real(dp) :: tangent(4, 4, gauss_count), point_energy, current, reference, gradient(8), ratio, pressure, slope
-    real(dp) :: volumetric_energy, change
+    real(dp) :: tangent(4, 4, gauss_count), point_energy, reference, gradient(8), pressure, slope
     integer :: gp
     logical :: mean_dilatation
     force = 0.0_dp
@@ -135,16 +158,10 @@ contains
     call finite_kinematics(geometry, xy, displacement, points, valid)
     if (.not. valid) return
     mean_dilatation = formulation == formulation_bbar
-    if (mean_dilatation) then
-      call element_volumes(points, current, reference, gradient)
-      ratio = current/reference
-      change = 0.0_dp
-      do gp = 1, gauss_count
-        change = change + volume_change(points(gp)%gradient)*points(gp)%reference_volume
-      end do
-      call volumetric_response(law%instantaneous, ratio, pressure, slope, volumetric_energy, change/reference)
-      energy = reference*volumetric_energy
-    end if
+    slope = 0.0_dp                                  ! (used with the mean dilatation only)
+    reference = 1.0_dp
+    gradient = 0.0_dp
+    if (mean_dilatation) call mean_pressure(law%instantaneous, points, pressure, slope, energy, reference, gradient)
     do gp = 1, gauss_count
       if (mean_dilatation) then
         call viscoelastic_isochoric_response(law, dt, points(gp)%deformation, history_in(gp), stress(:, gp), &
@@ -158,10 +175,8 @@ contains
       energy = energy + points(gp)%reference_volume*point_energy
       strain(:, gp) = logarithmic_strain(points(gp)%deformation)
     end do
-    force = finite_force(points, stress)
-    if (.not. with_stiffness) return
-    stiffness = finite_tangent(geometry, points, stress, tangent)
-    if (mean_dilatation) stiffness = stiffness + slope/reference*spread(gradient, 2, 8)*spread(gradient, 1, 8)
+    call element_forces(geometry, points, stress, tangent, with_stiffness, mean_dilatation, slope, reference, gradient, &
+                        force, stiffness)
   end subroutine viscoelastic_element
 
   !> element_response for a HYPERFOAM material: visco2d_hyperfoam's law at
