@@ -30,7 +30,9 @@ module visco2d_finite_force
   use visco2d_hyperelastic, only: hyperelastic_t, power_minus_one
   use visco2d_finite_solid, only: law_of_material
   use visco2d_finite_assembly, only: finite_memory_t, general_element
-  use visco2d_finite_viscoelastic, only: viscoelastic_point_t, finite_viscoelastic_t, term_count
+  use visco2d_assembly, only: element_dofs
+  use visco2d_finite_viscoelastic, only: viscoelastic_point_t, finite_viscoelastic_t, term_count, step_shear_ratio, &
+                                         internal_energy
   use visco2d_viscoelastic, only: relaxation_integral
   implicit none
   private
@@ -157,10 +159,7 @@ contains
     if (present(memory)) call step_factors(memory, decay, integral, mu_hat)
     do e = 1, mesh%nelem
       if (.not. reference%lean(e)) then
-        do a = 1, 4
-          dofs(2*a) = 2*mesh%equation(mesh%connectivity(a, e))
-          dofs(2*a - 1) = dofs(2*a) - 1
-        end do
+        dofs = element_dofs(mesh, e)
         if (present(memory) .and. present(history) .and. present(next)) then   ! (finite_assemble's note)
           call general_element(mesh, materials, settings, e, displacement, .false., element_force, element_stiffness, &
                                stress(:, :, e), strain(:, :, e), element_energy, valid, memory, history, next)
@@ -275,11 +274,10 @@ contains
     do m = 1, size(memory%relaxes)
       if (.not. memory%relaxes(m)) cycle
       associate (law => memory%laws(m))
-      mu_hat(m) = law%long_term_ratio
+      mu_hat(m) = step_shear_ratio(law, memory%dt)
       do i = 1, term_count(law)
         decay(i, m) = exp(-law%rate(i)*memory%dt)
         integral(i, m) = relaxation_integral(law%rate(i)*memory%dt)
-        mu_hat(m) = mu_hat(m) + law%ratio(i)*integral(i, m)
       end do
       end associate
     end do
@@ -339,22 +337,6 @@ contains
       next%internal(:, i) = decay(i)*point%internal(:, i) + law%ratio(i)*integral(i)*(s0 - point%instantaneous)
     end do
   end subroutine next_history
-
-  !> sum_i Q_i : Q_i / (4 gamma_i G0): the energy of the internal stresses (visco2d_finite_viscoelastic's).
-  pure real(dp) function internal_energy(law, point) result(energy)
-    type(finite_viscoelastic_t), intent(in) :: law
-    type(viscoelastic_point_t), intent(in) :: point
-    real(dp) :: g0
-    integer :: i
-    energy = 0.0_dp
-    g0 = 2.0_dp*(law%instantaneous%c10 + law%instantaneous%c01)
-    do i = 1, term_count(law)
-      if (law%ratio(i) <= 0.0_dp) cycle
-      associate (q => point%internal(:, i))
-      energy = energy + (q(1)**2 + q(2)**2 + q(3)**2 + 2.0_dp*q(4)**2)/(4.0_dp*law%ratio(i)*g0)
-      end associate
-    end do
-  end function internal_energy
 
   !> x^(-1/3) for x > 0: from the cubic Taylor polynomial in c = x - 1,
   !> y = 1 - c/3 + 2 c^2/9 - 14 c^3/81, the update y (1 + r/3 + 2 r^2/9),

@@ -83,7 +83,7 @@ module visco2d_finite_viscoelastic
   public :: finite_viscoelastic_t, viscoelastic_point_t
   public :: finite_viscoelastic_from_material, viscoelastic_point_create, term_count
   public :: viscoelastic_isochoric_response, viscoelastic_response, viscoelastic_energy
-  public :: step_shear_ratio, relaxation_ratio
+  public :: step_shear_ratio, relaxation_ratio, internal_energy
 
   !> The constants of the law: the instantaneous hyperelastic law (G0, K) and
   !> the normalised Prony series g(t) = gamma_inf + sum gamma_i exp(-beta_i t).
