@@ -23,7 +23,7 @@ module visco2d_factor
   implicit none
   private
 
-  public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, solve_failure_text
+  public :: factor_t, factor_compute, factor_solve, factor_solve_many, factor_entries, solve_failure_text, correction_energy
   public :: solver_none, solver_band, solver_profile, solver_cholmod, solver_default, solver_name, solver_of_card
 
   !> The solvers, numbered as the SOLVER card's choices (BAND 1, PROFILE 2,
@@ -150,6 +150,23 @@ contains
       if (info /= 0) info = solve_unfactored
     end select
   end subroutine factor_solve_many
+
+  !> The energy norm of the next Newton correction, |d . r| with d = A^-1 r on
+  !> the free equations (r and d zero on the `fixed` ones): the energy test of
+  !> the static and quasi-static Newton solves. info as factor_solve.
+  subroutine correction_energy(factor, residual, fixed, energy, info)
+    type(factor_t), intent(in) :: factor
+    real(dp), intent(in) :: residual(:)
+    logical, intent(in) :: fixed(:)
+    real(dp), intent(out) :: energy
+    integer, intent(out) :: info
+    real(dp) :: correction(size(residual))
+    correction = merge(0.0_dp, residual, fixed)
+    energy = 0.0_dp
+    call factor_solve(factor, correction, info)
+    if (info /= 0) return
+    energy = abs(sum(merge(0.0_dp, correction*residual, fixed)))
+  end subroutine correction_energy
 
   !> What a failed factor_solve's info says (for the caller's error).
   pure function solve_failure_text(info) result(text)

@@ -43,7 +43,7 @@ module visco2d_finite_static
   use visco2d_model, only: settings_t, loads_t, source_t
   use visco2d_quadrilateral, only: gauss_count
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text, correction_energy
   use visco2d_assembly, only: external_load, gravity_load, support_mask, prescribed_displacement, &
                               nodal_field, nodal_average
   use visco2d_static, only: static_solution_t
@@ -199,13 +199,11 @@ contains
             'residual is not finite)')
           return
         end if
-        du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with the last factor
-        call factor_solve(factor, du, info)
+        call correction_energy(factor, r, fixed, energy_next, info)   ! the next correction's, with the last factor
         if (info /= 0) then
           call set_error(error, solve_failure_text(info))     ! located by the driver
           return
         end if
-        energy_next = abs(sum(merge(0.0_dp, du*r, fixed)))
         if (force_ratio <= force_tolerance .and. (energy_next <= energy_tolerance*energy_first .or. &
                                                   energy_first == 0.0_dp)) then
           converged = .true.

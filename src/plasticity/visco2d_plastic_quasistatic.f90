@@ -58,7 +58,7 @@ module visco2d_plastic_quasistatic
   use visco2d_progress, only: progress_step
   use visco2d_element, only: element_b_matrices, gauss_count
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text, correction_energy
   use visco2d_assembly, only: element_dofs, assemble_point_tangents, external_load, gravity_load, support_mask, &
                               prescribed_displacement, &
                               scatter_add, nodal_field
@@ -272,13 +272,11 @@ contains
             ': the displacement or the residual is not finite)')
           return
         end if
-        du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with this factor
-        call factor_solve(factor, du, info)
+        call correction_energy(factor, r, fixed, energy_next, info)   ! the next correction's, with this factor
         if (info /= 0) then
           call set_error(error, solve_failure_text(info))
           return
         end if
-        energy_next = abs(sum(merge(0.0_dp, du*r, fixed)))
         energy_scale = max(energy_first, abs(dot_product(u, force)), energy_level)   ! a step may barely move
         if (force_ratio <= force_tolerance .and. (energy_next <= energy_tolerance*energy_scale .or. &
                                                   energy_scale == 0.0_dp)) then

@@ -39,7 +39,7 @@ module visco2d_plastic_static
   use visco2d_model, only: settings_t, loads_t, source_t
   use visco2d_element, only: element_b_matrices, gauss_count
   use visco2d_banded, only: band_matrix_t, band_constrain_rhs, band_multiply
-  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text
+  use visco2d_factor, only: factor_t, factor_compute, factor_solve, solver_of_card, solve_failure_text, correction_energy
   use visco2d_assembly, only: element_dofs, assemble_point_tangents, external_load, gravity_load, support_mask, &
                               prescribed_displacement, &
                               scatter_add, nodal_field, nodal_average, node_dof
@@ -240,13 +240,11 @@ contains
             cycle
           end if
         end if
-        du = merge(0.0_dp, r, fixed)                   ! the next correction's energy, with this factor
-        call factor_solve(factor, du, info)
+        call correction_energy(factor, r, fixed, energy_next, info)   ! the next correction's, with this factor
         if (info /= 0) then
           call set_error(error, solve_failure_text(info))     ! located by the driver
           return
         end if
-        energy_next = abs(sum(merge(0.0_dp, du*r, fixed)))
         if (force_ratio <= force_tolerance .and. (energy_next <= energy_tolerance*energy_first .or. &
                                                   energy_first == 0.0_dp)) then
           converged = .true.
